@@ -1,0 +1,147 @@
+// shockgas-sim: parses arguments, runs the ensemble, writes the HDF5 file.
+// Everything else lives in the shockgas_sim library.
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "shockgas/ensemble.hpp"
+#include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
+#include "shockgas/parameters.hpp"
+#include "shockgas/provenance.hpp"
+
+namespace {
+
+std::atomic<bool> interrupt_requested{false};
+
+extern "C" void on_interrupt(int) { interrupt_requested.store(true); }
+
+void print_table(const shockgas::EnsembleResult& result) {
+    fmt::print("# {:>12} {:>14} {:>14} {:>14}\n", "t", "T(t)", "coll/particle", "clusters");
+    const std::size_t samples = result.times.size();
+    for (std::size_t s = 0; s < samples; ++s) {
+        double temperature = 0, collisions = 0, clusters = 0;
+        int reached = 0;
+        for (std::int64_t k = 0; k < result.realizations; ++k) {
+            const std::size_t cell = static_cast<std::size_t>(k) * samples + s;
+            if (result.temperature[cell] != result.temperature[cell]) continue;  // NaN: not reached
+            temperature += result.temperature[cell];
+            collisions += result.collisions_per_particle[cell];
+            clusters += result.clusters[cell];
+            ++reached;
+        }
+        if (reached == 0) continue;
+        fmt::print("  {:>12.6g} {:>14.6e} {:>14.6g} {:>14.6g}\n", result.times[s], temperature / reached,
+                   collisions / reached, clusters / reached);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    shockgas::SimulationParameters p;
+    std::string output = "shockgas.h5";
+    std::string subthreshold = "elastic";
+    bool quiet = false;
+
+    CLI::App app{"shockgas-sim: event-driven simulation of a 1D inelastic gas on a ring (Ben-Naim, Chen, Doolen & "
+                 "Redner, PRL 1999). Units: initial spacing 1, initial velocity scale 1."};
+    app.set_config("--config", "", "read options from a TOML/INI parameter file (keys are the long option names)");
+    app.add_option("-N,--particles", p.particles, "number of particles N (>= 2)")->capture_default_str();
+    app.add_option("--ring-length", p.ring_length, "ring length L; 0 means L = N (unit spacing)")->capture_default_str();
+    app.add_option("-r,--restitution", p.collision.restitution,
+                   "restitution coefficient r = 1 - 2 eps in [0, 1]; 0 is the sticky gas")
+        ->capture_default_str();
+    app.add_option("-d,--threshold", p.collision.velocity_threshold,
+                   "velocity threshold delta >= 0 (velocity units); below it the sub-threshold mechanism "
+                   "applies; 0 is the pure inelastic gas, which stops at inelastic collapse")
+        ->capture_default_str();
+    app.add_option("--subthreshold", subthreshold, "sub-threshold mechanism: elastic (r = 1) or sticky (merge)")
+        ->capture_default_str();
+    app.add_option("-t,--t-max", p.t_max, "final time (units of spacing / velocity scale)")->capture_default_str();
+    app.add_option("--samples-per-decade", p.samples_per_decade, "log-spaced samples per decade of t, from t = 1")
+        ->capture_default_str();
+    app.add_option("--sample-times", p.sample_times, "extra sample times, comma separated")->delimiter(',');
+    app.add_option("--snapshot-times", p.snapshot_times,
+                   "times at which to store every cluster's position, velocity and mass, comma separated")
+        ->delimiter(',');
+    app.add_option("--histogram-times", p.histogram_times,
+                   "times at which to store the mass-weighted velocity histogram, comma separated")
+        ->delimiter(',');
+    app.add_option("--histogram-bins", p.histogram_bins, "histogram bins")->capture_default_str();
+    app.add_option("--histogram-range", p.histogram_range,
+                   "histogram covers |v - V| t^(1/3) <= range (V the mean velocity)")
+        ->capture_default_str();
+    app.add_option("-R,--realizations", p.realizations, "independent realizations")->capture_default_str();
+    app.add_option("-s,--seed", p.seed, "random seed; realization k uses splitmix64(seed, k)")->capture_default_str();
+    app.add_option("-j,--threads", p.threads, "threads for realizations; 0 means every core")->capture_default_str();
+    app.add_option("--init", p.init_file,
+                   "initial condition FILE.h5: datasets position, velocity, optional mass; root attribute "
+                   "ring_length");
+    app.add_option("--engine", p.engine, "engine: event, exact (r = 0 only) or auto")->capture_default_str();
+    app.add_option("--collapse-speed", p.collapse.collapse_speed,
+                   "declare inelastic collapse at an inelastic collision slower than this")
+        ->capture_default_str();
+    app.add_option("-o,--output", output, "output HDF5 file (written atomically)")->capture_default_str();
+    app.add_flag("-q,--quiet", quiet, "do not print the T(t) table");
+    app.footer("Output schema: see README.md, 'Output files'. Ctrl-C writes what has been computed, marked "
+               "interrupted.");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        return app.exit(error);
+    }
+
+    try {
+        p.collision.subthreshold = shockgas::subthreshold_from_string(subthreshold);
+        shockgas::InitialCondition initial;
+        if (!p.init_file.empty()) {
+            initial = shockgas::read_initial_condition(p.init_file);
+            if (app.count("--particles") > 0 && p.particles != initial.size())
+                throw shockgas::InputError(fmt::format("--particles {} disagrees with the {} particles of '{}'",
+                                                       p.particles, initial.size(), p.init_file));
+            if (app.count("--ring-length") > 0 && p.ring_length != initial.ring_length)
+                throw shockgas::InputError("--ring-length disagrees with the init file's ring_length");
+            p.particles = initial.size();
+            p.ring_length = initial.ring_length;
+        }
+        shockgas::validate(p);
+        shockgas::h5::check_writable(output);
+
+        std::signal(SIGINT, on_interrupt);
+        std::signal(SIGTERM, on_interrupt);
+        shockgas::ProgressCallback progress;
+        if (isatty(STDERR_FILENO) && !quiet)
+            progress = [](const shockgas::Progress& status) {
+                fmt::print(stderr, "\r{:<110}", shockgas::format_progress(status));
+                std::fflush(stderr);
+            };
+        const auto result =
+            shockgas::run_ensemble(p, p.init_file.empty() ? nullptr : &initial, &interrupt_requested, progress);
+        if (progress) fmt::print(stderr, "\n");
+        shockgas::write_output(output, p, result);
+        if (!quiet) print_table(result);
+        fmt::print(stderr, "shockgas-sim: {} ({} engine, {} collisions, {:.2f} s wall, {:.2f} s CPU) -> {}\n",
+                   result.status, result.engine, result.total_collisions, result.wall_seconds, result.cpu_seconds,
+                   output);
+        for (const auto& c : result.collapses)
+            fmt::print(stderr, "shockgas-sim: realization {} collapsed at t = {:.6g} (cluster of {} particles, {})\n",
+                       c.realization, c.report.time, c.report.cluster_mass, c.report.criterion);
+        return result.status == "interrupted" ? 130 : 0;
+    } catch (const shockgas::InputError& error) {
+        fmt::print(stderr, "shockgas-sim: error: {}\n", error.what());
+        return 2;
+    } catch (const shockgas::h5::Error& error) {
+        fmt::print(stderr, "shockgas-sim: error: {}\n", error.what());
+        return 2;
+    } catch (const std::exception& error) {
+        fmt::print(stderr, "shockgas-sim: internal error: {}\n", error.what());
+        return 1;
+    }
+}

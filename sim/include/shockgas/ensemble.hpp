@@ -1,0 +1,81 @@
+// The ensemble driver: runs R independent realizations (in parallel on
+// `threads` threads), samples every realization at the same times, and
+// collects snapshots, histograms and collapse reports. Realization k always
+// uses the same seed stream and writes only its own row, so the result is
+// bit-identical for any thread count.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "shockgas/engine.hpp"
+#include "shockgas/parameters.hpp"
+#include "shockgas/state.hpp"
+
+namespace shockgas {
+
+enum class RealizationStatus : std::int64_t { complete = 0, collapsed = 1, interrupted = 2, not_run = 3 };
+
+struct SnapshotRecord {
+    std::int64_t realization = 0;
+    ClusterState state;
+};
+
+struct HistogramRecord {
+    double time = 0.0;
+    std::vector<double> edges;   // bins + 1 edges of v - V (velocity units)
+    std::vector<double> counts;  // R x (bins + 2): underflow, bins, overflow; mass-weighted
+};
+
+struct CollapseRecord {
+    std::int64_t realization = 0;
+    CollapseReport report;
+    std::uint64_t collisions = 0;
+    ClusterState state;  // the ring at the moment of collapse
+};
+
+struct EnsembleResult {
+    std::vector<double> times;  // K sample times
+    std::int64_t realizations = 0;
+    // R x K, row-major; NaN where a realization did not reach the time.
+    std::vector<double> temperature;
+    std::vector<double> collisions_per_particle;
+    std::vector<double> clusters;
+    std::vector<double> kinetic_energy;
+    std::vector<SnapshotRecord> snapshots;    // ordered by (realization, time)
+    std::vector<HistogramRecord> histograms;  // ordered by time
+    std::vector<CollapseRecord> collapses;    // ordered by realization
+    std::vector<std::int64_t> realization_status;
+    std::string status;  // complete | interrupted | collapsed
+    std::string engine;
+    std::uint64_t total_collisions = 0;
+    double cpu_seconds = 0.0;
+    double wall_seconds = 0.0;
+};
+
+// What the driver reports while running, about once a second.
+struct Progress {
+    double fraction_done = 0.0;    // estimated share of the work done, in [0, 1]
+    double latest_time = 0.0;      // simulated time of the most advanced running realization
+    double collisions_per_second = 0.0;
+    double elapsed_seconds = 0.0;
+    double eta_seconds = 0.0;      // negative when not yet estimable
+    std::int64_t realizations_done = 0;
+    std::int64_t realizations = 0;
+};
+using ProgressCallback = std::function<void(const Progress&)>;
+
+// Runs the ensemble. initial_override, when non-null, replaces the generated
+// initial condition (the --init file; then realizations must be 1).
+// stop may be raised from a signal handler: the run ends within milliseconds
+// and the result is marked interrupted.
+EnsembleResult run_ensemble(const SimulationParameters& parameters, const InitialCondition* initial_override,
+                            const std::atomic<bool>* stop = nullptr, const ProgressCallback& progress = {});
+
+// One line of progress for a terminal: time, rate, ETA.
+std::string format_progress(const Progress& progress);
+
+}  // namespace shockgas

@@ -1,0 +1,77 @@
+// The event-driven ring engine.
+//
+// State per cluster (one slot per original particle; a slot dies when its
+// cluster merges into its left neighbour):
+//   velocity, mass, clock (time of its last velocity change: per-particle
+//   clocks, i.e. delayed states), and gap, the distance to the next live
+//   cluster, valid at time max(clock[i], clock[next]).
+// Positions are never stored as absolute coordinates of size L, which would
+// lose digits at large L and t; only gaps are stored, each updated from local
+// quantities when one of its two ends changes velocity (see ARCHITECTURE.md).
+// One cluster (the anchor) also carries an absolute position, used only to
+// place the ring for output.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "shockgas/engine.hpp"
+#include "shockgas/event_queue.hpp"
+
+namespace shockgas {
+
+class EventEngine final : public Engine {
+public:
+    EventEngine(const InitialCondition& initial, const CollisionModel& model, const CollapseCriterion& collapse,
+                LiveStatus* live = nullptr);
+
+    bool advance_to(double t) override;
+    double time() const override { return now_; }
+    void clusters(ClusterState& out) const override;
+    std::uint64_t collisions() const override { return collisions_; }
+    std::int64_t cluster_count() const override { return alive_; }
+    const std::optional<CollapseReport>& collapse() const override { return collapse_; }
+    std::string name() const override { return "event"; }
+
+    // Processes exactly one event if one is due at or before t_limit.
+    // Exposed for tests that step through hand-solved cases.
+    bool step(double t_limit);
+    double next_event_time() const { return queue_.top_time(); }
+
+private:
+    struct Cluster {
+        double velocity;
+        double gap;
+        double clock;
+        double mass;
+        std::int32_t next;
+        std::int32_t prev;
+    };
+
+    double gap_at(std::int32_t slot, double t) const;
+    void reschedule(std::int32_t slot);
+    void collide_pair(std::int32_t left, double t);
+    void detect_collapse(std::int32_t left, double relative_speed, double t, const char* criterion);
+    void move_anchor_clock(std::int32_t slot, double t);
+
+    std::vector<Cluster> cluster_;
+    EventQueue queue_;
+    CollisionModel model_;
+    CollapseCriterion criterion_;
+    LiveStatus* live_;
+    double ring_length_;
+    double now_ = 0.0;
+    std::int64_t particles_;
+    std::int64_t alive_;
+    std::uint64_t collisions_ = 0;
+    std::int32_t anchor_ = 0;
+    double anchor_position_ = 0.0;  // absolute position of the anchor at its clock
+    std::optional<CollapseReport> collapse_;
+    // Stall detection: events since time last advanced noticeably.
+    double stall_reference_time_ = 0.0;
+    std::uint64_t stall_events_ = 0;
+    std::uint64_t stall_window_;
+};
+
+}  // namespace shockgas

@@ -1,0 +1,128 @@
+// The one HDF5 layer of shockgas: RAII handles around the HDF5 C API, with
+// errors turned into exceptions whose message names the file and the object.
+// Every reader and writer in sim/ and analysis/ goes through this header.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <hdf5.h>
+
+namespace shockgas::h5 {
+
+struct Error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Owns one hid_t and closes it with the matching H5*close.
+class Handle {
+public:
+    using Closer = herr_t (*)(hid_t);
+    Handle() = default;
+    Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    Handle(Handle&& other) noexcept : id_(other.id_), closer_(other.closer_) { other.id_ = H5I_INVALID_HID; }
+    Handle& operator=(Handle&& other) noexcept {
+        if (this != &other) {
+            close();
+            id_ = other.id_;
+            closer_ = other.closer_;
+            other.id_ = H5I_INVALID_HID;
+        }
+        return *this;
+    }
+    ~Handle() { close(); }
+    hid_t id() const { return id_; }
+    bool valid() const { return id_ >= 0; }
+
+private:
+    void close() {
+        if (id_ >= 0 && closer_ != nullptr) closer_(id_);
+        id_ = H5I_INVALID_HID;
+    }
+    hid_t id_ = H5I_INVALID_HID;
+    Closer closer_ = nullptr;
+};
+
+// A group (the file's root is a group too). Datasets are written whole, with
+// no object timestamps, so equal data give byte-identical datasets.
+class Group {
+public:
+    Group(Handle handle, std::string path) : handle_(std::move(handle)), path_(std::move(path)) {}
+
+    const std::string& path() const { return path_; }
+    hid_t id() const { return handle_.id(); }
+
+    bool has(const std::string& name) const;
+    Group create_group(const std::string& name);
+    Group open_group(const std::string& name) const;
+    std::vector<std::string> children() const;
+
+    // Datasets: dims empty means 1-D of data.size(); otherwise product(dims) == data.size().
+    void write(const std::string& name, const std::vector<double>& data, std::vector<hsize_t> dims = {});
+    void write(const std::string& name, const std::vector<std::int64_t>& data, std::vector<hsize_t> dims = {});
+    std::vector<double> read_doubles(const std::string& name, std::vector<hsize_t>* dims = nullptr) const;
+    std::vector<std::int64_t> read_integers(const std::string& name, std::vector<hsize_t>* dims = nullptr) const;
+    std::vector<hsize_t> dataset_dims(const std::string& name) const;
+
+    // Attributes on this group.
+    void set_attribute(const std::string& name, double value);
+    void set_attribute(const std::string& name, std::int64_t value);
+    void set_attribute(const std::string& name, const std::string& value);
+    void set_attribute(const std::string& name, const char* value) { set_attribute(name, std::string(value)); }
+    void set_attribute(const std::string& name, const std::vector<double>& value);
+    bool has_attribute(const std::string& name) const;
+    double attribute_double(const std::string& name) const;
+    std::int64_t attribute_integer(const std::string& name) const;
+    std::string attribute_string(const std::string& name) const;
+    std::vector<double> attribute_doubles(const std::string& name) const;
+    std::vector<std::string> attribute_names() const;
+    // Copies every attribute of other onto this group, under prefix + name.
+    void copy_attributes_from(const Group& other, const std::string& prefix = "");
+
+private:
+    std::string where(const std::string& name) const;
+    Handle handle_;
+    std::string path_;
+};
+
+class File {
+public:
+    static File create(const std::string& path);     // truncates
+    static File open_read(const std::string& path);  // throws Error naming the path if unreadable
+    Group root() const;
+    const std::string& path() const { return path_; }
+
+private:
+    File(Handle handle, std::string path) : handle_(std::move(handle)), path_(std::move(path)) {}
+    Handle handle_;
+    std::string path_;
+};
+
+// Writes to a temporary file beside the target and renames it into place on
+// commit(), so a killed or failed run never leaves a file that looks complete.
+class AtomicFile {
+public:
+    explicit AtomicFile(std::string target_path);
+    ~AtomicFile();  // removes the temporary file if commit() was not reached
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+    Group root() const { return file_->root(); }
+    void commit();
+
+private:
+    std::string target_;
+    std::string temporary_;
+    std::unique_ptr<File> file_;
+    bool committed_ = false;
+};
+
+// Checks that a file can be created at path (its directory exists and is
+// writable) before a long run starts; throws Error naming the path otherwise.
+void check_writable(const std::string& path);
+
+}  // namespace shockgas::h5

@@ -1,0 +1,42 @@
+// The simulation output schema (documented in README.md, "Output files").
+// Writer and reader live together so that the schema is defined once.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "shockgas/ensemble.hpp"
+#include "shockgas/parameters.hpp"
+
+namespace shockgas {
+
+namespace h5 {
+class Group;
+}
+
+// Writes the whole result atomically (temporary file, then rename): root
+// attributes (every parameter, status, provenance) and the datasets
+// /timeseries, /snapshots, /histograms, /collapse.
+void write_output(const std::string& path, const SimulationParameters& parameters, const EnsembleResult& result);
+
+// Root attributes naming every parameter; used by write_output and by any
+// other writer of the same schema.
+void write_parameter_attributes(h5::Group& root, const SimulationParameters& parameters);
+
+// The part of an output file that analysis needs most: the time series.
+struct TimeSeries {
+    std::vector<double> time;                    // K
+    std::int64_t realizations = 0;               // R
+    std::vector<double> temperature;             // R x K, row-major
+    std::vector<double> collisions_per_particle; // R x K
+    std::vector<double> clusters;                // R x K
+    std::vector<double> kinetic_energy;          // R x K
+    std::string status;
+    double at(const std::vector<double>& table, std::int64_t realization, std::size_t k) const {
+        return table[static_cast<std::size_t>(realization) * time.size() + k];
+    }
+};
+TimeSeries read_timeseries(const std::string& path);
+
+}  // namespace shockgas

@@ -1,0 +1,78 @@
+// Parameters of one shockgas simulation: the physics (collision model), the
+// system (ring, particles) and what to record. One struct, validated in one
+// place, so the CLI, the parameter files and the tests cannot disagree.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace shockgas {
+
+// What happens to a colliding pair whose relative speed is below the
+// velocity threshold delta (the paper's two sub-threshold mechanisms).
+enum class Subthreshold { elastic, sticky };
+
+std::string to_string(Subthreshold mechanism);
+Subthreshold subthreshold_from_string(const std::string& name);  // throws InputError
+
+// The collision model of the paper: restitution r = 1 - 2 eps above the
+// threshold, the sub-threshold mechanism below it. r = 0 is the sticky gas:
+// every collision merges, whatever the threshold.
+struct CollisionModel {
+    double restitution = 0.9;         // r in [0, 1]
+    double velocity_threshold = 1e-2; // delta >= 0; 0 is the pure inelastic gas
+    Subthreshold subthreshold = Subthreshold::elastic;
+};
+
+// Inelastic collapse (delta = 0, r > 0) is detected, not hung on. A run is
+// declared collapsed at the first inelastic collision whose relative speed is
+// below collapse_speed (geometric decay of relative speeds is the signature of
+// collapse, McNamara & Young 1992), or when stall_events consecutive events
+// advance simulated time by less than stall_time_fraction * max(1, t).
+struct CollapseCriterion {
+    double collapse_speed = 1e-12;        // in units of the initial velocity scale (1)
+    double stall_time_fraction = 1e-12;   // relative advance of t regarded as no advance
+    std::uint64_t stall_events_min = 1000000;  // the stall window is max(this, 10 N) events
+};
+
+struct SimulationParameters {
+    std::int64_t particles = 1000;    // N
+    double ring_length = 0.0;         // L; 0 means L = N (unit spacing)
+    CollisionModel collision;
+    CollapseCriterion collapse;
+    double t_max = 1000.0;
+    int samples_per_decade = 10;
+    std::vector<double> sample_times;     // extra times, merged with the log grid
+    std::vector<double> snapshot_times;
+    std::vector<double> histogram_times;
+    int histogram_bins = 160;
+    double histogram_range = 4.0;     // bins cover |v - V_cm| t^(1/3) <= range
+    int realizations = 1;
+    std::uint64_t seed = 1;
+    int threads = 0;                  // 0: every hardware thread
+    std::string init_file;            // optional --init FILE.h5
+    std::string engine = "event";     // event | exact | auto (auto resolved before run)
+
+    double effective_ring_length() const {
+        return ring_length > 0.0 ? ring_length : static_cast<double>(particles);
+    }
+};
+
+// Thrown for any input a user can get wrong: a parameter out of range, a
+// malformed init file, an unwritable output path. The message is one line that
+// names the problem; the CLI prints it and exits nonzero.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Throws InputError naming the first problem found.
+void validate(const SimulationParameters& parameters);
+
+// The sample grid: samples_per_decade log-spaced times from t = 1 to t_max
+// (t_max always included), merged with the listed sample, snapshot and
+// histogram times, sorted, duplicates removed.
+std::vector<double> sample_grid(const SimulationParameters& parameters);
+
+}  // namespace shockgas

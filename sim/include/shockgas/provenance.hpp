@@ -1,0 +1,34 @@
+// Provenance: what made a file. Written as root attributes of every HDF5 file
+// shockgas produces, and copied forward (prefixed "input_") into analysis
+// outputs, so any figure can be traced to the run and code that made it.
+#pragma once
+
+#include <string>
+
+namespace shockgas {
+
+namespace h5 {
+class Group;
+}
+
+struct BuildInfo {
+    std::string version;         // git describe --always --dirty, taken at build time
+    std::string compiler;        // id and version
+    std::string compiler_flags;  // CMAKE_CXX_FLAGS plus the build type's flags
+    std::string build_type;
+    std::string hdf5_version;
+};
+
+const BuildInfo& build_info();
+
+// Schema version of the simulation output; bump on any incompatible change.
+constexpr long long output_schema_version = 1;
+
+// Writes program, version, compiler, flags, build type, HDF5 version, host and
+// the current UTC date as root attributes.
+void write_provenance(h5::Group& root, const std::string& program);
+
+std::string utc_timestamp();
+std::string host_name();
+
+}  // namespace shockgas

@@ -1,0 +1,219 @@
+#include "shockgas/event_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shockgas/collision.hpp"
+
+namespace shockgas {
+
+namespace {
+// Two clusters count as one collapsing cluster when their gap at the moment
+// of collapse is below this fraction of the mean spacing L/N. In a collapse
+// the gaps shrink geometrically to zero, far below this; between ordinary
+// neighbours they are of order the spacing (see ARCHITECTURE.md, "Collapse").
+constexpr double collapse_contact_fraction = 1e-6;
+// Publish progress and look at the stop flag every 4096 events: rare enough to
+// cost nothing, often enough that Ctrl-C answers within milliseconds.
+constexpr std::uint64_t live_status_period_mask = 0xFFF;
+}  // namespace
+
+EventEngine::EventEngine(const InitialCondition& initial, const CollisionModel& model,
+                         const CollapseCriterion& collapse, LiveStatus* live)
+    : queue_(static_cast<std::int32_t>(initial.size())),
+      model_(model),
+      criterion_(collapse),
+      live_(live),
+      ring_length_(initial.ring_length),
+      particles_(initial.size()),
+      alive_(initial.size()),
+      stall_window_(std::max<std::uint64_t>(collapse.stall_events_min, 10 * static_cast<std::uint64_t>(initial.size()))) {
+    validate(initial);
+    const auto n = static_cast<std::int32_t>(initial.size());
+    cluster_.resize(static_cast<std::size_t>(n));
+    for (std::int32_t i = 0; i < n; ++i) {
+        const auto s = static_cast<std::size_t>(i);
+        const double right = (i + 1 < n) ? initial.position[s + 1] : initial.position[0] + ring_length_;
+        cluster_[s] = {initial.velocity[s], right - initial.position[s], 0.0, initial.mass[s], (i + 1) % n,
+                       (i + n - 1) % n};
+    }
+    anchor_position_ = initial.position[0];
+    for (std::int32_t i = 0; i < n; ++i) reschedule(i);
+}
+
+// Gap between slot and its right neighbour at time t (>= both clocks):
+//   gap(t) = gap(tau) + (v_right - v_left) (t - tau),  tau = max(clock_left, clock_right).
+double EventEngine::gap_at(std::int32_t slot, double t) const {
+    const Cluster& left = cluster_[static_cast<std::size_t>(slot)];
+    const Cluster& right = cluster_[static_cast<std::size_t>(left.next)];
+    return left.gap + (right.velocity - left.velocity) * (t - std::max(left.clock, right.clock));
+}
+
+// Pair (slot, next) collides at tau + gap / (v_left - v_right) if approaching;
+// an approaching pair whose gap is already <= 0 collides now.
+void EventEngine::reschedule(std::int32_t slot) {
+    const Cluster& left = cluster_[static_cast<std::size_t>(slot)];
+    if (left.next == slot) {
+        queue_.remove(slot);
+        return;
+    }
+    const Cluster& right = cluster_[static_cast<std::size_t>(left.next)];
+    const double closing_speed = left.velocity - right.velocity;
+    if (!(closing_speed > 0.0)) {
+        queue_.remove(slot);
+        return;
+    }
+    double t = std::max(left.clock, right.clock) + left.gap / closing_speed;
+    if (!(t >= now_)) t = now_;
+    queue_.schedule(slot, t);
+}
+
+void EventEngine::move_anchor_clock(std::int32_t slot, double t) {
+    if (slot != anchor_) return;
+    const Cluster& c = cluster_[static_cast<std::size_t>(slot)];
+    anchor_position_ += c.velocity * (t - c.clock);
+}
+
+bool EventEngine::step(double t_limit) {
+    if (collapse_ || queue_.empty()) return false;
+    const double t = queue_.top_time();
+    if (!(t <= t_limit)) return false;
+    collide_pair(queue_.top_slot(), t);
+    return true;
+}
+
+bool EventEngine::advance_to(double t) {
+    while (!collapse_) {
+        const double next = queue_.top_time();
+        if (!(next <= t)) break;
+        collide_pair(queue_.top_slot(), next);
+        if (live_ != nullptr && (collisions_ & live_status_period_mask) == 0) {
+            live_->time.store(now_, std::memory_order_relaxed);
+            live_->collisions.store(collisions_, std::memory_order_relaxed);
+            if (live_->stop != nullptr && live_->stop->load(std::memory_order_relaxed)) return false;
+        }
+    }
+    if (collapse_) return false;
+    now_ = std::max(now_, t);
+    return true;
+}
+
+void EventEngine::collide_pair(std::int32_t i, double t) {
+    now_ = t;
+    Cluster& a = cluster_[static_cast<std::size_t>(i)];
+    const std::int32_t j = a.next;
+    const std::int32_t p = a.prev;
+    Cluster& b = cluster_[static_cast<std::size_t>(j)];
+    const double relative_speed = a.velocity - b.velocity;
+    const CollisionKind kind = classify(model_, relative_speed);
+
+    // Collapse: time no longer advances, or relative speeds have decayed
+    // geometrically to nothing in an inelastic collision.
+    if (t - stall_reference_time_ <= criterion_.stall_time_fraction * std::max(1.0, t)) {
+        if (++stall_events_ >= stall_window_) {
+            detect_collapse(i, relative_speed, t, "stall");
+            return;
+        }
+    } else {
+        stall_reference_time_ = t;
+        stall_events_ = 0;
+    }
+    if (kind == CollisionKind::inelastic && relative_speed < criterion_.collapse_speed) {
+        detect_collapse(i, relative_speed, t, "relative_speed");
+        return;
+    }
+
+    // Bring the two neighbouring gaps to time t before the velocities change.
+    // On a ring of two clusters the left gap of i is the right gap of j.
+    cluster_[static_cast<std::size_t>(p)].gap = gap_at(p, t);
+    if (j != p) b.gap = gap_at(j, t);
+    a.gap = 0.0;  // the pair is in contact at the collision
+    move_anchor_clock(i, t);
+    move_anchor_clock(j, t);
+    ++collisions_;
+
+    if (kind == CollisionKind::merge) {
+        const MergedCluster merged = merge(a.mass, a.velocity, b.mass, b.velocity);
+        a.velocity = merged.velocity;
+        a.mass = merged.mass;
+        a.clock = t;
+        a.gap = b.gap;
+        const std::int32_t k = b.next;
+        a.next = k;
+        cluster_[static_cast<std::size_t>(k)].prev = i;
+        queue_.remove(j);
+        --alive_;
+        if (anchor_ == j) anchor_ = i;  // same point: the pair is in contact
+        if (alive_ == 1) {
+            a.next = a.prev = i;
+            a.gap = ring_length_;
+            queue_.remove(i);
+            return;
+        }
+        reschedule(p);
+        reschedule(i);
+        return;
+    }
+
+    const double restitution = kind == CollisionKind::elastic ? 1.0 : model_.restitution;
+    const PostCollision after = collide(a.mass, a.velocity, b.mass, b.velocity, restitution);
+    a.velocity = after.left_velocity;
+    b.velocity = after.right_velocity;
+    a.clock = t;
+    b.clock = t;
+    reschedule(p);
+    reschedule(i);
+    reschedule(j);
+}
+
+void EventEngine::detect_collapse(std::int32_t i, double relative_speed, double t, const char* criterion) {
+    // The collapsing cluster: the run of clusters around the triggering pair
+    // that are in contact (gap below collapse_contact_fraction * L / N).
+    const double contact = collapse_contact_fraction * ring_length_ / static_cast<double>(particles_);
+    double mass = cluster_[static_cast<std::size_t>(i)].mass;
+    std::int64_t members = 1;
+    for (std::int32_t s = i; members < alive_ && gap_at(s, t) <= contact; ++members) {
+        s = cluster_[static_cast<std::size_t>(s)].next;
+        mass += cluster_[static_cast<std::size_t>(s)].mass;
+    }
+    for (std::int32_t s = cluster_[static_cast<std::size_t>(i)].prev; members < alive_ && gap_at(s, t) <= contact;
+         ++members) {
+        mass += cluster_[static_cast<std::size_t>(s)].mass;
+        s = cluster_[static_cast<std::size_t>(s)].prev;
+    }
+    collapse_ = CollapseReport{t, i, static_cast<std::int64_t>(std::llround(mass)), relative_speed, criterion};
+    now_ = t;
+}
+
+void EventEngine::clusters(ClusterState& out) const {
+    out.clear();
+    out.time = now_;
+    const auto count = static_cast<std::size_t>(alive_);
+    std::vector<double> walk_position(count);
+    std::vector<std::int32_t> walk_slot(count);
+    const Cluster& anchor = cluster_[static_cast<std::size_t>(anchor_)];
+    double x = anchor_position_ + anchor.velocity * (now_ - anchor.clock);
+    std::int32_t s = anchor_;
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+        walk_position[k] = x;
+        walk_slot[k] = s;
+        if (s < walk_slot[first]) first = k;
+        x += gap_at(s, now_);
+        s = cluster_[static_cast<std::size_t>(s)].next;
+    }
+    out.position.reserve(count);
+    out.velocity.reserve(count);
+    out.mass.reserve(count);
+    out.first_particle.reserve(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t w = (first + k) % count;
+        const Cluster& c = cluster_[static_cast<std::size_t>(walk_slot[w])];
+        out.position.push_back(wrap_position(walk_position[w], ring_length_));
+        out.velocity.push_back(c.velocity);
+        out.mass.push_back(c.mass);
+        out.first_particle.push_back(walk_slot[w]);
+    }
+}
+
+}  // namespace shockgas

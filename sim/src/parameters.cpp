@@ -1,0 +1,81 @@
+#include "shockgas/parameters.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace shockgas {
+
+std::string to_string(Subthreshold mechanism) {
+    return mechanism == Subthreshold::elastic ? "elastic" : "sticky";
+}
+
+Subthreshold subthreshold_from_string(const std::string& name) {
+    if (name == "elastic") return Subthreshold::elastic;
+    if (name == "sticky") return Subthreshold::sticky;
+    throw InputError(fmt::format("sub-threshold mechanism must be 'elastic' or 'sticky', got '{}'", name));
+}
+
+namespace {
+void check_times(const std::vector<double>& times, double t_max, const char* what) {
+    for (double t : times) {
+        if (!std::isfinite(t) || t <= 0.0)
+            throw InputError(fmt::format("{} must be positive and finite, got {}", what, t));
+        if (t > t_max)
+            throw InputError(fmt::format("{} {} is beyond t_max = {}", what, t, t_max));
+    }
+}
+}  // namespace
+
+void validate(const SimulationParameters& p) {
+    const auto& c = p.collision;
+    if (!(c.restitution >= 0.0 && c.restitution <= 1.0))
+        throw InputError(fmt::format("restitution r must lie in [0, 1], got {}", c.restitution));
+    if (!(c.velocity_threshold >= 0.0) || !std::isfinite(c.velocity_threshold))
+        throw InputError(fmt::format("velocity threshold delta must be finite and >= 0, got {}",
+                                     c.velocity_threshold));
+    if (p.particles < 2)
+        throw InputError(fmt::format("particles N must be at least 2, got {}", p.particles));
+    if (p.particles > (std::int64_t{1} << 31) - 2)
+        throw InputError(fmt::format("particles N must be below 2^31, got {}", p.particles));
+    if (p.ring_length < 0.0 || !std::isfinite(p.ring_length))
+        throw InputError(fmt::format("ring length L must be positive, got {}", p.ring_length));
+    if (!(p.t_max > 0.0) || !std::isfinite(p.t_max))
+        throw InputError(fmt::format("t_max must be positive and finite, got {}", p.t_max));
+    if (p.samples_per_decade < 1 || p.samples_per_decade > 1000)
+        throw InputError(fmt::format("samples per decade must lie in [1, 1000], got {}", p.samples_per_decade));
+    if (p.realizations < 1)
+        throw InputError(fmt::format("realizations must be at least 1, got {}", p.realizations));
+    if (p.threads < 0) throw InputError(fmt::format("threads must be >= 0, got {}", p.threads));
+    if (p.histogram_bins < 1) throw InputError(fmt::format("histogram bins must be >= 1, got {}", p.histogram_bins));
+    if (!(p.histogram_range > 0.0) || !std::isfinite(p.histogram_range))
+        throw InputError(fmt::format("histogram range must be positive, got {}", p.histogram_range));
+    if (!(p.collapse.collapse_speed >= 0.0))
+        throw InputError(fmt::format("collapse speed must be >= 0, got {}", p.collapse.collapse_speed));
+    check_times(p.sample_times, p.t_max, "sample time");
+    check_times(p.snapshot_times, p.t_max, "snapshot time");
+    check_times(p.histogram_times, p.t_max, "histogram time");
+    if (p.engine != "event" && p.engine != "exact" && p.engine != "auto")
+        throw InputError(fmt::format("engine must be 'event', 'exact' or 'auto', got '{}'", p.engine));
+}
+
+std::vector<double> sample_grid(const SimulationParameters& p) {
+    std::vector<double> grid;
+    // Log grid t_k = 10^(k / K), k = 0, 1, ... while t_k < t_max; computed from
+    // k (not by repeated multiplication) so every run has identical times.
+    for (int k = 0;; ++k) {
+        const double t = std::pow(10.0, static_cast<double>(k) / p.samples_per_decade);
+        if (t >= p.t_max * (1.0 - 1e-12)) break;
+        grid.push_back(t);
+    }
+    grid.push_back(p.t_max);
+    for (const auto* list : {&p.sample_times, &p.snapshot_times, &p.histogram_times})
+        grid.insert(grid.end(), list->begin(), list->end());
+    std::sort(grid.begin(), grid.end());
+    grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+    return grid;
+}
+
+}  // namespace shockgas

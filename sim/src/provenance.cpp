@@ -1,0 +1,39 @@
+#include "shockgas/provenance.hpp"
+
+#include <ctime>
+
+#include <unistd.h>
+
+#include "shockgas/h5.hpp"
+
+namespace shockgas {
+
+std::string utc_timestamp() {
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+    return text;
+}
+
+std::string host_name() {
+    char name[256] = {};
+    if (gethostname(name, sizeof name - 1) != 0) return "unknown";
+    return name;
+}
+
+void write_provenance(h5::Group& root, const std::string& program) {
+    const BuildInfo& info = build_info();
+    root.set_attribute("program", program);
+    root.set_attribute("version", info.version);
+    root.set_attribute("compiler", info.compiler);
+    root.set_attribute("compiler_flags", info.compiler_flags);
+    root.set_attribute("build_type", info.build_type);
+    root.set_attribute("hdf5_version", info.hdf5_version);
+    root.set_attribute("host", host_name());
+    root.set_attribute("date", utc_timestamp());
+    root.set_attribute("schema_version", static_cast<std::int64_t>(output_schema_version));
+}
+
+}  // namespace shockgas
