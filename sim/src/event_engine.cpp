@@ -185,6 +185,17 @@ void EventEngine::detect_collapse(std::int32_t i, double relative_speed, double 
     now_ = t;
 }
 
+std::vector<double> EventEngine::gaps() const {
+    std::vector<double> out;
+    out.reserve(static_cast<std::size_t>(alive_));
+    std::int32_t s = anchor_;
+    for (std::int64_t k = 0; k < alive_; ++k) {
+        out.push_back(gap_at(s, now_));
+        s = cluster_[static_cast<std::size_t>(s)].next;
+    }
+    return out;
+}
+
 void EventEngine::clusters(ClusterState& out) const {
     out.clear();
     out.time = now_;

@@ -38,6 +38,15 @@ public:
     // Exposed for tests that step through hand-solved cases.
     bool step(double t_limit);
     double next_event_time() const { return queue_.top_time(); }
+    // Gaps between neighbouring clusters at the current time, in ring order
+    // from the anchor. They sum to L and are never negative beyond rounding:
+    // the invariants tests check.
+    std::vector<double> gaps() const;
+    // Memory the engine holds per particle: the cluster record plus the
+    // queue's time, heap and heap-position entries.
+    static constexpr std::size_t bytes_per_particle() {
+        return sizeof(Cluster) + sizeof(double) + 2 * sizeof(std::int32_t);
+    }
 
 private:
     struct Cluster {

@@ -1,0 +1,61 @@
+# End-to-end tests of shockgas-sim: every bad input gives one line naming the
+# problem, a nonzero exit status and no output file; good runs write files
+# with the right status.
+set(_cli_dir "${CMAKE_CURRENT_BINARY_DIR}/work/cli")
+file(MAKE_DIRECTORY "${_cli_dir}")
+set(_sim $<TARGET_FILE:shockgas-sim>)
+set(_expect "${CMAKE_CURRENT_SOURCE_DIR}/cli/expect_error.sh")
+
+function(shockgas_cli_error name regex)
+  add_test(NAME cli.error.${name}
+           COMMAND ${_expect} "${regex}" "${_cli_dir}/${name}.h5" -- ${_sim} ${ARGN} -o "${_cli_dir}/${name}.h5"
+           WORKING_DIRECTORY "${_cli_dir}")
+  set_tests_properties(cli.error.${name} PROPERTIES LABELS cli)
+endfunction()
+
+shockgas_cli_error(restitution_above_one "restitution" -N 10 -r 1.5)
+shockgas_cli_error(restitution_negative "restitution" -N 10 -r -0.1)
+shockgas_cli_error(threshold_negative "threshold" -N 10 -d -1e-3)
+shockgas_cli_error(too_few_particles "particles N must be at least 2" -N 1)
+shockgas_cli_error(t_max_zero "t_max" -N 10 -t 0)
+shockgas_cli_error(t_max_negative "t_max" -N 10 -t -5)
+shockgas_cli_error(bad_subthreshold "sub-threshold" -N 10 --subthreshold gooey)
+shockgas_cli_error(sample_beyond_t_max "beyond t_max" -N 10 -t 10 --snapshot-times 20)
+shockgas_cli_error(init_missing_file "does not exist" --init "${_cli_dir}/no_such_file.h5")
+add_test(NAME cli.error.unwritable_output
+         COMMAND ${_expect} "directory .* does not exist" "${_cli_dir}/absent_dir/out.h5" --
+                 ${_sim} -N 10 -o "${_cli_dir}/absent_dir/out.h5")
+set_tests_properties(cli.error.unwritable_output PROPERTIES LABELS cli)
+
+if(SHOCKGAS_PYTHON)
+  add_test(NAME cli.setup.bad_init_files
+           COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/make_bad_init.py "${_cli_dir}")
+  set_tests_properties(cli.setup.bad_init_files PROPERTIES FIXTURES_SETUP bad_init LABELS cli)
+  foreach(case_regex IN ITEMS "missing_velocity|missing dataset 'velocity'"
+                              "length_mismatch|velocity has 5 values"
+                              "unsorted|not sorted"
+                              "out_of_range|outside \\[0, ring_length"
+                              "nan_velocity|velocity\\[7\\] is not finite"
+                              "no_ring_length|ring_length")
+    string(FIND "${case_regex}" "|" _bar)
+    string(SUBSTRING "${case_regex}" 0 ${_bar} _case)
+    math(EXPR _start "${_bar} + 1")
+    string(SUBSTRING "${case_regex}" ${_start} -1 _regex)
+    shockgas_cli_error(init_${_case} "${_regex}" --init "${_cli_dir}/${_case}.h5")
+    set_tests_properties(cli.error.init_${_case} PROPERTIES FIXTURES_REQUIRED bad_init)
+  endforeach()
+  add_test(NAME cli.init_file_run
+           COMMAND ${_sim} --init "${_cli_dir}/good.h5" -t 20 -q -o "${_cli_dir}/good_run.h5")
+  set_tests_properties(cli.init_file_run PROPERTIES FIXTURES_REQUIRED bad_init LABELS cli)
+endif()
+
+# A good run prints the T(t) table and writes a complete file.
+add_test(NAME cli.small_run
+         COMMAND ${_sim} -N 1000 -r 0.9 -d 0.01 -t 100 -R 2 -o "${_cli_dir}/small.h5")
+set_tests_properties(cli.small_run PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "complete \\(event engine")
+
+# Ctrl-C: SIGINT mid-run writes what was computed, marked interrupted.
+add_test(NAME cli.sigint_writes_interrupted
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/sigint_test.sh ${_sim} "${_cli_dir}/interrupted.h5")
+set_tests_properties(cli.sigint_writes_interrupted PROPERTIES LABELS cli)

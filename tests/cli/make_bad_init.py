@@ -1,0 +1,26 @@
+"""Writes malformed --init files for the CLI tests (needs h5py)."""
+import sys
+
+import h5py
+import numpy as np
+
+directory = sys.argv[1]
+
+
+def write(name, ring_length=8.0, **datasets):
+    with h5py.File(f"{directory}/{name}.h5", "w") as f:
+        if ring_length is not None:
+            f.attrs["ring_length"] = ring_length
+        for key, value in datasets.items():
+            f[key] = np.asarray(value, dtype=float)
+
+
+x = np.arange(8.0)
+v = np.linspace(-1, 1, 8)
+write("missing_velocity", position=x)
+write("length_mismatch", position=x, velocity=v[:5])
+write("unsorted", position=x[::-1], velocity=v)
+write("out_of_range", position=x + 1.0, velocity=v)
+write("nan_velocity", position=x, velocity=np.where(v > 0.9, np.nan, v))
+write("no_ring_length", ring_length=None, position=x, velocity=v)
+write("good", position=x, velocity=v)
