@@ -1,0 +1,353 @@
+// shockgas-analyze: one subcommand per estimator of the analysis library.
+// Parses arguments, calls the library, writes the results file and the
+// gnuplot data files; no analysis happens here.
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "shockgas/analysis/collapse.hpp"
+#include "shockgas/analysis/results.hpp"
+#include "shockgas/analysis/shocks.hpp"
+#include "shockgas/analysis/temperature.hpp"
+#include "shockgas/analysis/velocity_distribution.hpp"
+#include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
+
+namespace {
+
+using namespace shockgas;
+using namespace shockgas::analysis;
+
+struct RunParameters {
+    double restitution, velocity_threshold, particles, t_max;
+};
+RunParameters run_parameters(const std::string& path) {
+    const auto file = h5::File::open_read(path);
+    const auto root = file.root();
+    return {root.attribute_double("restitution"), root.attribute_double("velocity_threshold"),
+            static_cast<double>(root.attribute_integer("particles")), root.attribute_double("t_max")};
+}
+
+std::string restitution_label(double restitution) {
+    std::ostringstream out;
+    out << "r=" << restitution;
+    return out.str();
+}
+
+void run_decay(const std::string& input, const std::string& output, const std::string& data, const std::string& scan,
+               double t_lo, double t_hi, const WindowRule& rule, double scan_width, double scan_step) {
+    const auto history = TemperatureHistory::from(read_timeseries(input));
+    if (history.time.empty()) throw InsufficientData(input + ": no sample time reached by every realization");
+    const auto run = run_parameters(input);
+    DecayWindow window = automatic_decay_window(run.restitution, run.velocity_threshold, run.particles,
+                                                history.time.back(), rule);
+    if (t_lo > 0.0) window.t_lo = t_lo;
+    if (t_hi > 0.0) window.t_hi = t_hi;
+    const DecayFit fit = fit_temperature_decay(history, window.t_lo, window.t_hi);
+    const auto windows = scan_decay_windows(history, scan_width, scan_step);
+    ResultsFile results(output, "shockgas-analyze decay", {input});
+    auto group = results.section("decay");
+    group.set_attribute("exponent", fit.exponent);
+    group.set_attribute("exponent_sigma", fit.exponent_sigma);
+    group.set_attribute("exponent_fit_sigma", fit.fit_sigma);
+    group.set_attribute("chi2_per_dof", fit.chi2_per_dof);
+    group.set_attribute("prefactor", fit.prefactor);
+    group.set_attribute("t_lo", fit.t_lo);
+    group.set_attribute("t_hi", fit.t_hi);
+    group.set_attribute("points", static_cast<std::int64_t>(fit.points));
+    group.set_attribute("window_rule", t_lo > 0.0 || t_hi > 0.0 ? "manual" : "automatic");
+    std::vector<double> centre, exponent, sigma;
+    for (const auto& w : windows) {
+        centre.push_back(std::sqrt(w.t_lo * w.t_hi));
+        exponent.push_back(w.exponent);
+        sigma.push_back(w.exponent_sigma);
+    }
+    auto scan_group = results.section("window_scan");
+    scan_group.set_attribute("width_decades", scan_width);
+    scan_group.write("window_centre", centre);
+    scan_group.write("exponent", exponent);
+    scan_group.write("exponent_sigma", sigma);
+    results.commit();
+    if (!data.empty()) {
+        DataFile file(data, "T(t) ensemble mean, " + input, {"time", "temperature", "temperature_sigma"});
+        for (std::size_t k = 0; k < history.time.size(); ++k)
+            file.row({history.time[k], history.mean(k), history.standard_error(k)});
+    }
+    if (!scan.empty()) {
+        DataFile file(scan, "decay exponent in moving windows of " + std::to_string(scan_width) + " decades",
+                      {"t_centre", "t_lo", "t_hi", "exponent", "exponent_sigma", "chi2_per_dof", "points"});
+        for (const auto& w : windows)
+            file.row({std::sqrt(w.t_lo * w.t_hi), w.t_lo, w.t_hi, w.exponent, w.exponent_sigma, w.chi2_per_dof,
+                      static_cast<double>(w.points)});
+    }
+    std::printf("decay exponent %.4f +- %.4f (jackknife), chi2/dof %.2f, window [%g, %g], %zu points\n",
+                fit.exponent, fit.exponent_sigma, fit.chi2_per_dof, fit.t_lo, fit.t_hi, fit.points);
+}
+
+void run_crossover(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
+                   const CrossoverRule& rule) {
+    std::vector<double> inelasticity;
+    std::vector<Estimate> t_dissip, t_stick, temperature;
+    ResultsFile results(output, "shockgas-analyze crossover", inputs);
+    std::unique_ptr<DataFile> file;
+    if (!data.empty())
+        file = std::make_unique<DataFile>(data, "crossovers per inelasticity",
+                                          std::vector<std::string>{"eps", "t_dissip", "t_dissip_sigma", "t_stick",
+                                                                   "t_stick_sigma", "T_stick", "T_stick_sigma",
+                                                                   "haff_rate", "haff_rate_sigma"});
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+        const auto run = run_parameters(inputs[k]);
+        const double eps = (1.0 - run.restitution) / 2.0;
+        const auto crossovers = find_crossovers(TemperatureHistory::from(read_timeseries(inputs[k])), rule);
+        inelasticity.push_back(eps);
+        t_dissip.push_back(crossovers.t_dissip);
+        t_stick.push_back(crossovers.t_stick);
+        temperature.push_back(crossovers.temperature_at_stick);
+        auto group = results.section("crossover" + std::to_string(k));
+        group.set_attribute("inelasticity", eps);
+        set_estimate(group, "t_dissip", crossovers.t_dissip);
+        set_estimate(group, "t_stick", crossovers.t_stick);
+        set_estimate(group, "temperature_at_stick", crossovers.temperature_at_stick);
+        set_estimate(group, "haff_rate", crossovers.haff_rate);
+        if (file)
+            file->row({eps, crossovers.t_dissip.value, crossovers.t_dissip.sigma, crossovers.t_stick.value,
+                       crossovers.t_stick.sigma, crossovers.temperature_at_stick.value,
+                       crossovers.temperature_at_stick.sigma, crossovers.haff_rate.value, crossovers.haff_rate.sigma});
+        std::printf("eps %-8g t_dissip %.4g +- %.2g  t_stick %.4g +- %.2g  T(t_stick) %.4g +- %.2g\n", eps,
+                    crossovers.t_dissip.value, crossovers.t_dissip.sigma, crossovers.t_stick.value,
+                    crossovers.t_stick.sigma, crossovers.temperature_at_stick.value,
+                    crossovers.temperature_at_stick.sigma);
+    }
+    if (inputs.size() >= 2) {
+        auto group = results.section("scaling_in_eps");
+        const auto dissip_fit = fit_against_inelasticity(inelasticity, t_dissip);
+        const auto stick_fit = fit_against_inelasticity(inelasticity, t_stick);
+        const auto temperature_fit = fit_against_inelasticity(inelasticity, temperature);
+        set_power_law(group, "t_dissip", dissip_fit);
+        set_power_law(group, "t_stick", stick_fit);
+        set_power_law(group, "temperature_at_stick", temperature_fit);
+        std::printf("t_dissip ~ eps^(%.3f +- %.3f), t_stick ~ eps^(%.3f +- %.3f), T(t_stick) ~ eps^(%.3f +- %.3f)\n",
+                    dissip_fit.slope, dissip_fit.slope_sigma(), stick_fit.slope, stick_fit.slope_sigma(),
+                    temperature_fit.slope, temperature_fit.slope_sigma());
+    }
+    results.commit();
+}
+
+void run_scaling(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
+                 const TailRule& tail_rule) {
+    std::vector<VelocityHistogram> histograms;
+    for (const auto& input : inputs) {
+        const auto these = read_histograms(input, restitution_label(run_parameters(input).restitution));
+        histograms.insert(histograms.end(), these.begin(), these.end());
+    }
+    if (histograms.empty()) throw InsufficientData("no /histograms in the inputs (run with --histogram-times)");
+    ResultsFile results(output, "shockgas-analyze scaling", inputs);
+    std::unique_ptr<DataFile> file;
+    if (!data.empty())
+        file = std::make_unique<DataFile>(data, "Phi(z) = t^(-1/3) P(v,t), z = v t^(1/3); one block per histogram",
+                                          std::vector<std::string>{"z", "Phi"});
+    for (std::size_t h = 0; h < histograms.size(); ++h) {
+        const auto& histogram = histograms[h];
+        auto group = results.section("histogram" + std::to_string(h));
+        group.set_attribute("label", histogram.label);
+        group.set_attribute("time", histogram.time);
+        set_estimate(group, "kurtosis", velocity_kurtosis(histogram));
+        try {
+            const TailFit tail = fit_tail(histogram, tail_rule);
+            set_estimate(group, "tail_gamma", tail.gamma);
+            group.set_attribute("tail_gamma_fit_sigma", tail.gamma_fit_sigma);
+            group.set_attribute("tail_chi2_per_dof", tail.chi2_per_dof);
+            group.set_attribute("tail_bins", static_cast<std::int64_t>(tail.bins));
+            group.set_attribute("tail_range_lo", tail.z_lo);
+            group.set_attribute("tail_range_hi", tail.z_hi);
+            std::printf("%-16s tail gamma %.3f +- %.3f (chi2/dof %.2f, %zu bins, |z|/rms in [%.2f, %.2f])",
+                        histogram.label.c_str(), tail.gamma.value, tail.gamma.sigma, tail.chi2_per_dof, tail.bins,
+                        tail.z_lo, tail.z_hi);
+        } catch (const InsufficientData& error) {
+            group.set_attribute("tail_error", error.what());
+            std::printf("%-16s tail: %s", histogram.label.c_str(), error.what());
+        }
+        const auto kurtosis = velocity_kurtosis(histogram);
+        std::printf("  kurtosis %.3f +- %.3f\n", kurtosis.value, kurtosis.sigma);
+        if (file) {
+            const auto phi = scaled_distribution(histogram);
+            file->comment(histogram.label);
+            for (std::size_t b = 0; b < phi.z.size(); ++b) file->row({phi.z[b], phi.density[b]});
+            file->blank_line();
+        }
+    }
+    if (histograms.size() >= 2) {
+        const auto collapse = fit_scaling_collapse(histograms);
+        auto group = results.section("collapse");
+        set_estimate(group, "beta", collapse.beta);
+        group.set_attribute("distance_at_best", collapse.distance_at_best);
+        group.set_attribute("distance_at_one_third", collapse.distance_at_one_third);
+        group.set_attribute("max_deviation_at_one_third", collapse.max_deviation_at_one_third);
+        std::printf("scaling exponent %.4f +- %.4f; collapse distance %.3g at 1/3, max |dG| %.3g\n",
+                    collapse.beta.value, collapse.beta.sigma, collapse.distance_at_one_third,
+                    collapse.max_deviation_at_one_third);
+    }
+    results.commit();
+}
+
+void run_shocks(const std::string& input, const std::string& output, const std::string& data,
+                const ShockRule& rule) {
+    const auto snapshots = read_snapshots(input);
+    if (snapshots.empty()) throw InsufficientData(input + ": no /snapshots (run with --snapshot-times)");
+    ResultsFile results(output, "shockgas-analyze shocks", {input});
+    // Group snapshots by time.
+    std::vector<double> times;
+    for (const auto& s : snapshots)
+        if (std::find(times.begin(), times.end(), s.time) == times.end()) times.push_back(s.time);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+        std::vector<Snapshot> at_time;
+        for (const auto& s : snapshots)
+            if (s.time == times[k]) at_time.push_back(s);
+        const auto summary = summarize_shocks(at_time, rule);
+        auto group = results.section("shocks" + std::to_string(k));
+        group.set_attribute("time", summary.time);
+        set_estimate(group, "shock_count", summary.shocks);
+        group.set_attribute("expected_shock_count", summary.expected_shocks);
+        set_estimate(group, "slope_times_t", summary.slope_times_t);
+        group.set_attribute("segments", static_cast<std::int64_t>(summary.segments));
+        std::printf("t %g: %.2f +- %.2f shocks (N t^-2/3 = %.2f); segment slope x t = %.3f +- %.3f (%zu segments)\n",
+                    summary.time, summary.shocks.value, summary.shocks.sigma, summary.expected_shocks,
+                    summary.slope_times_t.value, summary.slope_times_t.sigma, summary.segments);
+    }
+    results.commit();
+    if (!data.empty()) {
+        const auto& first = snapshots.front();
+        const auto profile = find_shocks(first, rule);
+        DataFile file(data, "velocity profile of the first snapshot (t = " + std::to_string(first.time) +
+                                "); block 1: shocks; block 2: fitted segments",
+                      {"position", "velocity", "mass"});
+        for (std::size_t i = 0; i < first.velocity.size(); ++i)
+            file.row({first.position[i], first.velocity[i], first.mass[i]});
+        file.blank_line();
+        file.comment("shock_position shock_drop");
+        for (std::size_t i = 0; i < profile.shock_position.size(); ++i)
+            file.row({std::fmod(profile.shock_position[i], first.ring_length), profile.shock_drop[i]});
+        file.blank_line();
+        file.comment("x_lo x_hi points slope slope_sigma");
+        for (const auto& segment : profile.segments)
+            file.row({segment.x_lo, segment.x_hi, static_cast<double>(segment.points), segment.slope,
+                      segment.slope_sigma});
+    }
+}
+
+void run_collapse(const std::vector<std::string>& inputs, const std::string& output, const std::string& data) {
+    ResultsFile results(output, "shockgas-analyze collapse", inputs);
+    std::vector<double> inelasticity;
+    std::vector<Estimate> time, mass;
+    std::unique_ptr<DataFile> file;
+    if (!data.empty())
+        file = std::make_unique<DataFile>(data, "inelastic collapse per inelasticity",
+                                          std::vector<std::string>{"eps", "collapse_time", "collapse_time_sigma",
+                                                                   "cluster_mass", "cluster_mass_sigma", "collapsed",
+                                                                   "realizations"});
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+        const auto summary = summarize_collapse(read_collapse_events(inputs[k]));
+        inelasticity.push_back(summary.inelasticity);
+        time.push_back(summary.time);
+        mass.push_back(summary.cluster_mass);
+        auto group = results.section("collapse" + std::to_string(k));
+        group.set_attribute("inelasticity", summary.inelasticity);
+        set_estimate(group, "collapse_time", summary.time);
+        set_estimate(group, "cluster_mass", summary.cluster_mass);
+        group.set_attribute("collapsed", static_cast<std::int64_t>(summary.collapsed));
+        if (file)
+            file->row({summary.inelasticity, summary.time.value, summary.time.sigma, summary.cluster_mass.value,
+                       summary.cluster_mass.sigma, static_cast<double>(summary.collapsed),
+                       static_cast<double>(summary.realizations)});
+        std::printf("eps %-8g collapse time %.4g +- %.2g, cluster mass %.4g +- %.2g (%zu/%zu collapsed)\n",
+                    summary.inelasticity, summary.time.value, summary.time.sigma, summary.cluster_mass.value,
+                    summary.cluster_mass.sigma, summary.collapsed, summary.realizations);
+    }
+    if (inputs.size() >= 2) {
+        auto group = results.section("scaling_in_eps");
+        const auto time_fit = fit_against_inelasticity(inelasticity, time);
+        const auto mass_fit = fit_against_inelasticity(inelasticity, mass);
+        set_power_law(group, "collapse_time", time_fit);
+        set_power_law(group, "cluster_mass", mass_fit);
+        std::printf("collapse time ~ eps^(%.3f +- %.3f), cluster mass ~ eps^(%.3f +- %.3f)\n", time_fit.slope,
+                    time_fit.slope_sigma(), mass_fit.slope, mass_fit.slope_sigma());
+    }
+    results.commit();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"shockgas-analyze: estimators on shockgas-sim output (see analysis/README.md)"};
+    app.require_subcommand(1);
+
+    std::string input, output = "analysis.h5", data, scan;
+    std::vector<std::string> inputs;
+    double t_lo = 0.0, t_hi = 0.0, scan_width = 1.0, scan_step = 0.1;
+    WindowRule window_rule;
+    auto* decay = app.add_subcommand("decay", "T ~ t^-alpha: exponent +- jackknife sigma over the automatic window");
+    decay->add_option("input", input, "shockgas-sim output")->required()->check(CLI::ExistingFile);
+    decay->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
+    decay->add_option("--data", data, "T(t) data file for gnuplot");
+    decay->add_option("--scan", scan, "window-scan data file for gnuplot");
+    decay->add_option("--t-lo", t_lo, "override the window start");
+    decay->add_option("--t-hi", t_hi, "override the window end");
+    decay->add_option("--start-factor", window_rule.start_factor, "t_lo = factor * max(1, eps^-3/2)")
+        ->capture_default_str();
+    decay->add_option("--end-factor", window_rule.end_factor, "t_hi <= factor * N^3/2")->capture_default_str();
+    decay->add_option("--scan-width", scan_width, "scan window width, decades")->capture_default_str();
+    decay->add_option("--scan-step", scan_step, "scan window step, decades")->capture_default_str();
+
+    CrossoverRule crossover_rule;
+    auto* crossover = app.add_subcommand("crossover", "t_dissip, t_stick, T(t_stick) per file and their powers of eps");
+    crossover->add_option("inputs", inputs, "shockgas-sim outputs, one per eps")->required()->check(CLI::ExistingFile);
+    crossover->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
+    crossover->add_option("--data", data, "crossover table for gnuplot");
+    crossover->add_option("--haff-floor", crossover_rule.haff_floor, "Haff fit on T >= floor * T0")
+        ->capture_default_str();
+    crossover->add_option("--stick-ratio", crossover_rule.stick_ratio, "t_stick: T / T_Haff reaches this")
+        ->capture_default_str();
+
+    TailRule tail_rule;
+    auto* scaling = app.add_subcommand("scaling", "P(v,t) collapse (beta, distance), kurtosis and tail gamma");
+    scaling->add_option("inputs", inputs, "shockgas-sim outputs with /histograms")->required()->check(CLI::ExistingFile);
+    scaling->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
+    scaling->add_option("--data", data, "rescaled Phi(z) data file for gnuplot");
+    scaling->add_option("--tail-start", tail_rule.tail_start, "tail starts at |z| = this * rms(z)")
+        ->capture_default_str();
+    scaling->add_option("--tail-max-error", tail_rule.max_relative_error, "largest relative error of a tail bin")
+        ->capture_default_str();
+
+    ShockRule shock_rule;
+    auto* shocks = app.add_subcommand("shocks", "shock count and segment slopes of every snapshot time");
+    shocks->add_option("input", input, "shockgas-sim output with /snapshots")->required()->check(CLI::ExistingFile);
+    shocks->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
+    shocks->add_option("--data", data, "profile, shocks and segments of the first snapshot for gnuplot");
+    shocks->add_option("--jump-fraction", shock_rule.jump_fraction, "counted shock: velocity drop >= this * v_rms")
+        ->capture_default_str();
+    shocks->add_option("--segment-break", shock_rule.segment_break_fraction, "segments end at drops >= this * v_rms")
+        ->capture_default_str();
+
+    auto* collapse = app.add_subcommand("collapse", "collapse time and cluster mass per eps (delta = 0 runs)");
+    collapse->add_option("inputs", inputs, "shockgas-sim outputs, one per eps")->required()->check(CLI::ExistingFile);
+    collapse->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
+    collapse->add_option("--data", data, "collapse table for gnuplot");
+
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (*decay) run_decay(input, output, data, scan, t_lo, t_hi, window_rule, scan_width, scan_step);
+        if (*crossover) run_crossover(inputs, output, data, crossover_rule);
+        if (*scaling) run_scaling(inputs, output, data, tail_rule);
+        if (*shocks) run_shocks(input, output, data, shock_rule);
+        if (*collapse) run_collapse(inputs, output, data);
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "shockgas-analyze: %s\n", error.what());
+        return 1;
+    }
+    return 0;
+}

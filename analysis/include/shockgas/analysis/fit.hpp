@@ -1,0 +1,76 @@
+// The one fitting core of the analysis library. Every power law, every tail
+// and every segment slope is fitted by weighted_linear_fit (GSL's
+// gsl_fit_wlinear); error bars of the fitted physics numbers come from the
+// jackknife over independent realizations, which also captures the
+// correlations between the points of one realization that the fit ignores.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace shockgas::analysis {
+
+// Thrown when the data cannot support an estimate (too few points, a window
+// outside the data, a realization count too small for the jackknife). The
+// message names what is missing.
+struct InsufficientData : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// How the fit's covariance is obtained.
+enum class ErrorModel {
+    // sigma are true standard deviations: weights 1/sigma^2, covariance from
+    // the weights alone (gsl_fit_wlinear). chi2/dof then tests the model.
+    known_sigmas,
+    // sigma are only relative: the covariance is scaled by chi2/dof, as
+    // gsl_fit_linear does. For data without an error model (segment slopes).
+    scale_by_residuals,
+};
+
+struct LinearFit {
+    double intercept = 0.0;
+    double slope = 0.0;
+    double intercept_variance = 0.0;
+    double slope_variance = 0.0;
+    double covariance = 0.0;  // cov(intercept, slope)
+    double chi2 = 0.0;        // sum of (y - intercept - slope x)^2 / sigma^2
+    std::size_t points = 0;
+
+    double slope_sigma() const;
+    double intercept_sigma() const;
+    double chi2_per_dof() const;  // chi2 / (points - 2); NaN for two points
+};
+
+// Weighted least squares for y = intercept + slope x: minimises
+// chi2 = sum_i (y_i - intercept - slope x_i)^2 / sigma_i^2 (gsl_fit_wlinear).
+// Throws InsufficientData for fewer than two points or a non-positive sigma.
+LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
+                              ErrorModel model = ErrorModel::known_sigmas);
+
+// Power law y = prefactor x^exponent, fitted as ln y = ln prefactor +
+// exponent ln x with sigma_{ln y} = sigma_y / y (first-order error
+// propagation). Returns the linear fit in log-log variables: slope is the
+// exponent, intercept is ln prefactor.
+LinearFit fit_power_law(std::span<const double> x, std::span<const double> y, std::span<const double> y_sigma);
+
+// A number with its standard error.
+struct Estimate {
+    double value = 0.0;
+    double sigma = 0.0;
+};
+
+// Delete-one jackknife over `samples` independent samples (realizations):
+// value = theta(all), sigma^2 = (n - 1)/n sum_i (theta_(i) - mean_i theta_(i))^2,
+// where theta_(i) is the estimator with sample i left out (estimator(i)) and
+// estimator(nullopt) uses every sample. Needs n >= 2.
+Estimate jackknife(std::size_t samples, const std::function<double(std::optional<std::size_t>)>& estimator);
+
+// Mean and standard error of the mean (sample standard deviation / sqrt(n)).
+Estimate mean_and_standard_error(std::span<const double> values);
+
+}  // namespace shockgas::analysis

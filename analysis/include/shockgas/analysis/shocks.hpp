@@ -1,0 +1,77 @@
+// Shocks in a velocity snapshot (Eq. 6, Fig. 5): the late profile is a
+// sawtooth v = (x - q)/t, linear segments of slope 1/t between velocity
+// drops (shocks, i.e. clusters); the number of shocks is about N t^(-2/3).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "shockgas/analysis/fit.hpp"
+#include "shockgas/ensemble.hpp"
+
+namespace shockgas::analysis {
+
+// One /snapshots/<i>: clusters (or particles) in ring order.
+struct Snapshot {
+    double time = 0.0;
+    std::int64_t realization = 0;
+    double ring_length = 0.0;
+    std::vector<double> position;
+    std::vector<double> velocity;
+    std::vector<double> mass;
+    double total_mass() const;
+};
+std::vector<Snapshot> snapshots_from(const EnsembleResult& result, double ring_length);
+std::vector<Snapshot> read_snapshots(const std::string& path);
+
+// Detection (see analysis/README.md, "Shocks"): walking around the ring, a
+// pair of neighbours is compressive if its velocity difference v_{i+1} - v_i
+// is negative or the two are closer than cluster_gap (the members of one
+// cluster); a maximal run of compressive pairs is counted as a shock when
+// its total velocity drop exceeds jump_fraction * v_rms (v_rms = sqrt(T) of
+// the snapshot). An ideal sawtooth of slope 1/t and segment length l has
+// v_rms = l / (t sqrt 12) and jumps l / t = sqrt(12) v_rms ~ 3.5 v_rms; the
+// threshold v_rms keeps shocks with jumps down to a third of that while two
+// free particles about to collide differ by much less. Segments are cut at
+// every run whose drop exceeds segment_break_fraction * v_rms, so that the
+// small shocks inside a segment do not bias its slope.
+struct ShockRule {
+    double jump_fraction = 1.0;          // counted shocks drop v by at least v_rms
+    double segment_break_fraction = 0.1; // segments end at drops above 0.1 v_rms
+    double cluster_gap = 1e-6;        // positions this close (in spacings) belong to one cluster
+    std::size_t min_segment_points = 5;  // a straight line fitted to fewer says little
+};
+
+struct SegmentFit {
+    double x_lo = 0.0, x_hi = 0.0;  // unwrapped positions of the first and last point
+    std::size_t points = 0;
+    double slope = 0.0;             // dv/dx, weighted by nothing: sigma from residuals
+    double slope_sigma = 0.0;
+};
+
+struct ShockProfile {
+    double time = 0.0;
+    std::vector<double> shock_position;  // mass-weighted centre of each shock run
+    std::vector<double> shock_drop;      // velocity drop across it (positive)
+    std::vector<SegmentFit> segments;
+};
+ShockProfile find_shocks(const Snapshot& snapshot, const ShockRule& rule = {});
+
+// Over every snapshot at one time: mean shock count (SE over snapshots)
+// against N t^(-2/3), and the segment slope times t (Eq. 6 predicts 1 for a
+// sparse segment; (1 - rho)/t with rho the segment's number density, since
+// x - q = v t for particles that have not collided). slope_times_t: mean
+// over segments, SE from their scatter.
+struct ShockSummary {
+    double time = 0.0;
+    std::size_t snapshots = 0;
+    Estimate shocks;
+    double expected_shocks = 0.0;  // N t^(-2/3)
+    Estimate slope_times_t;
+    std::size_t segments = 0;
+};
+ShockSummary summarize_shocks(const std::vector<Snapshot>& snapshots, const ShockRule& rule = {});
+
+}  // namespace shockgas::analysis

@@ -1,0 +1,96 @@
+// Estimators on the temperature history T(t): the power-law decay exponent
+// of the sticky-gas regime (Fig. 1, P1) with its automatic window and window
+// scan, and the crossover times t_dissip and t_stick (Eq. 3, P3).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "shockgas/analysis/fit.hpp"
+#include "shockgas/ensemble.hpp"
+#include "shockgas/output.hpp"
+
+namespace shockgas::analysis {
+
+// T(t) of every realization at common sample times, restricted to the times
+// every realization reached with T > 0 (a realization that collapsed or was
+// interrupted would otherwise bias the mean at late times).
+struct TemperatureHistory {
+    std::vector<double> time;                // K
+    std::size_t realizations = 0;            // R
+    std::vector<double> temperature;         // R x K, row-major
+    double at(std::size_t realization, std::size_t k) const { return temperature[realization * time.size() + k]; }
+    // Mean over realizations, leaving out one realization when asked (jackknife).
+    double mean(std::size_t k, std::optional<std::size_t> left_out = std::nullopt) const;
+    // Standard error of the mean at time k: sample std over realizations / sqrt(R).
+    double standard_error(std::size_t k) const;
+
+    static TemperatureHistory from(const TimeSeries& series);
+    static TemperatureHistory from(const EnsembleResult& result);
+    static TemperatureHistory from(const std::vector<double>& time, std::int64_t realizations,
+                                   const std::vector<double>& temperature);
+};
+
+// The automatic post-crossover window (see analysis/README.md, "Window rule"):
+//   t_lo = start_factor * max(1, eps^(-3/2)),  eps = (1 - r)/2, the sticky crossover of Eq. (3);
+//   t_hi = min(last common sample time, end_factor * N^(3/2), delta^(-3) when delta > 0),
+// the finite-ring crossover of Eq. (3) and the threshold's validity bound t_valid ~ delta^(-3).
+struct WindowRule {
+    double start_factor = 10.0;  // "t >> t_stick" of Eq. (3) read as one decade past eps^(-3/2)
+    double end_factor = 0.01;    // stays two decades below N^(3/2), where a few dozen clusters remain
+};
+struct DecayWindow {
+    double t_lo = 0.0;
+    double t_hi = 0.0;
+};
+DecayWindow automatic_decay_window(double restitution, double velocity_threshold, double particles,
+                                   double last_time, const WindowRule& rule = {});
+
+// The decay exponent alpha of T ~ t^(-alpha) over a window.
+struct DecayFit {
+    double t_lo = 0.0, t_hi = 0.0;   // the window
+    std::size_t points = 0;          // sample times inside it
+    double exponent = 0.0;           // alpha = -d ln T / d ln t from the weighted fit of ln <T> vs ln t
+    double exponent_sigma = 0.0;     // jackknife over realizations
+    double fit_sigma = 0.0;          // from the weights alone (ignores time correlations; for comparison)
+    double chi2_per_dof = 0.0;       // with sigma_k = standard error of ln <T(t_k)>
+    double prefactor = 0.0;          // T t^alpha
+};
+
+// Fits ln <T>(t_k) = ln C - alpha ln t_k over t_lo <= t_k <= t_hi, weights
+// 1/sigma_k^2 with sigma_k = SE(T_k)/<T_k>; alpha's sigma is the jackknife
+// over realizations (the same weights in every leave-one-out fit). Throws
+// InsufficientData for fewer than 3 points in the window or R < 2.
+DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, double t_hi);
+
+// The exponent in windows of fixed width (width_decades of ln t / ln 10),
+// moved by step_decades from the first sample time to the last.
+std::vector<DecayFit> scan_decay_windows(const TemperatureHistory& history, double width_decades,
+                                         double step_decades);
+
+// --- crossovers (Eq. 3) ---
+// t_dissip: the time at which <T> has fallen to half its initial value,
+//   <T>(t_dissip) = T0 / 2 (log-log interpolation between samples);
+// Haff fit: sqrt(T0 / <T>) = 1 + a t (Eq. 2 rearranged, linear in t), fitted
+//   on the samples with <T> >= haff_floor * T0 (the homogeneous regime);
+// t_stick: the first time after t_dissip at which <T> exceeds the fitted
+//   Haff curve by the factor stick_ratio: clusters have become opaque and the
+//   decay has slowed from t^-2 towards t^(-2/3); T(t_stick) = <T>(t_stick).
+// Any fixed ratio gives t_stick ~ eps^(-3/2) if the crossover has a scaling
+// form; the ratio only sets the prefactor.
+struct CrossoverRule {
+    double haff_floor = 0.25;   // Haff fit on T >= T0/4: past t_dissip, still homogeneous
+    double stick_ratio = 2.0;   // departure from Haff by a factor 2 marks t_stick
+};
+struct Crossovers {
+    double initial_temperature = 0.0;  // T0 = <T>(first sample)
+    Estimate t_dissip;
+    Estimate haff_rate;         // a of sqrt(T0/T) = 1 + a t
+    Estimate t_stick;
+    Estimate temperature_at_stick;
+};
+Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRule& rule = {});
+
+}  // namespace shockgas::analysis

@@ -1,0 +1,95 @@
+// Estimators on the mass-weighted velocity distribution P(v, t): the scaling
+// collapse of Eq. (4) with its best exponent, the kurtosis of Phi, and the
+// tail exponent gamma of Eq. (5).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shockgas/analysis/fit.hpp"
+#include "shockgas/ensemble.hpp"
+
+namespace shockgas::analysis {
+
+// One /histograms/<h> entry: mass-weighted counts of v - V per realization.
+struct VelocityHistogram {
+    std::string label;          // e.g. "r=0.9 t=1000", for data files
+    double time = 0.0;
+    std::vector<double> edges;  // bins + 1, velocity units (v - V)
+    std::size_t realizations = 0;
+    std::vector<double> counts; // R x (bins + 2): underflow, bins, overflow
+
+    std::size_t bins() const { return edges.size() - 1; }
+    // Counts summed over realizations (bins + 2 entries); realizations r with
+    // r % groups == left_out_group are left out (delete-one-group jackknife).
+    std::vector<double> pooled(std::optional<std::size_t> left_out_group = std::nullopt,
+                               std::size_t groups = 1) const;
+};
+
+std::vector<VelocityHistogram> histograms_from(const EnsembleResult& result, const std::string& label_prefix = "");
+std::vector<VelocityHistogram> read_histograms(const std::string& path, const std::string& label_prefix = "");
+
+// Jackknife groups used for histogram estimators: min(R, max_groups) over all
+// inputs; each group is every realization r with r % groups == g.
+constexpr std::size_t max_jackknife_groups = 20;  // enough for a 16%-accurate sigma, cheap to recompute
+
+// --- Eq. (4): P(v, t) = t^beta Phi(v t^beta), beta = 1/3 ---
+// Rescaled cumulative distribution G_t(z) = F_t(z t^(-beta)), F_t the
+// piecewise-linear CDF of the mass-weighted histogram (underflow counted
+// below the first edge). Collapse distance of a set of curves:
+//   D(beta) = mean over pairs (a, b) of mean over a grid of z of (G_a(z) - G_b(z))^2,
+// the grid covering the z range every curve resolves. D = 0 for a perfect collapse.
+double collapse_distance(const std::vector<VelocityHistogram>& histograms, double beta,
+                         std::optional<std::size_t> left_out_group = std::nullopt, std::size_t groups = 1);
+// sup_z |G_a(z) - G_b(z)| at beta, the largest over pairs (a Kolmogorov distance).
+double collapse_max_deviation(const std::vector<VelocityHistogram>& histograms, double beta);
+
+struct ScalingCollapse {
+    Estimate beta;                   // argmin D(beta), sigma from the group jackknife
+    double distance_at_best = 0.0;   // D(beta*)
+    double distance_at_one_third = 0.0;
+    double max_deviation_at_one_third = 0.0;
+    std::size_t jackknife_groups = 0;
+};
+// Minimises D over beta in [beta_min, beta_max] (grid, then golden section).
+ScalingCollapse fit_scaling_collapse(const std::vector<VelocityHistogram>& histograms, double beta_min = 0.05,
+                                     double beta_max = 0.8);
+
+// Phi(z) on the histogram's bins with z = v t^beta: bin centres and density
+// normalised to unit total mass (under- and overflow included in the mass).
+struct ScaledDistribution {
+    std::vector<double> z;
+    std::vector<double> density;
+    double outside_fraction = 0.0;  // mass in under- and overflow
+};
+ScaledDistribution scaled_distribution(const VelocityHistogram& histogram, double beta = 1.0 / 3.0);
+
+// Kurtosis of Phi: <(v - <v>)^4> / <(v - <v>)^2>^2 over bin centres,
+// mass-weighted (3 for a Gaussian); sigma from the group jackknife.
+Estimate velocity_kurtosis(const VelocityHistogram& histogram);
+
+// --- Eq. (5): Phi(z) ~ exp(-c |z|^gamma) for |z| >> 1 ---
+// Both signs of z are folded. Tail bins: |z| >= tail_start * sqrt(<z^2>) whose
+// folded density has relative standard error (realization scatter) at most
+// max_relative_error. For each gamma, ln Phi = a - c |z|^gamma is linear in
+// (a, c) and fitted by weighted_linear_fit with sigma_{ln Phi} = SE/Phi; gamma
+// minimises chi2 (grid then golden section). sigma(gamma) from the group
+// jackknife over realizations; the Delta chi2 = 1 width is reported too.
+struct TailRule {
+    double tail_start = 1.5;         // in units of the rms of z: beyond the Gaussian-like bulk
+    double max_relative_error = 0.3; // keeps ln(Phi +- SE) linear in SE (first-order propagation)
+};
+struct TailFit {
+    Estimate gamma;
+    double gamma_fit_sigma = 0.0;  // Delta chi2 = 1 (ignores bin-to-bin correlations)
+    double c = 0.0;                // Phi ~ exp(-c |z|^gamma), z in units of the rms of z
+    double chi2_per_dof = 0.0;
+    std::size_t bins = 0;
+    double z_lo = 0.0, z_hi = 0.0; // fitted range, units of the rms of z
+    double total_mass = 0.0;       // particles (mass) in the histogram, all realizations
+};
+TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule = {});
+
+}  // namespace shockgas::analysis

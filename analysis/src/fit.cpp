@@ -1,0 +1,93 @@
+#include "shockgas/analysis/fit.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_fit.h>
+
+namespace shockgas::analysis {
+
+double LinearFit::slope_sigma() const { return std::sqrt(slope_variance); }
+double LinearFit::intercept_sigma() const { return std::sqrt(intercept_variance); }
+double LinearFit::chi2_per_dof() const {
+    return points > 2 ? chi2 / static_cast<double>(points - 2) : std::numeric_limits<double>::quiet_NaN();
+}
+
+LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
+                              ErrorModel model) {
+    if (x.size() != y.size() || x.size() != sigma.size())
+        throw std::invalid_argument("weighted_linear_fit: x, y and sigma differ in length");
+    if (x.size() < 2)
+        throw InsufficientData("a straight-line fit needs at least 2 points, got " + std::to_string(x.size()));
+    std::vector<double> weight(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (!(sigma[i] > 0.0) || !std::isfinite(sigma[i]) || !std::isfinite(x[i]) || !std::isfinite(y[i]))
+            throw InsufficientData("fit point " + std::to_string(i) + " has a non-finite value or sigma <= 0");
+        weight[i] = 1.0 / (sigma[i] * sigma[i]);  // gsl_fit_wlinear takes w_i = 1/sigma_i^2
+    }
+    LinearFit fit;
+    fit.points = x.size();
+    const int status = gsl_fit_wlinear(x.data(), 1, weight.data(), 1, y.data(), 1, x.size(), &fit.intercept,
+                                       &fit.slope, &fit.intercept_variance, &fit.covariance, &fit.slope_variance,
+                                       &fit.chi2);
+    if (status != GSL_SUCCESS)
+        throw InsufficientData(std::string("gsl_fit_wlinear failed: ") + gsl_strerror(status) +
+                               " (are all x equal?)");
+    if (model == ErrorModel::scale_by_residuals && fit.points > 2) {
+        // Unknown absolute errors: estimate them from the scatter about the line.
+        const double residual_variance = fit.chi2 / static_cast<double>(fit.points - 2);
+        fit.intercept_variance *= residual_variance;
+        fit.slope_variance *= residual_variance;
+        fit.covariance *= residual_variance;
+    }
+    return fit;
+}
+
+LinearFit fit_power_law(std::span<const double> x, std::span<const double> y, std::span<const double> y_sigma) {
+    if (x.size() != y.size() || x.size() != y_sigma.size())
+        throw std::invalid_argument("fit_power_law: x, y and sigma differ in length");
+    std::vector<double> log_x(x.size()), log_y(x.size()), log_sigma(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (!(x[i] > 0.0) || !(y[i] > 0.0))
+            throw InsufficientData("a power-law fit needs positive x and y; point " + std::to_string(i) + " is not");
+        log_x[i] = std::log(x[i]);
+        log_y[i] = std::log(y[i]);
+        log_sigma[i] = y_sigma[i] / y[i];  // d ln y = dy / y
+    }
+    return weighted_linear_fit(log_x, log_y, log_sigma);
+}
+
+Estimate jackknife(std::size_t samples, const std::function<double(std::optional<std::size_t>)>& estimator) {
+    if (samples < 2)
+        throw InsufficientData("the jackknife error needs at least 2 realizations, got " + std::to_string(samples));
+    Estimate result;
+    result.value = estimator(std::nullopt);
+    std::vector<double> left_out(samples);
+    double mean = 0.0;
+    for (std::size_t i = 0; i < samples; ++i) {
+        left_out[i] = estimator(i);
+        mean += left_out[i];
+    }
+    mean /= static_cast<double>(samples);
+    double sum_squares = 0.0;
+    for (double value : left_out) sum_squares += (value - mean) * (value - mean);
+    const double n = static_cast<double>(samples);
+    result.sigma = std::sqrt((n - 1.0) / n * sum_squares);
+    return result;
+}
+
+Estimate mean_and_standard_error(std::span<const double> values) {
+    if (values.empty()) throw InsufficientData("mean of an empty set");
+    double mean = 0.0;
+    for (double v : values) mean += v;
+    const double n = static_cast<double>(values.size());
+    mean /= n;
+    if (values.size() < 2) return {mean, std::numeric_limits<double>::quiet_NaN()};
+    double sum_squares = 0.0;
+    for (double v : values) sum_squares += (v - mean) * (v - mean);
+    return {mean, std::sqrt(sum_squares / (n - 1.0) / n)};
+}
+
+}  // namespace shockgas::analysis

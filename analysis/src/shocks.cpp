@@ -1,0 +1,152 @@
+#include "shockgas/analysis/shocks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "shockgas/h5.hpp"
+
+namespace shockgas::analysis {
+
+double Snapshot::total_mass() const { return std::accumulate(mass.begin(), mass.end(), 0.0); }
+
+std::vector<Snapshot> snapshots_from(const EnsembleResult& result, double ring_length) {
+    std::vector<Snapshot> out;
+    for (const auto& record : result.snapshots)
+        out.push_back({record.state.time, record.realization, ring_length, record.state.position,
+                       record.state.velocity, record.state.mass});
+    return out;
+}
+
+std::vector<Snapshot> read_snapshots(const std::string& path) {
+    const auto file = h5::File::open_read(path);
+    const auto root = file.root();
+    double ring_length = root.attribute_double("ring_length");
+    if (!(ring_length > 0.0)) ring_length = static_cast<double>(root.attribute_integer("particles"));
+    std::vector<Snapshot> out;
+    if (!root.has("snapshots")) return out;
+    const auto group = root.open_group("snapshots");
+    auto names = group.children();
+    std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+        return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+    for (const auto& name : names) {
+        const auto entry = group.open_group(name);
+        Snapshot s;
+        s.time = entry.attribute_double("time");
+        s.realization = entry.attribute_integer("realization");
+        s.ring_length = ring_length;
+        s.position = entry.read_doubles("position");
+        s.velocity = entry.read_doubles("velocity");
+        s.mass = entry.read_doubles("mass");
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+ShockProfile find_shocks(const Snapshot& snapshot, const ShockRule& rule) {
+    const std::size_t n = snapshot.velocity.size();
+    ShockProfile profile;
+    profile.time = snapshot.time;
+    if (n < 3) return profile;
+    const double total = snapshot.total_mass();
+    double mean_velocity = 0.0;
+    for (std::size_t i = 0; i < n; ++i) mean_velocity += snapshot.mass[i] * snapshot.velocity[i];
+    mean_velocity /= total;
+    double temperature = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+        temperature += snapshot.mass[i] * std::pow(snapshot.velocity[i] - mean_velocity, 2);
+    const double v_rms = std::sqrt(temperature / total);
+    const double spacing = snapshot.ring_length / total;  // initial spacing per unit mass
+    // Pair i joins point i and i+1 (cyclically); unwrap the last one by L.
+    auto gap = [&](std::size_t i) {
+        const std::size_t j = (i + 1) % n;
+        return snapshot.position[j] - snapshot.position[i] + (j == 0 ? snapshot.ring_length : 0.0);
+    };
+    auto drop = [&](std::size_t i) { return snapshot.velocity[(i + 1) % n] - snapshot.velocity[i]; };
+    auto compressive = [&](std::size_t i) { return drop(i) < 0.0 || gap(i) < rule.cluster_gap * spacing; };
+    // Start the walk just after an expanding pair, so no run is cut by the wrap.
+    std::size_t start = n;
+    for (std::size_t i = 0; i < n; ++i)
+        if (!compressive(i)) {
+            start = (i + 1) % n;
+            break;
+        }
+    if (start == n) return profile;  // everything compressive: one cluster, no profile
+    std::vector<bool> in_shock(n, false);
+    std::vector<std::size_t> order(n);  // walk order: point index at step s
+    for (std::size_t s = 0; s < n; ++s) order[s] = (start + s) % n;
+    std::vector<double> unwrapped(n);   // positions made monotone along the walk
+    unwrapped[0] = snapshot.position[order[0]];
+    for (std::size_t s = 1; s < n; ++s) unwrapped[s] = unwrapped[s - 1] + gap(order[s - 1]);
+    std::size_t s = 0;
+    while (s + 1 < n) {  // pair s joins steps s and s + 1
+        if (!compressive(order[s])) {
+            ++s;
+            continue;
+        }
+        const std::size_t run_begin = s;
+        double velocity_change = 0.0;
+        while (s + 1 < n && compressive(order[s])) {
+            velocity_change += drop(order[s]);
+            ++s;
+        }
+        // Points run_begin..s form the run.
+        if (-velocity_change >= rule.segment_break_fraction * v_rms)
+            for (std::size_t k = run_begin; k <= s; ++k) in_shock[k] = true;
+        if (-velocity_change >= rule.jump_fraction * v_rms) {
+            double mass = 0.0, centre = 0.0;
+            for (std::size_t k = run_begin; k <= s; ++k) {
+                mass += snapshot.mass[order[k]];
+                centre += snapshot.mass[order[k]] * unwrapped[k];
+            }
+            profile.shock_position.push_back(centre / mass);
+            profile.shock_drop.push_back(-velocity_change);
+        }
+    }
+    // Segments: maximal stretches of points outside shocks; Eq. (6) line fitted to each.
+    std::size_t k = 0;
+    while (k < n) {
+        if (in_shock[k]) {
+            ++k;
+            continue;
+        }
+        const std::size_t begin = k;
+        while (k < n && !in_shock[k]) ++k;
+        if (k - begin < rule.min_segment_points) continue;
+        std::vector<double> x, v, unit;
+        for (std::size_t m = begin; m < k; ++m) {
+            x.push_back(unwrapped[m]);
+            v.push_back(snapshot.velocity[order[m]]);
+            unit.push_back(1.0);
+        }
+        try {
+            const LinearFit line = weighted_linear_fit(x, v, unit, ErrorModel::scale_by_residuals);
+            profile.segments.push_back({x.front(), x.back(), x.size(), line.slope, line.slope_sigma()});
+        } catch (const InsufficientData&) {
+            // Coincident positions: no slope to measure.
+        }
+    }
+    return profile;
+}
+
+ShockSummary summarize_shocks(const std::vector<Snapshot>& snapshots, const ShockRule& rule) {
+    if (snapshots.empty()) throw InsufficientData("no snapshots to look for shocks in");
+    ShockSummary summary;
+    summary.time = snapshots.front().time;
+    summary.snapshots = snapshots.size();
+    std::vector<double> counts, slopes;
+    for (const auto& snapshot : snapshots) {
+        const auto profile = find_shocks(snapshot, rule);
+        counts.push_back(static_cast<double>(profile.shock_position.size()));
+        for (const auto& segment : profile.segments) slopes.push_back(segment.slope * snapshot.time);
+    }
+    summary.shocks = mean_and_standard_error(counts);
+    summary.expected_shocks = snapshots.front().total_mass() * std::pow(summary.time, -2.0 / 3.0);
+    summary.segments = slopes.size();
+    if (!slopes.empty()) summary.slope_times_t = mean_and_standard_error(slopes);
+    return summary;
+}
+
+}  // namespace shockgas::analysis

@@ -1,0 +1,234 @@
+#include "shockgas/analysis/temperature.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace shockgas::analysis {
+
+namespace {
+
+// Initial temperature of the paper's initial condition: velocities uniform on
+// [-1, 1] have variance 1/3 (TARGETS.md, "Units").
+constexpr double uniform_initial_temperature = 1.0 / 3.0;
+
+std::vector<std::size_t> indices_in_window(const std::vector<double>& time, double t_lo, double t_hi) {
+    std::vector<std::size_t> inside;
+    for (std::size_t k = 0; k < time.size(); ++k)
+        if (time[k] >= t_lo * (1.0 - 1e-12) && time[k] <= t_hi * (1.0 + 1e-12)) inside.push_back(k);
+    return inside;
+}
+
+}  // namespace
+
+double TemperatureHistory::mean(std::size_t k, std::optional<std::size_t> left_out) const {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t r = 0; r < realizations; ++r) {
+        if (left_out && *left_out == r) continue;
+        sum += at(r, k);
+        ++count;
+    }
+    return sum / static_cast<double>(count);
+}
+
+double TemperatureHistory::standard_error(std::size_t k) const {
+    std::vector<double> column(realizations);
+    for (std::size_t r = 0; r < realizations; ++r) column[r] = at(r, k);
+    return mean_and_standard_error(column).sigma;
+}
+
+TemperatureHistory TemperatureHistory::from(const std::vector<double>& time, std::int64_t realizations,
+                                            const std::vector<double>& temperature) {
+    const auto rows = static_cast<std::size_t>(realizations);
+    if (temperature.size() != rows * time.size())
+        throw std::invalid_argument("temperature table is not realizations x times");
+    TemperatureHistory history;
+    history.realizations = rows;
+    std::vector<std::size_t> kept;
+    for (std::size_t k = 0; k < time.size(); ++k) {
+        bool every_realization = rows > 0;
+        for (std::size_t r = 0; r < rows; ++r) {
+            const double value = temperature[r * time.size() + k];
+            if (!std::isfinite(value) || value <= 0.0) every_realization = false;
+        }
+        if (every_realization) kept.push_back(k);
+    }
+    history.time.reserve(kept.size());
+    for (std::size_t k : kept) history.time.push_back(time[k]);
+    history.temperature.resize(rows * kept.size());
+    for (std::size_t r = 0; r < rows; ++r)
+        for (std::size_t j = 0; j < kept.size(); ++j)
+            history.temperature[r * kept.size() + j] = temperature[r * time.size() + kept[j]];
+    return history;
+}
+
+TemperatureHistory TemperatureHistory::from(const TimeSeries& series) {
+    return from(series.time, series.realizations, series.temperature);
+}
+
+TemperatureHistory TemperatureHistory::from(const EnsembleResult& result) {
+    return from(result.times, result.realizations, result.temperature);
+}
+
+DecayWindow automatic_decay_window(double restitution, double velocity_threshold, double particles,
+                                   double last_time, const WindowRule& rule) {
+    const double inelasticity = (1.0 - restitution) / 2.0;  // r = 1 - 2 eps
+    // Eq. (3): the sticky regime starts at t_stick ~ eps^(-3/2) (order one for strong dissipation).
+    const double t_stick = std::max(1.0, std::pow(inelasticity, -1.5));
+    DecayWindow window;
+    window.t_lo = rule.start_factor * t_stick;
+    // Eq. (3): the ring ends in one cluster at t ~ N^(3/2); the threshold is
+    // harmless while v ~ t^(-1/3) >> delta, i.e. t << delta^(-3).
+    window.t_hi = std::min(last_time, rule.end_factor * std::pow(particles, 1.5));
+    if (velocity_threshold > 0.0) window.t_hi = std::min(window.t_hi, std::pow(velocity_threshold, -3.0));
+    if (!(window.t_hi > window.t_lo))
+        throw InsufficientData("the automatic window is empty: t_lo = " + std::to_string(window.t_lo) +
+                               " (10 eps^-3/2) but t_hi = " + std::to_string(window.t_hi) +
+                               " (min of t_max, 0.01 N^3/2, delta^-3); run longer or with more particles");
+    return window;
+}
+
+DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, double t_hi) {
+    const auto inside = indices_in_window(history.time, t_lo, t_hi);
+    if (inside.size() < 3)
+        throw InsufficientData("the window [" + std::to_string(t_lo) + ", " + std::to_string(t_hi) + "] holds " +
+                               std::to_string(inside.size()) + " sample times; a decay fit needs at least 3");
+    std::vector<double> time, mean_temperature, temperature_error;
+    for (std::size_t k : inside) {
+        time.push_back(history.time[k]);
+        mean_temperature.push_back(history.mean(k));
+        double error = history.realizations >= 2 ? history.standard_error(k) : 0.0;
+        // One realization (or identical ones): no scatter to weigh by; equal weights.
+        if (!(error > 0.0)) error = mean_temperature.back();
+        temperature_error.push_back(error);
+    }
+    // ln <T> = ln C - alpha ln t: the exponent is minus the log-log slope.
+    const LinearFit full = fit_power_law(time, mean_temperature, temperature_error);
+    DecayFit result;
+    result.t_lo = t_lo;
+    result.t_hi = t_hi;
+    result.points = inside.size();
+    result.exponent = -full.slope;
+    result.fit_sigma = full.slope_sigma();
+    result.chi2_per_dof = full.chi2_per_dof();
+    result.prefactor = std::exp(full.intercept);
+    if (history.realizations >= 2) {
+        const Estimate jack = jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
+            std::vector<double> mean_without(inside.size());
+            for (std::size_t j = 0; j < inside.size(); ++j) mean_without[j] = history.mean(inside[j], left_out);
+            return -fit_power_law(time, mean_without, temperature_error).slope;
+        });
+        result.exponent_sigma = jack.sigma;
+    } else {
+        result.exponent_sigma = std::numeric_limits<double>::quiet_NaN();
+    }
+    return result;
+}
+
+std::vector<DecayFit> scan_decay_windows(const TemperatureHistory& history, double width_decades,
+                                         double step_decades) {
+    std::vector<DecayFit> scan;
+    if (history.time.empty()) return scan;
+    const double first = std::log10(history.time.front());
+    const double last = std::log10(history.time.back());
+    for (double start = first; start + width_decades <= last + 1e-9; start += step_decades) {
+        try {
+            scan.push_back(fit_temperature_decay(history, std::pow(10.0, start), std::pow(10.0, start + width_decades)));
+        } catch (const InsufficientData&) {
+            // A window between sparse samples: skip it, the scan shows the gap.
+        }
+    }
+    return scan;
+}
+
+namespace {
+
+// Log-log interpolation of the first time at which f(t_k) crosses level
+// downwards (f decreasing through level) starting from index begin.
+std::optional<double> first_crossing(const std::vector<double>& time, const std::vector<double>& value,
+                                     double level, std::size_t begin, bool upwards) {
+    for (std::size_t k = std::max<std::size_t>(begin, 1); k < time.size(); ++k) {
+        const bool crossed = upwards ? (value[k - 1] < level && value[k] >= level)
+                                     : (value[k - 1] > level && value[k] <= level);
+        if (!crossed) continue;
+        const double fraction = (std::log(level) - std::log(value[k - 1])) /
+                                (std::log(value[k]) - std::log(value[k - 1]));
+        return std::exp(std::log(time[k - 1]) + fraction * (std::log(time[k]) - std::log(time[k - 1])));
+    }
+    return std::nullopt;
+}
+
+struct CrossoverValues {
+    double t_dissip, haff_rate, t_stick, temperature_at_stick;
+};
+
+CrossoverValues crossovers_of(const TemperatureHistory& history, const std::vector<double>& weights_sigma,
+                              std::optional<std::size_t> left_out, const CrossoverRule& rule) {
+    const double initial = uniform_initial_temperature;
+    const std::size_t samples = history.time.size();
+    std::vector<double> mean(samples);
+    for (std::size_t k = 0; k < samples; ++k) mean[k] = history.mean(k, left_out);
+    const auto dissip = first_crossing(history.time, mean, initial / 2.0, 0, false);
+    if (!dissip)
+        throw InsufficientData("<T> never crosses T0/2 between the first and last sample; "
+                               "t_dissip is outside the run (first sample too late or t_max too short)");
+    // Eq. (2) rearranged: sqrt(T0 / T) = 1 + a t, linear in t with a = A eps.
+    std::vector<double> haff_time, haff_y, haff_sigma;
+    for (std::size_t k = 0; k < samples && mean[k] >= rule.haff_floor * initial; ++k) {
+        haff_time.push_back(history.time[k]);
+        haff_y.push_back(std::sqrt(initial / mean[k]));
+        // d sqrt(T0/T) = -(1/2) sqrt(T0/T) dT / T
+        haff_sigma.push_back(0.5 * std::sqrt(initial / mean[k]) * weights_sigma[k] / mean[k]);
+    }
+    if (haff_time.size() < 3)
+        throw InsufficientData("fewer than 3 samples with T >= T0/4: the homogeneous (Haff) regime is not resolved; "
+                               "sample more densely (--samples-per-decade) or use a smaller inelasticity");
+    const LinearFit haff = weighted_linear_fit(haff_time, haff_y, haff_sigma);
+    const double rate = haff.slope;
+    std::vector<double> ratio(samples);
+    for (std::size_t k = 0; k < samples; ++k) {
+        const double haff_temperature = initial / std::pow(1.0 + rate * history.time[k], 2.0);
+        ratio[k] = mean[k] / haff_temperature;
+    }
+    std::size_t after_dissip = 0;
+    while (after_dissip < samples && history.time[after_dissip] < *dissip) ++after_dissip;
+    const auto stick = first_crossing(history.time, ratio, rule.stick_ratio, after_dissip, true);
+    if (!stick)
+        throw InsufficientData("<T> never exceeds the Haff curve by the factor " + std::to_string(rule.stick_ratio) +
+                               " before the last sample; t_stick is beyond t_max");
+    // <T> at t_stick, log-log interpolated.
+    std::size_t k = 1;
+    while (k + 1 < samples && history.time[k] < *stick) ++k;
+    const double fraction = (std::log(*stick) - std::log(history.time[k - 1])) /
+                            (std::log(history.time[k]) - std::log(history.time[k - 1]));
+    const double temperature = std::exp(std::log(mean[k - 1]) + fraction * (std::log(mean[k]) - std::log(mean[k - 1])));
+    return {*dissip, rate, *stick, temperature};
+}
+
+}  // namespace
+
+Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRule& rule) {
+    if (history.realizations < 2)
+        throw InsufficientData("crossover error bars need at least 2 realizations");
+    std::vector<double> error(history.time.size());
+    for (std::size_t k = 0; k < error.size(); ++k) {
+        error[k] = history.standard_error(k);
+        if (!(error[k] > 0.0)) error[k] = 1e-3 * history.mean(k);  // identical realizations: equal weights
+    }
+    Crossovers result;
+    result.initial_temperature = uniform_initial_temperature;
+    auto component = [&](double CrossoverValues::*member) {
+        return jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
+            return crossovers_of(history, error, left_out, rule).*member;
+        });
+    };
+    result.t_dissip = component(&CrossoverValues::t_dissip);
+    result.haff_rate = component(&CrossoverValues::haff_rate);
+    result.t_stick = component(&CrossoverValues::t_stick);
+    result.temperature_at_stick = component(&CrossoverValues::temperature_at_stick);
+    return result;
+}
+
+}  // namespace shockgas::analysis

@@ -1,0 +1,349 @@
+#include "shockgas/analysis/velocity_distribution.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "shockgas/h5.hpp"
+
+namespace shockgas::analysis {
+
+std::vector<double> VelocityHistogram::pooled(std::optional<std::size_t> left_out_group, std::size_t groups) const {
+    const std::size_t width = bins() + 2;
+    std::vector<double> sum(width, 0.0);
+    for (std::size_t r = 0; r < realizations; ++r) {
+        if (left_out_group && r % groups == *left_out_group) continue;
+        for (std::size_t b = 0; b < width; ++b) sum[b] += counts[r * width + b];
+    }
+    return sum;
+}
+
+namespace {
+
+std::string time_label(const std::string& prefix, double time) {
+    std::ostringstream out;
+    out << prefix << (prefix.empty() ? "" : " ") << "t=" << time;
+    return out.str();
+}
+
+std::size_t jackknife_groups(const std::vector<VelocityHistogram>& histograms) {
+    std::size_t groups = max_jackknife_groups;
+    for (const auto& h : histograms) groups = std::min(groups, h.realizations);
+    return groups;
+}
+
+// Piecewise-linear CDF F(v) of a pooled histogram at velocity v; below[b] is
+// the mass below edges[b] (underflow included), so below[bins] + overflow = total.
+double cumulative(const std::vector<double>& edges, const std::vector<double>& below, double total, double v) {
+    if (v <= edges.front()) return below.front() / total;
+    if (v >= edges.back()) return below.back() / total;
+    const auto upper = std::upper_bound(edges.begin(), edges.end(), v);
+    const auto bin = static_cast<std::size_t>(upper - edges.begin()) - 1;  // edges[bin] <= v < edges[bin+1]
+    const double fraction = (v - edges[bin]) / (edges[bin + 1] - edges[bin]);
+    return (below[bin] + fraction * (below[bin + 1] - below[bin])) / total;
+}
+
+// The rescaled CDFs G_t(z) = F_t(z t^-beta) of every histogram on a common z grid.
+std::vector<std::vector<double>> rescaled_cdfs(const std::vector<VelocityHistogram>& histograms, double beta,
+                                               std::optional<std::size_t> left_out_group, std::size_t groups) {
+    constexpr std::size_t grid_points = 201;
+    // The z range every curve resolves: inside each histogram's edges.
+    double z_lo = -std::numeric_limits<double>::infinity();
+    double z_hi = std::numeric_limits<double>::infinity();
+    for (const auto& h : histograms) {
+        const double scale = std::pow(h.time, beta);
+        z_lo = std::max(z_lo, h.edges.front() * scale);
+        z_hi = std::min(z_hi, h.edges.back() * scale);
+    }
+    std::vector<std::vector<double>> curves;
+    for (const auto& h : histograms) {
+        const auto pooled = h.pooled(left_out_group, groups);
+        std::vector<double> below(h.edges.size());
+        below[0] = pooled[0];
+        for (std::size_t b = 1; b < h.edges.size(); ++b) below[b] = below[b - 1] + pooled[b];
+        const double total = below.back() + pooled.back();
+        const double scale = std::pow(h.time, -beta);
+        std::vector<double> curve(grid_points);
+        for (std::size_t i = 0; i < grid_points; ++i) {
+            const double z = z_lo + (z_hi - z_lo) * static_cast<double>(i) / static_cast<double>(grid_points - 1);
+            curve[i] = cumulative(h.edges, below, total, z * scale);
+        }
+        curves.push_back(std::move(curve));
+    }
+    return curves;
+}
+
+// Golden-section minimisation of f on [lo, hi] after a grid search.
+template <class Function>
+double minimise(Function f, double lo, double hi, std::size_t grid = 60) {
+    double best = lo, best_value = std::numeric_limits<double>::infinity();
+    const double step = (hi - lo) / static_cast<double>(grid);
+    for (std::size_t i = 0; i <= grid; ++i) {
+        const double x = lo + step * static_cast<double>(i);
+        const double value = f(x);
+        if (value < best_value) {
+            best_value = value;
+            best = x;
+        }
+    }
+    double a = std::max(lo, best - step), b = std::min(hi, best + step);
+    const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
+    double c = b - golden * (b - a), d = a + golden * (b - a);
+    double fc = f(c), fd = f(d);
+    for (int iteration = 0; iteration < 60 && b - a > 1e-7 * (1.0 + std::abs(best)); ++iteration) {
+        if (fc < fd) {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - golden * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + golden * (b - a);
+            fd = f(d);
+        }
+    }
+    return (a + b) / 2.0;
+}
+
+}  // namespace
+
+std::vector<VelocityHistogram> histograms_from(const EnsembleResult& result, const std::string& label_prefix) {
+    std::vector<VelocityHistogram> out;
+    for (const auto& record : result.histograms) {
+        VelocityHistogram h;
+        h.label = time_label(label_prefix, record.time);
+        h.time = record.time;
+        h.edges = record.edges;
+        h.realizations = static_cast<std::size_t>(result.realizations);
+        h.counts = record.counts;
+        out.push_back(std::move(h));
+    }
+    return out;
+}
+
+std::vector<VelocityHistogram> read_histograms(const std::string& path, const std::string& label_prefix) {
+    const auto file = h5::File::open_read(path);
+    const auto root = file.root();
+    std::vector<VelocityHistogram> out;
+    if (!root.has("histograms")) return out;
+    const auto group = root.open_group("histograms");
+    auto names = group.children();
+    std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+        return a.size() != b.size() ? a.size() < b.size() : a < b;  // numeric order of "0", "1", ..., "10"
+    });
+    for (const auto& name : names) {
+        const auto entry = group.open_group(name);
+        VelocityHistogram h;
+        h.time = entry.attribute_double("time");
+        h.label = time_label(label_prefix, h.time);
+        h.edges = entry.read_doubles("edges");
+        std::vector<hsize_t> dims;
+        h.counts = entry.read_doubles("counts", &dims);
+        if (dims.size() != 2 || dims[1] != h.edges.size() + 1)
+            throw h5::Error(path + ": /histograms/" + name + "/counts is not realizations x (bins + 2)");
+        h.realizations = static_cast<std::size_t>(dims[0]);
+        out.push_back(std::move(h));
+    }
+    return out;
+}
+
+double collapse_distance(const std::vector<VelocityHistogram>& histograms, double beta,
+                         std::optional<std::size_t> left_out_group, std::size_t groups) {
+    if (histograms.size() < 2) throw InsufficientData("a scaling collapse needs at least 2 histograms");
+    const auto curves = rescaled_cdfs(histograms, beta, left_out_group, groups);
+    double sum = 0.0;
+    std::size_t pairs = 0;
+    for (std::size_t a = 0; a < curves.size(); ++a)
+        for (std::size_t b = a + 1; b < curves.size(); ++b) {
+            double squares = 0.0;
+            for (std::size_t i = 0; i < curves[a].size(); ++i)
+                squares += (curves[a][i] - curves[b][i]) * (curves[a][i] - curves[b][i]);
+            sum += squares / static_cast<double>(curves[a].size());
+            ++pairs;
+        }
+    return sum / static_cast<double>(pairs);
+}
+
+double collapse_max_deviation(const std::vector<VelocityHistogram>& histograms, double beta) {
+    const auto curves = rescaled_cdfs(histograms, beta, std::nullopt, 1);
+    double largest = 0.0;
+    for (std::size_t a = 0; a < curves.size(); ++a)
+        for (std::size_t b = a + 1; b < curves.size(); ++b)
+            for (std::size_t i = 0; i < curves[a].size(); ++i)
+                largest = std::max(largest, std::abs(curves[a][i] - curves[b][i]));
+    return largest;
+}
+
+ScalingCollapse fit_scaling_collapse(const std::vector<VelocityHistogram>& histograms, double beta_min,
+                                     double beta_max) {
+    double t_min = std::numeric_limits<double>::infinity(), t_max = 0.0;
+    for (const auto& h : histograms) {
+        t_min = std::min(t_min, h.time);
+        t_max = std::max(t_max, h.time);
+    }
+    if (!(t_max > t_min)) throw InsufficientData("the scaling exponent needs histograms at 2 or more distinct times");
+    ScalingCollapse result;
+    result.jackknife_groups = jackknife_groups(histograms);
+    const std::size_t groups = result.jackknife_groups;
+    result.beta = jackknife(groups, [&](std::optional<std::size_t> left_out) {
+        return minimise([&](double beta) { return collapse_distance(histograms, beta, left_out, groups); }, beta_min,
+                        beta_max);
+    });
+    result.distance_at_best = collapse_distance(histograms, result.beta.value);
+    result.distance_at_one_third = collapse_distance(histograms, 1.0 / 3.0);
+    result.max_deviation_at_one_third = collapse_max_deviation(histograms, 1.0 / 3.0);
+    return result;
+}
+
+ScaledDistribution scaled_distribution(const VelocityHistogram& histogram, double beta) {
+    const auto pooled = histogram.pooled();
+    double total = 0.0;
+    for (double c : pooled) total += c;
+    ScaledDistribution out;
+    const double scale = std::pow(histogram.time, beta);
+    // Eq. (4): Phi(z) = t^-beta P(v, t), z = v t^beta.
+    for (std::size_t b = 0; b < histogram.bins(); ++b) {
+        const double width = histogram.edges[b + 1] - histogram.edges[b];
+        out.z.push_back(0.5 * (histogram.edges[b] + histogram.edges[b + 1]) * scale);
+        out.density.push_back(pooled[b + 1] / (total * width) / scale);
+    }
+    out.outside_fraction = (pooled.front() + pooled.back()) / total;
+    return out;
+}
+
+Estimate velocity_kurtosis(const VelocityHistogram& histogram) {
+    const std::size_t groups = std::min(histogram.realizations, max_jackknife_groups);
+    auto kurtosis = [&](std::optional<std::size_t> left_out) {
+        const auto pooled = histogram.pooled(left_out, groups);
+        double mass = 0.0, first = 0.0;
+        for (std::size_t b = 0; b < histogram.bins(); ++b) {
+            const double centre = 0.5 * (histogram.edges[b] + histogram.edges[b + 1]);
+            mass += pooled[b + 1];
+            first += pooled[b + 1] * centre;
+        }
+        const double mean = first / mass;
+        double second = 0.0, fourth = 0.0;
+        for (std::size_t b = 0; b < histogram.bins(); ++b) {
+            const double deviation = 0.5 * (histogram.edges[b] + histogram.edges[b + 1]) - mean;
+            second += pooled[b + 1] * deviation * deviation;
+            fourth += pooled[b + 1] * deviation * deviation * deviation * deviation;
+        }
+        second /= mass;
+        fourth /= mass;
+        return fourth / (second * second);  // 3 for a Gaussian
+    };
+    if (groups < 2) return {kurtosis(std::nullopt), std::numeric_limits<double>::quiet_NaN()};
+    return jackknife(groups, kurtosis);
+}
+
+namespace {
+
+struct TailData {
+    std::vector<double> u;           // |z| / rms(z) at folded bin centres
+    std::vector<std::size_t> bin;    // the bin b (and its mirror bins + 1 - b) of each point
+    std::vector<double> log_sigma;   // standard error of ln Phi
+};
+
+// Folded density of bin pair (b, mirror) from a pooled histogram (unnormalised: a
+// constant factor only shifts the intercept a of ln Phi = a - c u^gamma).
+double folded(const std::vector<double>& pooled, std::size_t bins, std::size_t b) {
+    return pooled[b + 1] + pooled[bins - b];
+}
+
+struct ChiSquared {
+    double chi2;
+    LinearFit fit;
+};
+
+ChiSquared tail_chi2(const TailData& data, const std::vector<double>& log_density, double gamma) {
+    std::vector<double> power(data.u.size());
+    for (std::size_t i = 0; i < data.u.size(); ++i) power[i] = std::pow(data.u[i], gamma);
+    // Eq. (5) at fixed gamma: ln Phi = a - c u^gamma is a straight line in u^gamma.
+    const LinearFit fit = weighted_linear_fit(power, log_density, data.log_sigma);
+    return {fit.chi2, fit};
+}
+
+}  // namespace
+
+TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule) {
+    const std::size_t bins = histogram.bins();
+    const std::size_t width = bins + 2;
+    const std::size_t realizations = histogram.realizations;
+    if (realizations < 2) throw InsufficientData("the tail fit weighs bins by realization scatter: needs R >= 2");
+    const auto pooled = histogram.pooled();
+    // rms of v over the resolved bins, to express the tail in units of the width.
+    double mass = 0.0, second = 0.0;
+    for (std::size_t b = 0; b < bins; ++b) {
+        const double centre = 0.5 * (histogram.edges[b] + histogram.edges[b + 1]);
+        mass += pooled[b + 1];
+        second += pooled[b + 1] * centre * centre;
+    }
+    const double rms = std::sqrt(second / mass);
+    TailFit result;
+    for (double c : pooled) result.total_mass += c;
+    TailData data;
+    std::vector<double> log_density;
+    for (std::size_t b = 0; b < bins / 2; ++b) {
+        const double centre = 0.5 * (histogram.edges[b] + histogram.edges[b + 1]);
+        const double u = std::abs(centre) / rms;
+        if (u < rule.tail_start) continue;
+        // Standard error of the folded count from the scatter over realizations.
+        std::vector<double> per_realization(realizations);
+        for (std::size_t r = 0; r < realizations; ++r)
+            per_realization[r] = histogram.counts[r * width + b + 1] + histogram.counts[r * width + bins - b];
+        const Estimate mean = mean_and_standard_error(per_realization);
+        if (!(mean.value > 0.0) || !(mean.sigma > 0.0) || mean.sigma / mean.value > rule.max_relative_error) continue;
+        const double width_b = histogram.edges[b + 1] - histogram.edges[b];
+        data.u.push_back(u);
+        data.bin.push_back(b);
+        data.log_sigma.push_back(mean.sigma / mean.value);
+        // Pooled over realizations (R times the mean), the normalisation the jackknife uses too.
+        log_density.push_back(std::log(mean.value * static_cast<double>(realizations) / width_b));
+    }
+    if (data.u.size() < 4)
+        throw InsufficientData("only " + std::to_string(data.u.size()) +
+                               " tail bins have a relative error below the limit; the tail fit needs 4 or more "
+                               "(more realizations or particles)");
+    constexpr double gamma_min = 0.5, gamma_max = 8.0;  // brackets Gaussian (2) and Eq. (5) (3) widely
+    auto best_gamma = [&](const std::vector<double>& log_phi) {
+        return minimise([&](double gamma) { return tail_chi2(data, log_phi, gamma).chi2; }, gamma_min, gamma_max, 150);
+    };
+    const double gamma = best_gamma(log_density);
+    const ChiSquared best = tail_chi2(data, log_density, gamma);
+    result.c = -best.fit.slope;
+    result.bins = data.u.size();
+    result.chi2_per_dof = best.chi2 / static_cast<double>(data.u.size() - 3);  // a, c and gamma fitted
+    result.z_lo = *std::min_element(data.u.begin(), data.u.end());
+    result.z_hi = *std::max_element(data.u.begin(), data.u.end());
+    // Delta chi2 = 1 half-width from the curvature of chi2(gamma).
+    const double h = 1e-3 * gamma;
+    const double curvature = (tail_chi2(data, log_density, gamma + h).chi2 - 2.0 * best.chi2 +
+                              tail_chi2(data, log_density, gamma - h).chi2) / (h * h);
+    result.gamma_fit_sigma = curvature > 0.0 ? std::sqrt(2.0 / curvature) : std::numeric_limits<double>::quiet_NaN();
+    // Group jackknife: the same bins and weights, the density from the other groups.
+    const std::size_t groups = std::min(realizations, max_jackknife_groups);
+    result.gamma = jackknife(groups, [&](std::optional<std::size_t> left_out) {
+        if (!left_out) return gamma;
+        const auto partial = histogram.pooled(left_out, groups);
+        std::size_t kept = 0;
+        for (std::size_t r = 0; r < realizations; ++r) kept += (r % groups != *left_out) ? 1 : 0;
+        const double to_full = static_cast<double>(realizations) / static_cast<double>(kept);
+        std::vector<double> log_phi(data.u.size());
+        for (std::size_t i = 0; i < data.u.size(); ++i) {
+            const std::size_t b = data.bin[i];
+            const double value = folded(partial, bins, b);
+            // An emptied bin would make ln Phi infinite: keep the full-sample value
+            // (only possible at the tail's far end, where weights are smallest).
+            log_phi[i] = value > 0.0 ? std::log(value * to_full / (histogram.edges[b + 1] - histogram.edges[b]))
+                                     : log_density[i];
+        }
+        return best_gamma(log_phi);
+    });
+    return result;
+}
+
+}  // namespace shockgas::analysis
