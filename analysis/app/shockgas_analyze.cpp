@@ -50,11 +50,13 @@ void run_decay(const std::string& input, const std::string& output, const std::s
     if (t_hi > 0.0) window.t_hi = t_hi;
     const DecayFit fit = fit_temperature_decay(history, window.t_lo, window.t_hi);
     const auto windows = scan_decay_windows(history, scan_width, scan_step);
+    const double systematic = window_systematic(history, fit.t_lo, fit.t_hi);
     ResultsFile results(output, "shockgas-analyze decay", {input});
     auto group = results.section("decay");
     group.set_attribute("exponent", fit.exponent);
     group.set_attribute("exponent_sigma", fit.exponent_sigma);
     group.set_attribute("exponent_fit_sigma", fit.fit_sigma);
+    group.set_attribute("exponent_window_systematic", systematic);
     group.set_attribute("chi2_per_dof", fit.chi2_per_dof);
     group.set_attribute("prefactor", fit.prefactor);
     group.set_attribute("t_lo", fit.t_lo);
@@ -85,8 +87,8 @@ void run_decay(const std::string& input, const std::string& output, const std::s
             file.row({std::sqrt(w.t_lo * w.t_hi), w.t_lo, w.t_hi, w.exponent, w.exponent_sigma, w.chi2_per_dof,
                       static_cast<double>(w.points)});
     }
-    std::printf("decay exponent %.4f +- %.4f (jackknife), chi2/dof %.2f, window [%g, %g], %zu points\n",
-                fit.exponent, fit.exponent_sigma, fit.chi2_per_dof, fit.t_lo, fit.t_hi, fit.points);
+    std::printf("decay exponent %.4f +- %.4f (jackknife) +- %.4f (window), chi2/dof %.2f, window [%g, %g], %zu points\n",
+                fit.exponent, fit.exponent_sigma, systematic, fit.chi2_per_dof, fit.t_lo, fit.t_hi, fit.points);
 }
 
 void run_crossover(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
@@ -214,6 +216,7 @@ void run_shocks(const std::string& input, const std::string& output, const std::
         set_estimate(group, "shock_count", summary.shocks);
         group.set_attribute("expected_shock_count", summary.expected_shocks);
         set_estimate(group, "slope_times_t", summary.slope_times_t);
+        set_estimate(group, "density_corrected_slope_times_t", summary.density_corrected_slope_times_t);
         group.set_attribute("segments", static_cast<std::int64_t>(summary.segments));
         std::printf("t %g: %.2f +- %.2f shocks (N t^-2/3 = %.2f); segment slope x t = %.3f +- %.3f (%zu segments)\n",
                     summary.time, summary.shocks.value, summary.shocks.sigma, summary.expected_shocks,

@@ -116,14 +116,18 @@ ShockProfile find_shocks(const Snapshot& snapshot, const ShockRule& rule) {
         while (k < n && !in_shock[k]) ++k;
         if (k - begin < rule.min_segment_points) continue;
         std::vector<double> x, v, unit;
+        double segment_mass = 0.0;
         for (std::size_t m = begin; m < k; ++m) {
+            segment_mass += snapshot.mass[order[m]];
             x.push_back(unwrapped[m]);
             v.push_back(snapshot.velocity[order[m]]);
             unit.push_back(1.0);
         }
         try {
             const LinearFit line = weighted_linear_fit(x, v, unit, ErrorModel::scale_by_residuals);
-            profile.segments.push_back({x.front(), x.back(), x.size(), line.slope, line.slope_sigma()});
+            // Each point stands for the mass up to its neighbour: n - 1 gaps hold n - 1 masses' worth.
+            const double density = (segment_mass - snapshot.mass[order[k - 1]]) / (x.back() - x.front());
+            profile.segments.push_back({x.front(), x.back(), x.size(), line.slope, line.slope_sigma(), density});
         } catch (const InsufficientData&) {
             // Coincident positions: no slope to measure.
         }
@@ -136,16 +140,20 @@ ShockSummary summarize_shocks(const std::vector<Snapshot>& snapshots, const Shoc
     ShockSummary summary;
     summary.time = snapshots.front().time;
     summary.snapshots = snapshots.size();
-    std::vector<double> counts, slopes;
+    std::vector<double> counts, slopes, corrected;
     for (const auto& snapshot : snapshots) {
         const auto profile = find_shocks(snapshot, rule);
         counts.push_back(static_cast<double>(profile.shock_position.size()));
-        for (const auto& segment : profile.segments) slopes.push_back(segment.slope * snapshot.time);
+        for (const auto& segment : profile.segments) {
+            slopes.push_back(segment.slope * snapshot.time);
+            if (segment.density < 0.5) corrected.push_back(segment.slope * snapshot.time / (1.0 - segment.density));
+        }
     }
     summary.shocks = mean_and_standard_error(counts);
     summary.expected_shocks = snapshots.front().total_mass() * std::pow(summary.time, -2.0 / 3.0);
     summary.segments = slopes.size();
     if (!slopes.empty()) summary.slope_times_t = mean_and_standard_error(slopes);
+    if (!corrected.empty()) summary.density_corrected_slope_times_t = mean_and_standard_error(corrected);
     return summary;
 }
 

@@ -143,6 +143,16 @@ std::vector<DecayFit> scan_decay_windows(const TemperatureHistory& history, doub
     return scan;
 }
 
+double window_systematic(const TemperatureHistory& history, double t_lo, double t_hi) {
+    double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+    for (const auto& w : scan_decay_windows(history, 1.0, 0.1)) {
+        if (w.t_lo < t_lo * (1.0 - 1e-9) || w.t_hi > t_hi * (1.0 + 1e-9)) continue;
+        lowest = std::min(lowest, w.exponent);
+        highest = std::max(highest, w.exponent);
+    }
+    return highest >= lowest ? (highest - lowest) / 2.0 : 0.0;
+}
+
 namespace {
 
 // Log-log interpolation of the first time at which f(t_k) crosses level

@@ -49,6 +49,7 @@ struct SegmentFit {
     std::size_t points = 0;
     double slope = 0.0;             // dv/dx, weighted by nothing: sigma from residuals
     double slope_sigma = 0.0;
+    double density = 0.0;           // segment mass / (x_hi - x_lo), initial density 1
 };
 
 struct ShockProfile {
@@ -70,6 +71,9 @@ struct ShockSummary {
     Estimate shocks;
     double expected_shocks = 0.0;  // N t^(-2/3)
     Estimate slope_times_t;
+    // Eq. (6) for particles: x - q = v t along a segment, so dv/dx = (1 - dq/dx)/t
+    // = (1 - rho)/t; slope t / (1 - rho) should be 1 (segments with rho < 1/2).
+    Estimate density_corrected_slope_times_t;
     std::size_t segments = 0;
 };
 ShockSummary summarize_shocks(const std::vector<Snapshot>& snapshots, const ShockRule& rule = {});

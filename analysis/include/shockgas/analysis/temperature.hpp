@@ -70,6 +70,12 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
 std::vector<DecayFit> scan_decay_windows(const TemperatureHistory& history, double width_decades,
                                          double step_decades);
 
+// Systematic error of the window choice: half the spread (max - min)/2 of the
+// exponents of the one-decade scan windows (step 0.1 decade) lying inside
+// [t_lo, t_hi]; 0 if the window is narrower than a decade. Corrections to
+// scaling make the local exponent wander; this says by how much.
+double window_systematic(const TemperatureHistory& history, double t_lo, double t_hi);
+
 // --- crossovers (Eq. 3) ---
 // t_dissip: the time at which <T> has fallen to half its initial value,
 //   <T>(t_dissip) = T0 / 2 (log-log interpolation between samples);
