@@ -1,0 +1,385 @@
+#!/usr/bin/python3
+"""Exact state of a sticky gas (r = 0) at any time t, without events, by isotonic regression.
+
+Run with Debian's interpreter (numpy):
+    /usr/bin/python3 python/sticky_pav.py --N 1000000 --realizations 5 --seed 1 \
+        --times 100 215.4 464.2 1000 2154 4642 10000 --compare
+
+Method (generalized variational principle: E, Rykov & Sinai, CMP 177, 349 (1996); Brenier &
+Grenier, SIAM J. Numer. Anal. 35, 2317 (1998)).  On a line, the clusters of the sticky gas at time t
+are the level sets of the weighted isotonic (non-decreasing) regression of
+        y_i = x_i + t v_i            with weights m_i,
+i.e. the faces of the convex minorant of the cumulative sum of m_i y_i against cumulative mass.
+A cluster's position is the block's mass-weighted mean of y, its velocity = momentum / mass.
+
+Isotonic regression is done with a vectorised pool-adjacent-violators: every maximal run of
+adjacent blocks whose means strictly decrease is pooled at once (a run of violators always
+ends up in one block: pooling a violating pair keeps its mean >= the next block's), and this is
+repeated until the means are non-decreasing.  The solution is unique, so the order of pooling
+does not matter.  Typically ~10-15 sweeps.  Clusters never split, so for an increasing list
+of times the blocks at t_k are used as the starting blocks at t_{k+1} (exact).
+
+Ring of length L: the centre-of-mass frame is used (total momentum 0), and the ring is unrolled
+into 2*copies+1 periodic copies; each physical cluster is taken once, as the image whose first
+(leftmost) particle lies in the central copy.  Information travels at most at speed
+2 max|v| (relative), so copies = 1 is exact while 2 t max|v| < L; this is asserted.
+"""
+import argparse
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+
+# ----------------------------------------------------------------------------------------------
+# initial conditions
+# ----------------------------------------------------------------------------------------------
+def generate_initial(N, seed, L=None, vmax=1.0):
+    """Equally spaced unit masses (spacing L/N, default 1), velocities i.i.d. U[-vmax, vmax]."""
+    L = float(N) if L is None else float(L)
+    rng = np.random.default_rng(seed)
+    x = np.arange(N, dtype=float) * (L / N)
+    v = rng.uniform(-vmax, vmax, size=N)
+    m = np.ones(N)
+    return x, v, m, L
+
+
+def read_initial(path, L=None):
+    """Whitespace columns 'x v [m]' ('#' comments).  L from argument or a '# L = <value>' line,
+    else N * (mean spacing)."""
+    Lh = None
+    with open(path) as fh:
+        for line in fh:
+            s = line.strip()
+            if s.startswith("#") and "L" in s and "=" in s:
+                key, _, val = s.lstrip("#").partition("=")
+                if key.strip() == "L":
+                    Lh = float(val.split()[0])
+    data = np.loadtxt(path, comments="#", ndmin=2)
+    x, v = data[:, 0].copy(), data[:, 1].copy()
+    m = data[:, 2].copy() if data.shape[1] > 2 else np.ones(len(x))
+    order = np.argsort(x, kind="stable")
+    x, v, m = x[order], v[order], m[order]
+    if L is None:
+        L = Lh if Lh is not None else len(x) * float(np.mean(np.diff(x))) if len(x) > 1 else 1.0
+    return x, v, m, float(L)
+
+
+# ----------------------------------------------------------------------------------------------
+# vectorised weighted PAV on blocks
+# ----------------------------------------------------------------------------------------------
+def pav_blocks(W, MX, P, first, t, max_sweeps=100000):
+    """Pool blocks until the means y = (MX + t P)/W are non-decreasing.
+
+    W: block masses; MX: sum of m_i x_i (initial); P: block momenta; first: index of the block's
+    first particle.  Returns pooled (W, MX, P, first) and the number of sweeps."""
+    sweeps = 0
+    while sweeps < max_sweeps:
+        y = (MX + t * P) / W
+        viol = y[:-1] > y[1:]
+        if not viol.any():
+            break
+        starts = np.flatnonzero(np.concatenate(([True], ~viol)))
+        W = np.add.reduceat(W, starts)
+        MX = np.add.reduceat(MX, starts)
+        P = np.add.reduceat(P, starts)
+        first = first[starts]
+        sweeps += 1
+    return W, MX, P, first, sweeps
+
+
+def pav_stack_reference(y, w):
+    """Textbook sequential stack PAV (pure Python, for tests).  Returns block sums and weights."""
+    S, Wl = [], []
+    for yi, wi in zip(y, w):
+        s, ww = yi * wi, wi
+        while S and S[-1] / Wl[-1] > s / ww:
+            s += S.pop()
+            ww += Wl.pop()
+        S.append(s)
+        Wl.append(ww)
+    return np.array(S), np.array(Wl)
+
+
+def sticky_line(x, v, m, t):
+    """Open chain (no boundaries): clusters at time t as dict of arrays."""
+    x, v, m = (np.asarray(a, dtype=float) for a in (x, v, m))
+    W, MX, P, first, _ = pav_blocks(m.copy(), m * x, m * v, np.arange(len(x)), t)
+    return dict(mass=W, momentum=P, velocity=P / W, position=(MX + t * P) / W, first=first)
+
+
+def sticky_ring(x, v, m, L, times, copies=1, cm_frame=True):
+    """Ring of length L.  Returns a list (one per time, times sorted increasingly) of dicts with
+    arrays mass, momentum, velocity, position (in [0, L)), first (original particle index)."""
+    x, v, m = (np.asarray(a, dtype=float) for a in (x, v, m))
+    N = len(x)
+    times = np.asarray(times, dtype=float)
+    if np.any(np.diff(times) < 0):
+        raise ValueError("times must be increasing")
+    if cm_frame:
+        v = v - np.sum(m * v) / np.sum(m)
+    vmax = np.max(np.abs(v))
+    if 2.0 * times[-1] * vmax >= copies * L:
+        raise ValueError("t too large for %d copies: need 2 t max|v| < copies L" % copies)
+    shifts = np.arange(-copies, copies + 1)
+    X = (x[None, :] + L * shifts[:, None]).ravel()
+    V = np.tile(v, len(shifts))
+    Mm = np.tile(m, len(shifts))
+    W, MX, P, first = Mm.copy(), Mm * X, Mm * V, np.arange(len(X))
+    lo, hi = copies * N, (copies + 1) * N
+    out = []
+    for t in times:
+        W, MX, P, first, sweeps = pav_blocks(W, MX, P, first, t)
+        sel = (first >= lo) & (first < hi)
+        pos = ((MX[sel] + t * P[sel]) / W[sel]) % L
+        out.append(dict(t=t, mass=W[sel].copy(), momentum=P[sel].copy(), velocity=P[sel] / W[sel],
+                        position=pos, first=first[sel] - lo, sweeps=sweeps))
+    return out
+
+
+def sticky_event_driven_line(x, v, m, t_end):
+    """Reference event-driven sticky dynamics on an open line (O(N^2), for small tests only)."""
+    pos = list(map(float, x))
+    vel = list(map(float, v))
+    mas = list(map(float, m))
+    firsts = list(range(len(pos)))
+    t = 0.0
+    while True:
+        best, k_best = np.inf, -1
+        for k in range(len(pos) - 1):
+            dv = vel[k] - vel[k + 1]
+            if dv > 0:
+                dt = (pos[k + 1] - pos[k]) / dv
+                if dt < best:
+                    best, k_best = dt, k
+        if k_best < 0 or t + best > t_end:
+            pos = [p_ + (t_end - t) * u for p_, u in zip(pos, vel)]
+            break
+        pos = [p_ + best * u for p_, u in zip(pos, vel)]
+        t += best
+        k = k_best
+        M = mas[k] + mas[k + 1]
+        vel[k] = (mas[k] * vel[k] + mas[k + 1] * vel[k + 1]) / M
+        pos[k] = (mas[k] * pos[k] + mas[k + 1] * pos[k + 1]) / M
+        mas[k] = M
+        del pos[k + 1], vel[k + 1], mas[k + 1], firsts[k + 1]
+    return dict(mass=np.array(mas), velocity=np.array(vel), position=np.array(pos), first=np.array(firsts))
+
+
+# ----------------------------------------------------------------------------------------------
+# observables
+# ----------------------------------------------------------------------------------------------
+def observables(cl, N=None):
+    """T = sum M V^2 / Mtot - (sum M V / Mtot)^2 (per unit mass = per particle for unit masses),
+    n = clusters per particle, mass-weighted kurtosis of the velocity."""
+    M, Pm = cl["mass"], cl["momentum"]
+    Mtot = M.sum()
+    N = Mtot if N is None else N
+    vbar = Pm.sum() / Mtot
+    V = Pm / M - vbar
+    T = np.sum(M * V * V) / Mtot
+    m4 = np.sum(M * V ** 4) / Mtot
+    return dict(T=T, n=len(M) / N, kurtosis=m4 / T ** 2, Mtot=Mtot)
+
+
+Z_EDGES = np.linspace(-3.5, 3.5, 71)        # bins of z = V t^(1/3)
+M_EDGES = np.linspace(0.0, 6.0, 61)         # bins of m = M / M*,  M* = (D t^2)^(1/3)
+
+
+def histograms(cl, t, D=1.0 / 3.0):
+    """Mass-weighted histogram density of z = (V - vbar) t^(1/3) (normalised to 1); number of
+    clusters per unit scaled length (L/M*) per unit m = M/M* (compare with F(m) of
+    exact_ballistic, NOT renormalised to the simulated cluster count); mass-weighted density of m."""
+    M, Pm = cl["mass"], cl["momentum"]
+    Mtot = M.sum()
+    z = (Pm / M - Pm.sum() / Mtot) * t ** (1.0 / 3.0)
+    hz = np.histogram(z, Z_EDGES, weights=M / Mtot)[0] / np.diff(Z_EDGES)
+    edges = mass_edges(t, D)
+    ms = M / (D * t * t) ** (1.0 / 3.0)
+    Ms = (D * t * t) ** (1.0 / 3.0)
+    hn = np.histogram(ms, edges)[0] / (Mtot / Ms) / np.diff(edges)
+    hm = np.histogram(ms, edges, weights=M / Mtot)[0] / np.diff(edges)
+    return hz, hn, hm
+
+
+def mass_edges(t, D=1.0 / 3.0):
+    """M_EDGES moved to half-integer masses (cluster masses are integers): no aliasing."""
+    Ms = (D * t * t) ** (1.0 / 3.0)
+    e = np.unique(np.round(M_EDGES * Ms)) + 0.5
+    return np.concatenate(([0.0], e[e > 0.5])) / Ms
+
+
+def run_ensemble(N, realizations, seed, times, copies=1, verbose=True, with_hist=False):
+    """Independent realizations (seeds seed, seed+1, ...); returns per-time arrays of T and n
+    (and, with_hist, per-realization histograms, see histograms())."""
+    times = np.asarray(sorted(times), dtype=float)
+    T = np.zeros((realizations, len(times)))
+    n = np.zeros_like(T)
+    kurt = np.zeros_like(T)
+    H = {"z": [], "m_number": [], "m_mass": []}
+    t0 = time.time()
+    for r in range(realizations):
+        x, v, m, L = generate_initial(N, seed + r)
+        res = sticky_ring(x, v, m, L, times, copies=copies)
+        hz, hn, hm = [], [], []
+        for k, cl in enumerate(res):
+            ob = observables(cl, N)
+            assert abs(ob["Mtot"] - N) < 1e-6 * N, "lost mass on the ring"
+            T[r, k], n[r, k], kurt[r, k] = ob["T"], ob["n"], ob["kurtosis"]
+            if with_hist:
+                a, b, c = histograms(cl, times[k])
+                hz.append(a), hn.append(b), hm.append(c)
+        if with_hist:
+            H["z"].append(hz), H["m_number"].append(hn), H["m_mass"].append(hm)
+        if verbose:
+            print("# realization %d done (%.1f s)" % (r, time.time() - t0), file=sys.stderr)
+    out = dict(times=times, T=T, n=n, kurtosis=kurt, seconds=time.time() - t0, N=N,
+               realizations=realizations, seed=seed, copies=copies)
+    if with_hist:
+        out["hist"] = {k: np.array(v) for k, v in H.items()}      # (R, ntimes, nbins)
+    return out
+
+
+def _bin_average(fun, edges, nper=8):
+    x, w = np.polynomial.legendre.leggauss(nper)
+    lo, hi = edges[:-1, None], edges[1:, None]
+    nodes = 0.5 * (hi - lo) * x[None, :] + 0.5 * (hi + lo)
+    vals = fun(nodes.ravel()).reshape(nodes.shape)
+    return (vals * 0.5 * w[None, :]).sum(axis=1)
+
+
+def write_histogram_comparison(ens, out_dir):
+    """Write z and m histograms (mean +- standard error over realizations) next to the exact
+    bin-averaged theory; return chi^2 per time."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import exact_ballistic as eb
+    os.makedirs(out_dir, exist_ok=True)
+    R = ens["realizations"]
+    th_z = _bin_average(eb.phi, Z_EDGES)
+    summary = []
+    for k, t in enumerate(ens["times"]):
+        rec = dict(t=float(t))
+        me = mass_edges(t)
+        th_mn = _bin_average(lambda mm: eb.mass_density_from_grid(mm), me)
+        th_mm = _bin_average(lambda mm: mm * eb.mass_density_from_grid(mm), me)
+        for key, edges, th, name in (("z", Z_EDGES, th_z, "phi"), ("m_number", me, th_mn, "mass_number"),
+                                     ("m_mass", me, th_mm, "mass_massweighted")):
+            h = ens["hist"][key][:, k, :]
+            mean, err = h.mean(axis=0), h.std(axis=0, ddof=1) / np.sqrt(R)
+            ok = (h > 0).sum(axis=0) >= max(2, R // 2)     # error bar meaningful only there
+            chi2 = float(np.sum(((mean - th) / np.where(ok, err, 1.0)) ** 2 * ok))
+            rec[name] = dict(chi2=chi2, nbins=int(ok.sum()))
+            if key == "m_number":     # first bin (m < 0.1) carries the discreteness deficit
+                rec[name]["chi2_without_first_bin"] = chi2 - float(((mean[0] - th[0]) / err[0]) ** 2 * ok[0])
+                rec[name]["first_bin_sim_over_theory"] = float(mean[0] / th[0])
+            centers = 0.5 * (edges[1:] + edges[:-1])
+            with open(os.path.join(out_dir, "%s_t%g.dat" % (name, t)), "w") as fh:
+                fh.write("# PAV sticky gas N=%d, %d realizations, t=%g; theory = exact_ballistic bin average\n"
+                         % (ens["N"], R, t))
+                fh.write("# %s lo hi sim sim_err theory\n" % ("z" if key == "z" else "m"))
+                for c, lo, hi, a, b, c2 in zip(centers, edges[:-1], edges[1:], mean, err, th):
+                    fh.write("%.6g %.6g %.6g %.8e %.3e %.8e\n" % (c, lo, hi, a, b, c2))
+        summary.append(rec)
+    return summary
+
+
+def compare_table(ens, kappa, nu, kurt_exact=None):
+    """Rows: t, T t^{2/3}/kappa, n t^{2/3}/nu (mean and standard error over realizations)."""
+    t = ens["times"]
+    R = ens["T"].shape[0]
+    s = t ** (2.0 / 3.0)
+    rows = []
+    for k in range(len(t)):
+        a = ens["T"][:, k] * s[k] / kappa
+        b = ens["n"][:, k] * s[k] / nu
+        c = ens["kurtosis"][:, k]
+        se = lambda q: q.std(ddof=1) / np.sqrt(R) if R > 1 else np.nan
+        rows.append(dict(t=t[k], T_ratio=a.mean(), T_ratio_err=se(a), n_ratio=b.mean(), n_ratio_err=se(b),
+                         kurtosis=c.mean(), kurtosis_err=se(c)))
+    return rows
+
+
+def fit_finite_time(rows, key, tmin=0.0):
+    """Weighted least squares  ratio(t) = r_inf + a t^(-1/3)  (leading discreteness correction)."""
+    t = np.array([r["t"] for r in rows if r["t"] >= tmin])
+    y = np.array([r[key] for r in rows if r["t"] >= tmin])
+    e = np.array([r[key + "_err"] for r in rows if r["t"] >= tmin])
+    A = np.vstack([np.ones_like(t), t ** (-1.0 / 3.0)]).T / e[:, None]
+    coef, *_ = np.linalg.lstsq(A, y / e, rcond=None)
+    cov = np.linalg.inv(A.T @ A)
+    chi2 = float(np.sum((A @ coef - y / e) ** 2))
+    return dict(r_inf=coef[0], r_inf_err=np.sqrt(cov[0, 0]), a=coef[1], a_err=np.sqrt(cov[1, 1]),
+                chi2=chi2, dof=len(t) - 2)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="exact sticky-gas state by isotonic regression (PAV)")
+    ap.add_argument("--N", type=int, default=1000000)
+    ap.add_argument("--realizations", type=int, default=5)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--times", type=float, nargs="+",
+                    default=[100, 215.443469, 464.158883, 1000, 2154.43469, 4641.58883, 10000])
+    ap.add_argument("--copies", type=int, default=1, help="periodic copies on each side")
+    ap.add_argument("--init", help="read initial condition 'x v [m]' from this file instead (one realization)")
+    ap.add_argument("--L", type=float, help="ring length for --init")
+    ap.add_argument("--clusters-out", help="with --init: write clusters 't mass position velocity' here")
+    ap.add_argument("--compare", action="store_true", help="compare with exact_ballistic kappa, nu")
+    ap.add_argument("--json", help="write the comparison table as JSON here")
+    ap.add_argument("--hist-dir", help="with --compare: write Phi and mass histograms vs theory here")
+    args = ap.parse_args(argv)
+
+    if args.init:
+        x, v, m, L = read_initial(args.init, args.L)
+        res = sticky_ring(x, v, m, L, sorted(args.times), copies=args.copies)
+        fh = open(args.clusters_out, "w") if args.clusters_out else sys.stdout
+        fh.write("# t mass position velocity first_particle\n")
+        for cl in res:
+            for a, b, c, d in zip(cl["mass"], cl["position"], cl["velocity"], cl["first"]):
+                fh.write("%.10g %.10g %.12g %.12g %d\n" % (cl["t"], a, b, c, d))
+        return 0
+
+    ens = run_ensemble(args.N, args.realizations, args.seed, args.times, args.copies,
+                       with_hist=bool(args.hist_dir))
+    print("# N = %d, realizations = %d, seeds %d.., copies = %d, wall time %.1f s"
+          % (args.N, args.realizations, args.seed, args.copies, ens["seconds"]))
+    if not args.compare:
+        print("# t  <T>  <n>")
+        for k, t in enumerate(ens["times"]):
+            print("%g %.8e %.8e" % (t, ens["T"][:, k].mean(), ens["n"][:, k].mean()))
+        return 0
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import exact_ballistic as eb
+    const = eb.compute_constants(check_resolution=False)
+    rows = compare_table(ens, const["kappa"], const["nu"])
+    print("# kappa = %.8f, nu = %.8f, kurtosis(Phi) = %.6f" % (const["kappa"], const["nu"], const["kurtosis"]))
+    print("# %10s %22s %22s %18s" % ("t", "T t^(2/3)/kappa", "n t^(2/3)/nu", "kurtosis"))
+    for r in rows:
+        print("%12.1f %12.5f +- %.5f %12.5f +- %.5f %9.4f +- %.4f"
+              % (r["t"], r["T_ratio"], r["T_ratio_err"], r["n_ratio"], r["n_ratio_err"], r["kurtosis"], r["kurtosis_err"]))
+    fits = {key: fit_finite_time(rows, key) for key in ("T_ratio", "n_ratio")}
+    for key, f in fits.items():
+        print("# fit %s = r_inf + a t^(-1/3): r_inf = %.5f +- %.5f, a = %.4f +- %.4f, chi2/dof = %.2f/%d"
+              % (key, f["r_inf"], f["r_inf_err"], f["a"], f["a_err"], f["chi2"], f["dof"]))
+    hist = None
+    if args.hist_dir:
+        hist = write_histogram_comparison(ens, args.hist_dir)
+        for rec in hist:
+            print("# t = %g: chi2/bins  Phi %.1f/%d   F(m) %.1f/%d (without m<0.1 bin: %.1f/%d, that bin sim/theory %.3f)"
+                  "   m F(m) %.1f/%d"
+                  % (rec["t"], rec["phi"]["chi2"], rec["phi"]["nbins"], rec["mass_number"]["chi2"],
+                     rec["mass_number"]["nbins"], rec["mass_number"]["chi2_without_first_bin"],
+                     rec["mass_number"]["nbins"] - 1, rec["mass_number"]["first_bin_sim_over_theory"],
+                     rec["mass_massweighted"]["chi2"], rec["mass_massweighted"]["nbins"]))
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(dict(N=args.N, realizations=args.realizations, seed=args.seed, copies=args.copies,
+                           seconds=ens["seconds"], kappa=const["kappa"], nu=const["nu"],
+                           kurtosis_exact=const["kurtosis"], rows=rows, fits=fits, histograms=hist),
+                      fh, indent=2, default=float)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
