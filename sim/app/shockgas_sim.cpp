@@ -70,6 +70,9 @@ int main(int argc, char** argv) {
     app.add_option("--snapshot-times", p.snapshot_times,
                    "times at which to store every cluster's position, velocity and mass, comma separated")
         ->delimiter(',');
+    double snapshot_interval = 0.0;
+    app.add_option("--snapshot-interval", snapshot_interval,
+                   "also store a snapshot every this much time (e.g. for world lines)");
     app.add_option("--histogram-times", p.histogram_times,
                    "times at which to store the mass-weighted velocity histogram, comma separated")
         ->delimiter(',');
@@ -78,12 +81,18 @@ int main(int argc, char** argv) {
                    "histogram covers |v - V| t^(1/3) <= range (V the mean velocity)")
         ->capture_default_str();
     app.add_option("-R,--realizations", p.realizations, "independent realizations")->capture_default_str();
+    app.add_option("--first-realization", p.first_realization,
+                   "index of the first realization (seed stream), to split an ensemble into parts")
+        ->capture_default_str();
     app.add_option("-s,--seed", p.seed, "random seed; realization k uses splitmix64(seed, k)")->capture_default_str();
     app.add_option("-j,--threads", p.threads, "threads for realizations; 0 means every core")->capture_default_str();
     app.add_option("--init", p.init_file,
                    "initial condition FILE.h5: datasets position, velocity, optional mass; root attribute "
                    "ring_length");
-    app.add_option("--engine", p.engine, "engine: event, exact (r = 0 only) or auto")->capture_default_str();
+    app.add_option("--engine", p.engine,
+                   "engine: event (event-driven, any r), exact (the sticky gas r = 0: clusters from the variational "
+                   "principle, no event loop) or auto (exact when r = 0, else event)")
+        ->capture_default_str();
     app.add_option("--collapse-speed", p.collapse.collapse_speed,
                    "declare inelastic collapse at an inelastic collision slower than this")
         ->capture_default_str();
@@ -100,6 +109,10 @@ int main(int argc, char** argv) {
 
     try {
         p.collision.subthreshold = shockgas::subthreshold_from_string(subthreshold);
+        if (app.count("--snapshot-interval") > 0) {
+            const auto every = shockgas::evenly_spaced_times(snapshot_interval, p.t_max);
+            p.snapshot_times.insert(p.snapshot_times.end(), every.begin(), every.end());
+        }
         shockgas::InitialCondition initial;
         if (!p.init_file.empty()) {
             initial = shockgas::read_initial_condition(p.init_file);

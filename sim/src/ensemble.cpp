@@ -100,7 +100,7 @@ private:
         const InitialCondition initial =
             initial_override_ ? *initial_override_
                               : generate_initial_condition(parameters_.particles, parameters_.effective_ring_length(),
-                                                           parameters_.seed, k);
+                                                           parameters_.seed, parameters_.first_realization + k);
         const double particles = static_cast<double>(initial.size());
         auto engine = make_engine(parameters_, initial, &live_[index]);
         out.histogram_counts.assign(histogram_times_.size(), {});

@@ -85,6 +85,15 @@ Handle open_attribute(hid_t object, const std::string& where, const std::string&
     return Handle(check(H5Aopen(object, name.c_str(), H5P_DEFAULT), "cannot open attribute " + where), H5Aclose);
 }
 
+// Opens an attribute that must hold exactly one value (H5Aread writes every
+// element, so reading an array into one scalar would overrun it).
+Handle open_scalar_attribute(hid_t object, const std::string& where, const std::string& name) {
+    Handle attribute = open_attribute(object, where, name);
+    Handle space(check(H5Aget_space(attribute.id()), "cannot read shape of " + where), H5Sclose);
+    if (H5Sget_simple_extent_npoints(space.id()) != 1) throw Error("attribute " + where + " is not a single value");
+    return attribute;
+}
+
 void replace_attribute(hid_t object, const std::string& name) {
     if (H5Aexists(object, name.c_str()) > 0) H5Adelete(object, name.c_str());
 }
@@ -191,14 +200,14 @@ void Group::set_attribute(const std::string& name, const std::string& value) {
 bool Group::has_attribute(const std::string& name) const { return H5Aexists(id(), name.c_str()) > 0; }
 
 double Group::attribute_double(const std::string& name) const {
-    const Handle attribute = open_attribute(id(), where(name), name);
+    const Handle attribute = open_scalar_attribute(id(), where(name), name);
     double value = 0.0;
     check_status(H5Aread(attribute.id(), H5T_NATIVE_DOUBLE, &value), "attribute " + where(name) + " is not a number");
     return value;
 }
 
 std::int64_t Group::attribute_integer(const std::string& name) const {
-    const Handle attribute = open_attribute(id(), where(name), name);
+    const Handle attribute = open_scalar_attribute(id(), where(name), name);
     std::int64_t value = 0;
     check_status(H5Aread(attribute.id(), H5T_NATIVE_INT64, &value), "attribute " + where(name) + " is not an integer");
     return value;

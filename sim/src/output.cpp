@@ -40,6 +40,7 @@ void write_parameter_attributes(h5::Group& root, const SimulationParameters& p) 
     root.set_attribute("histogram_bins", static_cast<std::int64_t>(p.histogram_bins));
     root.set_attribute("histogram_range", p.histogram_range);
     root.set_attribute("realizations", static_cast<std::int64_t>(p.realizations));
+    root.set_attribute("first_realization", p.first_realization);
     root.set_attribute("seed", static_cast<std::int64_t>(p.seed));
     root.set_attribute("init_file", p.init_file);
     root.set_attribute("initial_condition",
@@ -134,6 +135,173 @@ TimeSeries read_timeseries(const std::string& path) {
     out.kinetic_energy = series.read_doubles("kinetic_energy");
     out.status = root.attribute_string("status");
     return out;
+}
+
+namespace {
+
+std::vector<double> split_times(const std::string& text) {
+    std::vector<double> values;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        const std::size_t end = std::min(text.find(',', start), text.size());
+        values.push_back(std::stod(text.substr(start, end - start)));
+        start = end + 1;
+    }
+    return values;
+}
+
+ClusterState read_state(const h5::Group& group) {
+    ClusterState state;
+    state.time = group.attribute_double("time");
+    state.position = group.read_doubles("position");
+    state.velocity = group.read_doubles("velocity");
+    state.mass = group.read_doubles("mass");
+    state.first_particle = group.read_integers("first_particle");
+    return state;
+}
+
+// Children of a group named 0, 1, 2, ... in numeric order.
+std::size_t numbered_children(const h5::Group& group) { return group.children().size(); }
+
+}  // namespace
+
+OutputFile read_output(const std::string& path) {
+    const auto file = h5::File::open_read(path);
+    const auto root = file.root();
+    OutputFile out;
+    SimulationParameters& p = out.parameters;
+    p.particles = root.attribute_integer("particles");
+    p.ring_length = root.attribute_double("ring_length");
+    p.collision.restitution = root.attribute_double("restitution");
+    p.collision.velocity_threshold = root.attribute_double("velocity_threshold");
+    p.collision.subthreshold = subthreshold_from_string(root.attribute_string("subthreshold"));
+    p.collapse.collapse_speed = root.attribute_double("collapse_speed");
+    p.collapse.stall_time_fraction = root.attribute_double("stall_time_fraction");
+    p.collapse.stall_events_min = static_cast<std::uint64_t>(root.attribute_integer("stall_events_min"));
+    p.t_max = root.attribute_double("t_max");
+    p.samples_per_decade = static_cast<int>(root.attribute_integer("samples_per_decade"));
+    p.sample_times = split_times(root.attribute_string("sample_times"));
+    p.snapshot_times = split_times(root.attribute_string("snapshot_times"));
+    p.histogram_times = split_times(root.attribute_string("histogram_times"));
+    p.histogram_bins = static_cast<int>(root.attribute_integer("histogram_bins"));
+    p.histogram_range = root.attribute_double("histogram_range");
+    p.realizations = static_cast<int>(root.attribute_integer("realizations"));
+    p.first_realization = root.has_attribute("first_realization") ? root.attribute_integer("first_realization") : 0;
+    p.seed = static_cast<std::uint64_t>(root.attribute_integer("seed"));
+    p.init_file = root.attribute_string("init_file");
+    p.engine = root.attribute_string("engine");
+    out.version = root.attribute_string("version");
+
+    EnsembleResult& r = out.result;
+    r.engine = p.engine;
+    r.status = root.attribute_string("status");
+    r.total_collisions = static_cast<std::uint64_t>(root.attribute_integer("total_collisions"));
+    r.cpu_seconds = root.attribute_double("cpu_seconds");
+    r.wall_seconds = root.attribute_double("wall_seconds");
+    const auto series = root.open_group("timeseries");
+    r.times = series.read_doubles("time");
+    r.realizations = p.realizations;
+    r.temperature = series.read_doubles("temperature");
+    r.collisions_per_particle = series.read_doubles("collisions_per_particle");
+    r.clusters = series.read_doubles("clusters");
+    r.kinetic_energy = series.read_doubles("kinetic_energy");
+    r.realization_status = series.read_integers("realization_status");
+    const auto snapshots = root.open_group("snapshots");
+    for (std::size_t s = 0; s < numbered_children(snapshots); ++s) {
+        const auto group = snapshots.open_group(fmt::format("{}", s));
+        r.snapshots.push_back({group.attribute_integer("realization"), read_state(group)});
+    }
+    const auto histograms = root.open_group("histograms");
+    for (std::size_t h = 0; h < numbered_children(histograms); ++h) {
+        const auto group = histograms.open_group(fmt::format("{}", h));
+        r.histograms.push_back({group.attribute_double("time"), group.read_doubles("edges"), group.read_doubles("counts")});
+    }
+    if (root.has("collapse")) {
+        const auto collapse = root.open_group("collapse");
+        const auto time = collapse.read_doubles("time");
+        const auto realization = collapse.read_integers("realization");
+        const auto cluster_mass = collapse.read_integers("cluster_mass");
+        const auto relative_speed = collapse.read_doubles("relative_speed");
+        const auto collisions = collapse.read_integers("collisions");
+        const auto states = collapse.open_group("states");
+        for (std::size_t c = 0; c < time.size(); ++c) {
+            const auto group = states.open_group(fmt::format("{}", c));
+            CollapseRecord record;
+            record.realization = realization[c];
+            record.report = {time[c], 0, cluster_mass[c], relative_speed[c], group.attribute_string("criterion")};
+            record.collisions = static_cast<std::uint64_t>(collisions[c]);
+            record.state = read_state(group);
+            r.collapses.push_back(std::move(record));
+        }
+    }
+    return out;
+}
+
+namespace {
+
+// Every parameter that changes the physics or the sampling must agree.
+std::string physics_signature(const SimulationParameters& p) {
+    return fmt::format("N={} L={} r={} delta={} sub={} tmax={} K={} samples=[{}] snapshots=[{}] histograms=[{}] "
+                       "bins={} range={} seed={} init={} collapse={},{},{}",
+                       p.particles, p.effective_ring_length(), p.collision.restitution, p.collision.velocity_threshold,
+                       to_string(p.collision.subthreshold), p.t_max, p.samples_per_decade, join(p.sample_times),
+                       join(p.snapshot_times), join(p.histogram_times), p.histogram_bins, p.histogram_range, p.seed,
+                       p.init_file, p.collapse.collapse_speed, p.collapse.stall_time_fraction,
+                       p.collapse.stall_events_min);
+}
+
+}  // namespace
+
+OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector<std::string>& names) {
+    if (parts.empty()) throw InputError("merge: no input files");
+    OutputFile merged = parts.front();
+    EnsembleResult& r = merged.result;
+    const std::string signature = physics_signature(parts.front().parameters);
+    std::int64_t next_realization = parts.front().parameters.first_realization + parts.front().parameters.realizations;
+    bool interrupted = r.status == "interrupted", collapsed = r.status == "collapsed";
+    for (std::size_t i = 1; i < parts.size(); ++i) {
+        const OutputFile& part = parts[i];
+        const std::string& name = names[i];
+        if (physics_signature(part.parameters) != signature)
+            throw InputError(fmt::format("merge: '{}' was run with different parameters than '{}'", name, names[0]));
+        if (part.result.engine != r.engine)
+            throw InputError(fmt::format("merge: '{}' used engine {}, '{}' used {}", name, part.result.engine, names[0],
+                                         r.engine));
+        if (part.version != merged.version)
+            throw InputError(fmt::format("merge: '{}' was made by version {}, '{}' by {}", name, part.version, names[0],
+                                         merged.version));
+        if (part.parameters.first_realization != next_realization)
+            throw InputError(fmt::format("merge: '{}' starts at realization {}, expected {}", name,
+                                         part.parameters.first_realization, next_realization));
+        next_realization += part.parameters.realizations;
+        const EnsembleResult& p = part.result;
+        const std::int64_t offset = r.realizations;
+        using Table = std::vector<double> EnsembleResult::*;
+        for (const Table table : {&EnsembleResult::temperature, &EnsembleResult::collisions_per_particle,
+                                  &EnsembleResult::clusters, &EnsembleResult::kinetic_energy})
+            (r.*table).insert((r.*table).end(), (p.*table).begin(), (p.*table).end());
+        r.realization_status.insert(r.realization_status.end(), p.realization_status.begin(), p.realization_status.end());
+        for (auto snapshot : p.snapshots) {
+            snapshot.realization += offset;
+            r.snapshots.push_back(std::move(snapshot));
+        }
+        for (auto collapse : p.collapses) {
+            collapse.realization += offset;
+            r.collapses.push_back(std::move(collapse));
+        }
+        for (std::size_t h = 0; h < r.histograms.size(); ++h)
+            r.histograms[h].counts.insert(r.histograms[h].counts.end(), p.histograms[h].counts.begin(),
+                                          p.histograms[h].counts.end());
+        r.realizations += p.realizations;
+        r.total_collisions += p.total_collisions;
+        r.cpu_seconds += p.cpu_seconds;
+        r.wall_seconds += p.wall_seconds;
+        interrupted |= p.status == "interrupted";
+        collapsed |= p.status == "collapsed";
+    }
+    r.status = interrupted ? "interrupted" : collapsed ? "collapsed" : "complete";
+    merged.parameters.realizations = static_cast<int>(r.realizations);
+    return merged;
 }
 
 }  // namespace shockgas

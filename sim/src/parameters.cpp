@@ -48,6 +48,8 @@ void validate(const SimulationParameters& p) {
         throw InputError(fmt::format("samples per decade must lie in [1, 1000], got {}", p.samples_per_decade));
     if (p.realizations < 1)
         throw InputError(fmt::format("realizations must be at least 1, got {}", p.realizations));
+    if (p.first_realization < 0)
+        throw InputError(fmt::format("first realization must be >= 0, got {}", p.first_realization));
     if (p.threads < 0) throw InputError(fmt::format("threads must be >= 0, got {}", p.threads));
     if (p.histogram_bins < 1) throw InputError(fmt::format("histogram bins must be >= 1, got {}", p.histogram_bins));
     if (!(p.histogram_range > 0.0) || !std::isfinite(p.histogram_range))
@@ -76,6 +78,17 @@ std::vector<double> sample_grid(const SimulationParameters& p) {
     std::sort(grid.begin(), grid.end());
     grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
     return grid;
+}
+
+std::vector<double> evenly_spaced_times(double interval, double t_max) {
+    if (!(interval > 0.0) || !std::isfinite(interval))
+        throw InputError(fmt::format("snapshot interval must be positive, got {}", interval));
+    if (t_max / interval > 1e6)
+        throw InputError(fmt::format("snapshot interval {} gives more than 10^6 snapshots", interval));
+    std::vector<double> times;
+    for (std::int64_t k = 1; static_cast<double>(k) * interval <= t_max * (1.0 + 1e-12); ++k)
+        times.push_back(std::min(static_cast<double>(k) * interval, t_max));
+    return times;
 }
 
 }  // namespace shockgas

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <limits>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "shockgas/ensemble.hpp"
@@ -122,6 +123,38 @@ TEST(Output, SchemaAndBitIdenticalReruns) {
     std::vector<hsize_t> dims;
     root.open_group("histograms").open_group("0").read_doubles("counts", &dims);
     EXPECT_EQ(dims, (std::vector<hsize_t>{3, 22}));
+}
+
+TEST(Output, PartsMergeIntoTheSingleRunResult) {
+    shockgas::SimulationParameters p;
+    p.particles = 300;
+    p.t_max = 30;
+    p.realizations = 5;
+    p.snapshot_times = {10};
+    p.histogram_times = {20};
+    p.histogram_bins = 10;
+    const auto whole = shockgas::run_ensemble(p, nullptr);
+    std::vector<shockgas::OutputFile> parts;
+    std::vector<std::string> names;
+    for (const auto& [first, count] : {std::pair{0, 2}, std::pair{2, 3}}) {
+        auto part_parameters = p;
+        part_parameters.first_realization = first;
+        part_parameters.realizations = count;
+        const auto path = temp_path(fmt::format("part{}.h5", first));
+        shockgas::write_output(path, part_parameters, shockgas::run_ensemble(part_parameters, nullptr));
+        parts.push_back(shockgas::read_output(path));
+        names.push_back(path);
+    }
+    const auto merged = shockgas::merge_outputs(parts, names);
+    EXPECT_EQ(merged.result.temperature, whole.temperature);
+    EXPECT_EQ(merged.result.clusters, whole.clusters);
+    EXPECT_EQ(merged.result.histograms[0].counts, whole.histograms[0].counts);
+    ASSERT_EQ(merged.result.snapshots.size(), whole.snapshots.size());
+    EXPECT_EQ(merged.result.snapshots[4].realization, 4);
+    EXPECT_EQ(merged.result.snapshots[4].state.velocity, whole.snapshots[4].state.velocity);
+    EXPECT_EQ(merged.parameters.realizations, 5);
+    // A gap in the realization sequence is refused.
+    EXPECT_THROW(shockgas::merge_outputs({parts[1], parts[0]}, {names[1], names[0]}), shockgas::InputError);
 }
 
 }  // namespace

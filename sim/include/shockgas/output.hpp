@@ -39,4 +39,19 @@ struct TimeSeries {
 };
 TimeSeries read_timeseries(const std::string& path);
 
+// A whole output file read back: the parameters (from the root attributes)
+// and every dataset, in the form the driver produced them.
+struct OutputFile {
+    SimulationParameters parameters;
+    EnsembleResult result;
+    std::string version;  // provenance: git describe of the program that wrote it
+};
+OutputFile read_output(const std::string& path);
+
+// Joins ensemble parts run with --first-realization k0, k0 + R0, ... into the
+// result a single run of all realizations gives (identical datasets). Throws
+// InputError naming the part that differs in parameters, engine, version, or
+// leaves a gap in the realization sequence.
+OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector<std::string>& names);
+
 }  // namespace shockgas

@@ -50,6 +50,10 @@ struct SimulationParameters {
     int histogram_bins = 160;
     double histogram_range = 4.0;     // bins cover |v - V_cm| t^(1/3) <= range
     int realizations = 1;
+    // Realization k of this run uses the seed stream of realization
+    // first_realization + k, so an ensemble can be split into parts (resumable
+    // figure runs, MPI ranks) and merged into exactly the single-run result.
+    std::int64_t first_realization = 0;
     std::uint64_t seed = 1;
     int threads = 0;                  // 0: every hardware thread
     std::string init_file;            // optional --init FILE.h5
@@ -74,5 +78,9 @@ void validate(const SimulationParameters& parameters);
 // (t_max always included), merged with the listed sample, snapshot and
 // histogram times, sorted, duplicates removed.
 std::vector<double> sample_grid(const SimulationParameters& parameters);
+
+// The times interval, 2 interval, ... up to t_max (each computed as k * interval,
+// so the list is exact and reproducible); used by --snapshot-interval.
+std::vector<double> evenly_spaced_times(double interval, double t_max);
 
 }  // namespace shockgas

@@ -1,0 +1,25 @@
+# Run at build time (cmake -P). Writes STAMP = SHA-256 over the simulator's
+# sources and the compiler and flags, rewriting the file only when that hash
+# changes. Simulations depend on this stamp instead of on the shockgas-sim
+# binary: the binary is relinked at every commit (it embeds git describe for
+# provenance), but a simulation is stale only when the code that computes it,
+# or the way it is compiled, changed. (Globbing here is deliberate: the stamp
+# must cover every file in these directories, including ones added later.)
+set(_content "${COMPILER_INFO}\n")
+foreach(dir IN LISTS DIRECTORIES)
+  file(GLOB_RECURSE _files LIST_DIRECTORIES false "${dir}/*")
+  list(SORT _files)
+  foreach(f IN LISTS _files)
+    file(SHA256 "${f}" _hash)
+    file(RELATIVE_PATH _relative "${SOURCE_DIR}" "${f}")
+    string(APPEND _content "${_hash}  ${_relative}\n")
+  endforeach()
+endforeach()
+string(SHA256 _stamp "${_content}")
+set(_old "")
+if(EXISTS "${STAMP}")
+  file(READ "${STAMP}" _old)
+endif()
+if(NOT _old STREQUAL "${_stamp}")
+  file(WRITE "${STAMP}" "${_stamp}")
+endif()

@@ -1,0 +1,144 @@
+# The figure pipeline's building blocks. A figure's runs are read from
+# paper_targets/<figure>.<fidelity>.json:
+#   {"runs": [{"name": "r0.9", "label": "r = 0.9", "parts": 1,
+#              "options": {"particles": 20000, "restitution": 0.9, ...}}, ...]}
+# "options" are shockgas-sim's long options, passed through unchanged, so the
+# parameter file is the complete record of every run. "parts" > 1 splits the
+# realizations into separately stored parts (shockgas-sim --first-realization)
+# merged by shockgas-merge: an interrupted build keeps the finished parts and
+# continues where it stopped.
+
+set(SHOCKGAS_SIM_STAMP "${CMAKE_BINARY_DIR}/shockgas-sim.stamp")
+string(TOUPPER "${CMAKE_BUILD_TYPE}" _pipeline_build_type)
+add_custom_target(shockgas_sim_stamp
+  COMMAND ${CMAKE_COMMAND}
+          -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+          "-DDIRECTORIES=${PROJECT_SOURCE_DIR}/sim/src\;${PROJECT_SOURCE_DIR}/sim/include\;${PROJECT_SOURCE_DIR}/sim/app"
+          "-DCOMPILER_INFO=${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_pipeline_build_type}}"
+          -DSTAMP=${SHOCKGAS_SIM_STAMP}
+          -P ${PROJECT_SOURCE_DIR}/cmake/SourceStamp.cmake
+  BYPRODUCTS ${SHOCKGAS_SIM_STAMP}
+  COMMENT "Hashing the simulator's sources (simulations rerun only when they change)"
+  VERBATIM)
+add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge)
+
+# shockgas_figure_runs(<figure>): defines the simulations of <figure> at the
+# configured fidelity. Sets in the caller's scope:
+#   <figure>_RUNS            run names, in file order
+#   <figure>_<name>_H5       the run's output file
+#   <figure>_<name>_LABEL    its legend label
+#   <figure>_PARAMETER_FILE  the JSON file
+function(shockgas_figure_runs figure)
+  set(parameter_file "${CMAKE_CURRENT_SOURCE_DIR}/${figure}.${SHOCKGAS_FIDELITY}.json")
+  if(NOT EXISTS "${parameter_file}")
+    message(FATAL_ERROR "no parameter file ${parameter_file}")
+  endif()
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${parameter_file}")
+  file(READ "${parameter_file}" json)
+  set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/${figure}")
+  file(MAKE_DIRECTORY "${out_dir}")
+  string(JSON run_count LENGTH "${json}" runs)
+  math(EXPR last_run "${run_count} - 1")
+  set(names)
+  foreach(i RANGE ${last_run})
+    string(JSON name GET "${json}" runs ${i} name)
+    string(JSON label ERROR_VARIABLE no_label GET "${json}" runs ${i} label)
+    if(no_label)
+      set(label "${name}")
+    endif()
+    string(JSON parts ERROR_VARIABLE no_parts GET "${json}" runs ${i} parts)
+    if(no_parts)
+      set(parts 1)
+    endif()
+    string(JSON options GET "${json}" runs ${i} options)
+    string(JSON option_count LENGTH "${options}")
+    math(EXPR last_option "${option_count} - 1")
+    set(args)
+    set(realizations 1)
+    foreach(j RANGE ${last_option})
+      string(JSON key MEMBER "${options}" ${j})
+      string(JSON value GET "${options}" ${key})
+      if(key STREQUAL "realizations")
+        set(realizations ${value})
+      else()
+        list(APPEND args "--${key}" "${value}")
+      endif()
+    endforeach()
+    # The run's own record: rewritten only when its parameters change, so
+    # editing one run in the JSON reruns only that run.
+    set(h5 "${out_dir}/${name}.h5")
+    string(REPLACE ";" " " args_text "${args} --realizations ${realizations} parts=${parts}")
+    file(CONFIGURE OUTPUT "${out_dir}/${name}.args" CONTENT "${args_text}\n")
+    if(parts EQUAL 1)
+      add_custom_command(
+        OUTPUT "${h5}"
+        COMMAND shockgas-sim ${args} --realizations ${realizations} --quiet --output "${h5}"
+        DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
+        COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}: ${args_text}"
+        VERBATIM)
+    else()
+      math(EXPR per_part "(${realizations} + ${parts} - 1) / ${parts}")
+      set(part_files)
+      set(first 0)
+      while(first LESS realizations)
+        math(EXPR count "${realizations} - ${first}")
+        if(count GREATER per_part)
+          set(count ${per_part})
+        endif()
+        set(part "${out_dir}/${name}.part${first}.h5")
+        add_custom_command(
+          OUTPUT "${part}"
+          COMMAND shockgas-sim ${args} --realizations ${count} --first-realization ${first} --quiet --output "${part}"
+          DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
+          COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}, realizations ${first}..+${count}"
+          VERBATIM)
+        list(APPEND part_files "${part}")
+        math(EXPR first "${first} + ${count}")
+      endwhile()
+      add_custom_command(
+        OUTPUT "${h5}"
+        COMMAND shockgas-merge --output "${h5}" ${part_files}
+        DEPENDS ${part_files}
+        COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] merging ${name}"
+        VERBATIM)
+    endif()
+    list(APPEND names "${name}")
+    set(${figure}_${name}_H5 "${h5}" PARENT_SCOPE)
+    set(${figure}_${name}_LABEL "${label}" PARENT_SCOPE)
+  endforeach()
+  set(${figure}_RUNS "${names}" PARENT_SCOPE)
+  set(${figure}_PARAMETER_FILE "${parameter_file}" PARENT_SCOPE)
+  set(${figure}_DIR "${out_dir}" PARENT_SCOPE)
+endfunction()
+
+# shockgas_plot(<figure> SCRIPT <gp> DATA <files...>): gnuplot writes
+# <figure>.png and <figure>.pdf into the build's figures/ directory; reruns
+# when the script, the shared style or the data change, never a simulation.
+function(shockgas_plot figure)
+  cmake_parse_arguments(ARG "" "SCRIPT" "DATA" ${ARGN})
+  set(figure_dir "${CMAKE_BINARY_DIR}/figures/${SHOCKGAS_FIDELITY}")
+  file(MAKE_DIRECTORY "${figure_dir}")
+  set(outputs "${figure_dir}/${figure}.png" "${figure_dir}/${figure}.pdf")
+  add_custom_command(
+    OUTPUT ${outputs}
+    COMMAND ${GNUPLOT_EXECUTABLE}
+            -e "datadir='${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/${figure}'; outbase='${figure_dir}/${figure}'; styledir='${PROJECT_SOURCE_DIR}/figures'; fidelity='${SHOCKGAS_FIDELITY}'"
+            "${PROJECT_SOURCE_DIR}/figures/${ARG_SCRIPT}"
+    DEPENDS "${PROJECT_SOURCE_DIR}/figures/${ARG_SCRIPT}" "${PROJECT_SOURCE_DIR}/figures/style.gp" ${ARG_DATA}
+    COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] plotting ${figure}.png and ${figure}.pdf"
+    VERBATIM)
+  add_custom_target(${figure} DEPENDS ${outputs})
+  add_dependencies(${figure} shockgas_sim_stamp shockgas-analyze shockgas-dump)
+  set_property(GLOBAL APPEND PROPERTY SHOCKGAS_FIGURES ${figure})
+endfunction()
+
+# shockgas_analysis_step(OUTPUT <files...> COMMAND <args...> DEPENDS <files...>)
+function(shockgas_analysis_step)
+  cmake_parse_arguments(ARG "" "COMMENT" "OUTPUT;ARGS;DEPENDS" ${ARGN})
+  add_custom_command(
+    OUTPUT ${ARG_OUTPUT}
+    COMMAND ${ARG_ARGS}
+    DEPENDS ${ARG_DEPENDS}
+    COMMENT "${ARG_COMMENT}"
+    VERBATIM)
+endfunction()

@@ -1,0 +1,87 @@
+// shockgas-dump: turns parts of HDF5 files into plain text for gnuplot.
+//   snapshots FILE.h5 [--realization k]   rows "time position velocity mass first_particle",
+//                                         one block (blank line) per snapshot
+//   gnuplot-vars FILE.h5 GROUP --prefix P  each numeric attribute of GROUP as "P_name = value"
+//                                         and each string attribute as P_name = "value"
+#include <cstdio>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
+
+namespace {
+
+void dump_snapshots(const std::string& path, std::int64_t realization) {
+    const auto file = shockgas::h5::File::open_read(path);
+    const auto snapshots = file.root().open_group("snapshots");
+    fmt::print("# time position velocity mass first_particle  (from {})\n", path);
+    const std::size_t count = snapshots.children().size();
+    for (std::size_t s = 0; s < count; ++s) {
+        const auto group = snapshots.open_group(fmt::format("{}", s));
+        if (group.attribute_integer("realization") != realization) continue;
+        const double time = group.attribute_double("time");
+        const auto position = group.read_doubles("position");
+        const auto velocity = group.read_doubles("velocity");
+        const auto mass = group.read_doubles("mass");
+        const auto first = group.read_integers("first_particle");
+        for (std::size_t i = 0; i < position.size(); ++i)
+            fmt::print("{:.9g} {:.12g} {:.9g} {:.9g} {}\n", time, position[i], velocity[i], mass[i], first[i]);
+        fmt::print("\n\n");
+    }
+}
+
+void dump_gnuplot_vars(const std::string& path, const std::string& group_path, const std::string& prefix) {
+    const auto file = shockgas::h5::File::open_read(path);
+    shockgas::h5::Group group = file.root();
+    std::size_t start = 0;
+    while (start < group_path.size()) {
+        const std::size_t end = std::min(group_path.find('/', start), group_path.size());
+        if (end > start) group = group.open_group(group_path.substr(start, end - start));
+        start = end + 1;
+    }
+    for (const auto& name : group.attribute_names()) {
+        try {
+            fmt::print("{}_{} = {:.10g}\n", prefix, name, group.attribute_double(name));
+        } catch (const shockgas::h5::Error&) {
+            try {
+                std::string text = group.attribute_string(name);
+                for (auto& c : text)
+                    if (c == '"' || c == '\n') c = '\'';
+                fmt::print("{}_{} = \"{}\"\n", prefix, name, text);
+            } catch (const shockgas::h5::Error&) {
+                // arrays and other kinds are not gnuplot scalars: skipped
+            }
+        }
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"shockgas-dump: HDF5 to plain text for gnuplot"};
+    app.require_subcommand(1);
+    std::string input, group_path, prefix = "fit";
+    std::int64_t realization = 0;
+    auto* snapshots = app.add_subcommand("snapshots", "every snapshot of one realization as text blocks");
+    snapshots->add_option("input", input, "shockgas-sim output")->required()->check(CLI::ExistingFile);
+    snapshots->add_option("--realization", realization, "which realization")->capture_default_str();
+    auto* vars = app.add_subcommand("gnuplot-vars", "attributes of a group as gnuplot variables");
+    vars->add_option("input", input, "HDF5 file")->required()->check(CLI::ExistingFile);
+    vars->add_option("group", group_path, "group path, e.g. /decay")->required();
+    vars->add_option("--prefix", prefix, "variable name prefix")->capture_default_str();
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        return app.exit(error);
+    }
+    try {
+        if (*snapshots) dump_snapshots(input, realization);
+        if (*vars) dump_gnuplot_vars(input, group_path, prefix);
+        return 0;
+    } catch (const std::exception& error) {
+        fmt::print(stderr, "shockgas-dump: error: {}\n", error.what());
+        return 2;
+    }
+}

@@ -1,0 +1,42 @@
+// shockgas-merge: joins ensemble parts (shockgas-sim --first-realization k)
+// into one file with the datasets a single run of all realizations writes.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
+#include "shockgas/provenance.hpp"
+
+int main(int argc, char** argv) {
+    std::string output;
+    std::vector<std::string> inputs;
+    CLI::App app{"shockgas-merge: join ensemble parts made with --first-realization into one output file"};
+    app.add_option("-o,--output", output, "merged HDF5 file (written atomically)")->required();
+    app.add_option("inputs", inputs, "part files, in realization order")->required()->check(CLI::ExistingFile);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        return app.exit(error);
+    }
+    try {
+        shockgas::h5::check_writable(output);
+        std::vector<shockgas::OutputFile> parts;
+        for (const auto& input : inputs) {
+            parts.push_back(shockgas::read_output(input));
+            // The merged file records this program's version as its
+            // provenance, so it must be the version that made the parts.
+            if (parts.back().version != shockgas::build_info().version)
+                throw shockgas::InputError(fmt::format("'{}' was made by version {}, this is {}: merge with the same "
+                                                       "build that ran the parts",
+                                                       input, parts.back().version, shockgas::build_info().version));
+        }
+        const auto merged = shockgas::merge_outputs(parts, inputs);
+        shockgas::write_output(output, merged.parameters, merged.result);
+        fmt::print(stderr, "shockgas-merge: {} realizations from {} parts -> {} ({})\n", merged.result.realizations,
+                   parts.size(), output, merged.result.status);
+        return 0;
+    } catch (const std::exception& error) {
+        fmt::print(stderr, "shockgas-merge: error: {}\n", error.what());
+        return 2;
+    }
+}
