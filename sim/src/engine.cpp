@@ -1,11 +1,23 @@
 #include "shockgas/engine.hpp"
 
+#include <fmt/format.h>
+
 #include "shockgas/event_engine.hpp"
+#include "shockgas/exact_engine.hpp"
 
 namespace shockgas {
 
+// auto: the exact engine whenever it applies (r = 0: every collision merges,
+// whatever the threshold), since it gives every observable the event engine
+// gives there; the event engine otherwise. Called on the main thread before
+// any realization starts, so an impossible choice is one InputError.
 std::string resolve_engine_name(const SimulationParameters& parameters) {
-    if (parameters.engine == "auto") return "event";
+    const bool sticky_gas = parameters.collision.restitution == 0.0;
+    if (parameters.engine == "auto") return sticky_gas ? "exact" : "event";
+    if (parameters.engine == "exact" && !sticky_gas)
+        throw InputError(fmt::format("--engine exact solves only the sticky gas r = 0, got r = {}; use --engine "
+                                     "event or auto",
+                                     parameters.collision.restitution));
     return parameters.engine;
 }
 
@@ -13,6 +25,7 @@ std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, cons
                                     LiveStatus* live) {
     const std::string name = resolve_engine_name(parameters);
     if (name == "event") return std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
+    if (name == "exact") return std::make_unique<ExactEngine>(initial, live);
     throw InputError("engine '" + name + "' is not available in this build");
 }
 

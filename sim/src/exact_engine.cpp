@@ -1,0 +1,318 @@
+// The exact sticky-gas engine.
+//
+// THE LINE. For r = 0 every collision merges, so the particles found in one
+// cluster at time t have only ever interacted with each other: the cluster
+// moves at V = sum m v / M (the merge rule of collision.hpp applied to the
+// whole cluster at once) and sits at Y(t) = (sum m x + t sum m v) / M, the
+// mass-weighted mean of y_j = x_j + t v_j. Which particles share a cluster is
+// given by the generalized variational principle (E, Rykov & Sinai, Commun.
+// Math. Phys. 177, 349 (1996); Brenier & Grenier, SIAM J. Numer. Anal. 35,
+// 2317 (1998)): the cluster positions are the
+// slopes of the convex minorant of F(mu) = integral_0^mu y dmu' (mu the
+// cumulative mass), i.e. the blocks of the mass-weighted isotonic regression
+// of (y_j), which pool-adjacent-violators (PAV) computes in O(N). Two facts
+// make the construction exact, not just a recipe:
+//  (a) Pooling lemma. A level set S of the isotonic regression has every
+//      suffix mean <= its value and every prefix mean >= it (else moving the
+//      suffix or prefix would lower the squared error). So if adjacent
+//      blocks A | B, each inside a level set, violate (mean_A >= mean_B),
+//      a level-set boundary between them would give mean_A <= value(S_A) <
+//      value(S_B) <= mean_B: impossible. Pooling violators in ANY order
+//      therefore never pools across a true boundary, and a partition with no
+//      violator left is the solution (Best & Chakravarti, Math. Prog. 47,
+//      425 (1990)).
+//  (b) Semigroup. The sticky dynamics is autonomous: the clusters at an
+//      earlier time t0, taken as particles of mass M and velocity V at
+//      positions Y(t0), evolve into the state at t > t0. Their y at time t is
+//      Y(t0) + (t - t0) V = (sum m x + t sum m v) / M, the block mean of the
+//      particle problem. So advance_to(t) starts PAV from the current
+//      clusters (clusters never split), costing O(K), K <= N.
+//
+// THE RING. Unroll the ring into the periodic line: particle j + kN sits at
+// x_j + kL with velocity v_j, so y_{j+N} = y_j + L (in any frame). Periodic
+// data give the periodic solution, whose clusters are the ring's clusters;
+// a cluster holds at most N consecutive particles (particle j and its copy
+// j + N are always L apart). One period suffices: run PAV along the current
+// clusters from any starting cluster, then check the pair across the seam
+// (last block, first block + L) and, while the last block violates either
+// neighbour, pool and go on around the ring. Every pooled pair was a violator
+// of the periodic problem and none is left, so by (a) the partition is the
+// periodic solution, including clusters that straddle the seam and the lone
+// cluster of all N particles.
+// What the partition does not fix is which particle is FIRST in the lone
+// final cluster: in the event engine it is the one after the gap that never
+// closed (the last merge keeps its left member). In the unrolled line that
+// gap is the contact point of the convex minorant between periodic copies,
+// and the centre-of-mass frame finds it. Let Ybar(t) = Xcm + t Vcm and
+// l(mu) = Ybar + L (mu - M/2) / M the uniform lattice co-moving with the
+// centre of mass (M the total mass). y - l is periodic with zero mass-
+// weighted mean over a period, so H(mu) = F(mu) - integral_0^mu l is
+// periodic, and F = R + H with R a parabola of curvature L / M: F >= R +
+// min H, a convex function touching F at mu* = argmin H. So mu* is a contact
+// point of the minorant, a cluster boundary at t (the only one per period in
+// the final state). At block boundaries H_b = sum_{c<b} M_c (Y_c - l_c), l_c
+// the lattice at the block's mass midpoint; the current boundaries include
+// every boundary at t by (b). The period is cut at mu* before PAV, so the
+// seam check pools nothing except at an exact tie at mu*. A drifting centre
+// of mass changes nothing: H and every comparison below depend on velocities
+// only through differences (Galilean invariance).
+//
+// CONVENTIONS shared with the event engine: a pair that touches exactly at t
+// (equal positions, approaching) is already merged; touching clusters with
+// equal velocities are not merged (the event engine never schedules them).
+// A merged cluster keeps the left member's first particle.
+//
+// PRECISION. Naive running sums of m y reach ~ N (L + t) ~ 10^15 at N = 10^7,
+// t = 10^8, so a block mean from their difference carries ~ 0.1 of absolute
+// error, while clusters whose contact is decided at t are often much closer.
+// Here (1) no running sum is formed: each block carries coordinates local to
+// its first particle (anchor in [0, L), first moment about it, momentum); the
+// separation of two neighbours is (anchor_B - anchor_A + wrap L) + (offset_B
+// - offset_A), each part of size <= L + t |V|; (2) those parts are kept in
+// double-double arithmetic (products exact by fma, sums by two-sum, ~106
+// bits), so a pooling decision is wrong only if the clusters are within
+// ~10^-30 (L + t) ~ 10^-22 of contact. The only double roundings are the
+// cluster mass (exact for integer masses < 2^53, as in the paper), and the
+// reported position and velocity (one rounding each). Tested at N = 10^7,
+// t ~ 10^8 on an initial condition that focuses groups of particles onto
+// points with contact decided at 2^-30 (tests/unit/test_exact_engine.cpp).
+#include "shockgas/exact_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shockgas {
+
+namespace {
+
+using Extended = ExactEngine::Extended;
+
+// Error-free transformations (Knuth TAOCP vol. 2, 4.2.2; Dekker 1971):
+// a + b = s + e and a * b = p + e exactly.
+Extended two_sum(double a, double b) {
+    const double s = a + b;
+    const double b_virtual = s - a;
+    return {s, (a - (s - b_virtual)) + (b - b_virtual)};
+}
+Extended fast_two_sum(double a, double b) {  // requires |a| >= |b| or a == 0
+    const double s = a + b;
+    return {s, b - (s - a)};
+}
+Extended two_product(double a, double b) {
+    const double p = a * b;
+    return {p, std::fma(a, b, -p)};
+}
+
+// Double-double arithmetic (Hida, Li & Bailey, QD library algorithms; the
+// "accurate" sum): relative error ~ 2^-104 per operation.
+Extended add(Extended a, Extended b) {
+    Extended s = two_sum(a.hi, b.hi);
+    const Extended t = two_sum(a.lo, b.lo);
+    s.lo += t.hi;
+    s = fast_two_sum(s.hi, s.lo);
+    s.lo += t.lo;
+    return fast_two_sum(s.hi, s.lo);
+}
+Extended add(Extended a, double b) {
+    Extended s = two_sum(a.hi, b);
+    s.lo += a.lo;
+    return fast_two_sum(s.hi, s.lo);
+}
+Extended negate(Extended a) { return {-a.hi, -a.lo}; }
+Extended subtract(Extended a, Extended b) { return add(a, negate(b)); }
+Extended multiply(Extended a, double b) {
+    Extended p = two_product(a.hi, b);
+    p.lo += a.lo * b;
+    return fast_two_sum(p.hi, p.lo);
+}
+Extended multiply(Extended a, Extended b) {
+    Extended p = two_product(a.hi, b.hi);
+    p.lo += a.hi * b.lo + a.lo * b.hi;
+    return fast_two_sum(p.hi, p.lo);
+}
+Extended divide(Extended a, double b) {
+    const double q1 = a.hi / b;
+    const Extended back = two_product(q1, b);
+    const double remainder = ((a.hi - back.hi) - back.lo) + a.lo;
+    return fast_two_sum(q1, remainder / b);
+}
+Extended extended(double a) { return {a, 0.0}; }
+// Sign of a normalized double-double is the sign of hi (hi = 0 implies lo = 0).
+bool is_negative(Extended a) { return a.hi < 0.0; }
+bool is_zero(Extended a) { return a.hi == 0.0; }
+bool less(Extended a, Extended b) { return a.hi < b.hi || (a.hi == b.hi && a.lo < b.lo); }
+
+}  // namespace
+
+ExactEngine::ExactEngine(const InitialCondition& initial, LiveStatus* live)
+    : live_(live), ring_length_(initial.ring_length), particles_(initial.size()) {
+    validate(initial);
+    const auto n = static_cast<std::size_t>(particles_);
+    block_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        block_[i] = {initial.mass[i], two_product(initial.mass[i], initial.velocity[i]), extended(0.0),
+                     initial.position[i], static_cast<std::int64_t>(i)};
+}
+
+// Y - anchor = (first moment + t momentum) / M: the cluster's centre of mass
+// moves ballistically from its initial value (momentum conservation).
+Extended ExactEngine::offset_at(const Block& block, double t) const {
+    return divide(add(block.first_moment, multiply(block.momentum, t)), block.mass);
+}
+
+// Y_right - Y_left at time t for neighbours in ring order: right lies one ring
+// length further on when the walk from left to right passes particle 0, i.e.
+// when its first particle does not come after left's (always for a lone
+// cluster facing its own copy).
+Extended ExactEngine::separation(const Block& left, const Block& right, double t) const {
+    Extended anchors = two_sum(right.anchor, -left.anchor);
+    if (right.first_particle <= left.first_particle) anchors = add(anchors, ring_length_);
+    return add(anchors, subtract(offset_at(right, t), offset_at(left, t)));
+}
+
+// Adjacent violators at t: the left cluster's mean y is beyond the right
+// one's, or they touch at t while approaching (the event engine has merged a
+// pair whose contact time is <= t).
+bool ExactEngine::must_pool(const Block& left, const Block& right, double t) const {
+    const Extended gap = separation(left, right, t);
+    if (is_negative(gap)) return true;
+    if (!is_zero(gap)) return false;
+    // V_left > V_right  <=>  P_left M_right > P_right M_left (masses > 0).
+    return less(multiply(right.momentum, left.mass), multiply(left.momentum, right.mass));
+}
+
+// Perfectly inelastic merger of left and right (collision.hpp merge(): mass
+// and momentum add); the first moment is carried to left's anchor.
+ExactEngine::Block ExactEngine::pooled(const Block& left, const Block& right) const {
+    Extended shift = two_sum(right.anchor, -left.anchor);
+    if (right.first_particle <= left.first_particle) shift = add(shift, ring_length_);
+    Block merged = left;
+    merged.mass = left.mass + right.mass;
+    merged.momentum = add(left.momentum, right.momentum);
+    merged.first_moment = add(add(left.first_moment, right.first_moment), multiply(shift, right.mass));
+    return merged;
+}
+
+// Rotates block_ so that it starts at mu* = argmin H, a certain cluster
+// boundary at t (see the top of this file):
+//   H_b = sum_{c<b} M_c (Y_c - l_c),  l_c = Ybar + L (mu_c + M_c/2 - M/2) / M,
+// summed as H_b = A_b - mu_b Ybar - L mu_b (mu_b - M) / (2 M), with
+// A_b = sum_{c<b} M_c Y_c and M_c Y_c = M_c (anchor_c + wrap_c L) + first
+// moment_c + t momentum_c, all in the period starting at block_[0].
+void ExactEngine::cut_at_contact_point(double t) {
+    const std::size_t count = block_.size();
+    const std::int64_t front = block_[0].first_particle;
+    const auto mass_times_position = [&](const Block& b) {
+        // Blocks past particle 0 (first particle before the front's) lie
+        // one ring length on: M (anchor + L), kept exact as two products.
+        Extended anchor_part = two_product(b.mass, b.anchor);
+        if (b.first_particle < front) anchor_part = add(anchor_part, two_product(b.mass, ring_length_));
+        return add(add(anchor_part, b.first_moment), multiply(b.momentum, t));
+    };
+    Extended total_mass{}, total_mass_position{};
+    for (const Block& b : block_) {
+        total_mass = add(total_mass, b.mass);
+        total_mass_position = add(total_mass_position, mass_times_position(b));
+    }
+    const double mass = total_mass.hi;
+    const Extended centre = divide(total_mass_position, mass);  // Ybar(t) = Xcm + t Vcm
+    Extended cumulative_mass{}, cumulative_mass_position{};
+    Extended lowest{};  // H_0 = 0
+    std::size_t cut = 0;
+    for (std::size_t b = 1; b < count; ++b) {
+        cumulative_mass = add(cumulative_mass, block_[b - 1].mass);
+        cumulative_mass_position = add(cumulative_mass_position, mass_times_position(block_[b - 1]));
+        const Extended lattice_part =
+            divide(multiply(multiply(cumulative_mass, subtract(cumulative_mass, total_mass)), ring_length_),
+                   2.0 * mass);
+        const Extended h =
+            subtract(subtract(cumulative_mass_position, multiply(cumulative_mass, centre)), lattice_part);
+        if (less(h, lowest)) {
+            lowest = h;
+            cut = b;
+        }
+    }
+    if (cut != 0) std::rotate(block_.begin(), block_.begin() + static_cast<std::ptrdiff_t>(cut), block_.end());
+}
+
+// Stack PAV (Ayer et al., Ann. Math. Stat. 26, 641 (1955)) along the period,
+// in place: block_[0, top) is the stack of pooled blocks, each non-violating
+// with the one below it.
+void ExactEngine::pool_along_line(double t) {
+    std::size_t top = 0;
+    for (std::size_t next = 0; next < block_.size(); ++next) {
+        Block incoming = block_[next];
+        while (top > 0 && must_pool(block_[top - 1], incoming, t)) {
+            incoming = pooled(block_[top - 1], incoming);
+            --top;
+        }
+        block_[top++] = incoming;
+    }
+    block_.resize(top);
+}
+
+// The seam pair (last block, first block one ring length on) is not a
+// violator when the cut is a true contact point; for exact ties it can be.
+// Pool it, and continue PAV around the ring while the grown last block
+// violates either of its neighbours.
+void ExactEngine::pool_across_seam(double t) {
+    std::size_t head = 0;  // block_[head, end) are live
+    while (block_.size() - head >= 2) {
+        Block& last = block_.back();
+        if (must_pool(block_[block_.size() - 2], last, t)) {
+            block_[block_.size() - 2] = pooled(block_[block_.size() - 2], last);
+            block_.pop_back();
+        } else if (must_pool(last, block_[head], t)) {
+            last = pooled(last, block_[head]);
+            ++head;
+        } else {
+            break;
+        }
+    }
+    if (head > 0) block_.erase(block_.begin(), block_.begin() + static_cast<std::ptrdiff_t>(head));
+}
+
+bool ExactEngine::advance_to(double t) {
+    if (live_ != nullptr && live_->stop != nullptr && live_->stop->load(std::memory_order_relaxed)) return false;
+    t = std::max(t, now_);
+    if (block_.size() > 1) {
+        cut_at_contact_point(t);
+        pool_along_line(t);
+        pool_across_seam(t);
+    }
+    now_ = t;
+    if (live_ != nullptr) {
+        live_->time.store(now_, std::memory_order_relaxed);
+        live_->collisions.store(collisions(), std::memory_order_relaxed);
+    }
+    return true;
+}
+
+void ExactEngine::clusters(ClusterState& out) const {
+    out.clear();
+    out.time = now_;
+    const std::size_t count = block_.size();
+    std::size_t start = 0;
+    for (std::size_t k = 1; k < count; ++k)
+        if (block_[k].first_particle < block_[start].first_particle) start = k;
+    out.position.reserve(count);
+    out.velocity.reserve(count);
+    out.mass.reserve(count);
+    out.first_particle.reserve(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        const Block& b = block_[(start + k) % count];
+        // Y = anchor + offset, reduced mod L in double-double before the one
+        // rounding to double.
+        Extended position = add(offset_at(b, now_), b.anchor);
+        const double periods = std::floor(position.hi / ring_length_);
+        position = subtract(position, two_product(periods, ring_length_));
+        if (is_negative(position)) position = add(position, ring_length_);
+        if (!less(position, extended(ring_length_))) position = add(position, -ring_length_);
+        out.position.push_back(wrap_position(position.hi, ring_length_));
+        out.velocity.push_back(divide(b.momentum, b.mass).hi);
+        out.mass.push_back(b.mass);
+        out.first_particle.push_back(b.first_particle);
+    }
+}
+
+}  // namespace shockgas
