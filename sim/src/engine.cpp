@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "shockgas/event_engine.hpp"
+#include "shockgas/fast_engine.hpp"
 #include "shockgas/exact_engine.hpp"
 
 namespace shockgas {
@@ -24,7 +25,13 @@ std::string resolve_engine_name(const SimulationParameters& parameters) {
 std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, const InitialCondition& initial,
                                     LiveStatus* live) {
     const std::string name = resolve_engine_name(parameters);
-    if (name == "event") return std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
+    if (name == "event") {
+        // The windowed engine gives bit-identical results, faster, wherever it
+        // can be exact (FastEventEngine::supports); the global loop otherwise.
+        if (FastEventEngine::supports(initial, parameters.collision, parameters.collapse))
+            return std::make_unique<FastEventEngine>(initial, parameters.collision, parameters.collapse, live);
+        return std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
+    }
     if (name == "exact") return std::make_unique<ExactEngine>(initial, live);
     throw InputError("engine '" + name + "' is not available in this build");
 }

@@ -1,0 +1,171 @@
+// The fast event engine: exact time windows (see /work/shared/notes and
+// ARCHITECTURE.md, "The event engine").
+//
+// It produces BIT-IDENTICAL results to EventEngine, the global-order reference
+// loop, for the runs it supports (FastEventEngine::supports), and is chosen by
+// make_engine only for those. Why it is faster: the reference takes events in
+// global time order, so successive events land at random places on the ring
+// and each touches cold memory. Here time advances in windows [T, T + W]. In
+// 1D a pair can collide within the window only if its gap at T is at most
+// W (|v|max left + |v|max right); the ring is cut at pairs whose gap exceeds
+// 2 W |v|max (with a safety factor), and the blocks between cuts cannot
+// interact within the window. Each block runs its own events to T + W with its
+// own small heap while its particles sit in cache.
+//
+// Why the result is identical to the global loop:
+//  * Inside a block the events are the global loop's events restricted to the
+//    block, taken in the same (time, slot) order with the same arithmetic (the
+//    same collision.hpp functions, the same gap and key formulas).
+//  * A cut pair's gap and key depend on both blocks. The blocks never touch
+//    them; each logs its boundary cluster's velocity changes (time, event slot,
+//    new velocity, new end slot after a merge), and after both blocks ran the
+//    logs are merged in global (time, slot) order and the gap and key updates
+//    are replayed exactly as the global loop made them.
+//  * Every key computed for a cut pair during the replay, and its key at the
+//    cut, is checked to lie beyond T + W: then the global loop never took that
+//    pair's event in the window. A violation (impossible with the safety
+//    factor, short of a bug) throws instead of returning a wrong result.
+//  * The bound needs |v|max never to grow. It holds when every collision forms
+//    convex combinations of velocities: equal-mass collisions with r in [0, 1]
+//    and merges. supports() refuses the rest (sticky sub-threshold with r > 0,
+//    where a light cluster can rebound faster than either velocity, and
+//    unequal masses with r > 0).
+//  * Collapse detection is global: delta = 0 (r > 0) stops at the first slow
+//    inelastic collision in global time order, which the window scheme cannot
+//    locate, so supports() refuses it. The stall detector (max(10^6, 10 N)
+//    consecutive events within 10^-12 t) is bounded per window instead: each
+//    block counts its own densest run, and if the bound cannot exclude a stall
+//    the engine throws rather than guess (never seen with delta > 0).
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "shockgas/engine.hpp"
+#include "shockgas/fast_queue.hpp"
+
+namespace shockgas {
+
+class FastEventEngine final : public Engine {
+public:
+    FastEventEngine(const InitialCondition& initial, const CollisionModel& model, const CollapseCriterion& collapse,
+                    LiveStatus* live = nullptr);
+
+    // True when the window scheme reproduces EventEngine exactly for this run:
+    // no collapse detection can fire (r = 0, or delta >= collapse speed) and
+    // |v|max cannot grow (r = 0, or elastic sub-threshold with equal masses).
+    static bool supports(const InitialCondition& initial, const CollisionModel& model,
+                         const CollapseCriterion& collapse);
+
+    bool advance_to(double t) override;
+    double time() const override { return now_; }
+    void clusters(ClusterState& out) const override;
+    std::uint64_t collisions() const override { return collisions_; }
+    std::int64_t cluster_count() const override { return alive_; }
+    const std::optional<CollapseReport>& collapse() const override { return collapse_; }
+    // Same name as the reference: the two engines give the same output, so the
+    // file's `engine` attribute need not say which one ran.
+    std::string name() const override { return "event"; }
+
+    // Diagnostics for the benchmark.
+    std::uint64_t windows() const { return windows_; }
+    std::uint64_t blocks() const { return blocks_; }
+
+    // The cluster record plus the heap position; the heap entries are
+    // transient (pairs due in one window of one block).
+    static constexpr std::size_t bytes_per_particle() { return sizeof(Node) + sizeof(std::int32_t); }
+
+private:
+    // One cache-friendly record per slot: everything an event reads or writes
+    // about a cluster, including its pair's key (the reference keeps the key
+    // in the queue's separate time array).
+    struct Node {
+        double velocity;
+        double gap;    // to the next live cluster, valid at max(clock, next's clock)
+        double clock;  // time of the last velocity change
+        double mass;
+        double key;    // scheduled collision time of (this, next); never if none
+        std::int32_t next;
+        std::int32_t prev;
+    };
+    // A cut pair's state at the start of a window.
+    struct Cut {
+        std::int32_t left;
+        std::int32_t right;
+        double gap;
+        double left_velocity;
+        double left_clock;
+        double right_velocity;
+        double right_clock;
+    };
+    // One velocity change of a boundary cluster: the event (time, slot) that
+    // made it, the cluster now at the boundary and its new velocity.
+    struct BoundaryChange {
+        double time;
+        std::int32_t event_slot;
+        std::int32_t end_slot;
+        double velocity;
+    };
+    // Windows whose events might join one stall run (see check_stall_bound).
+    struct WindowRuns {
+        double end;
+        double stall_span;
+        std::uint64_t run_events;  // sum over blocks of (densest run + 1)
+    };
+
+    double gap_at(std::int32_t slot, double t) const;
+    double key_for(std::int32_t slot) const;
+    void reschedule(std::int32_t slot);
+    bool cuttable(std::int32_t slot) const;
+    void run_window(double window_end);
+    void run_block(std::int32_t first, std::int32_t last);
+    void collide_pair(std::int32_t i, double t);
+    void replay_cut(const Cut& cut, const std::vector<BoundaryChange>& left_side,
+                    const std::vector<BoundaryChange>& right_side);
+    Cut snapshot_cut(std::int32_t left) const;
+    void check_stall_bound(double window_end, std::uint64_t run_events);
+    void move_anchor_clock(std::int32_t slot, double t);
+
+    std::vector<Node> node_;
+    QuaternaryHeap heap_;
+    CollisionModel model_;
+    CollapseCriterion criterion_;
+    LiveStatus* live_;
+    double ring_length_;
+    double now_ = 0.0;
+    std::int64_t particles_;
+    std::int64_t alive_;
+    std::uint64_t collisions_ = 0;
+    std::int32_t anchor_ = 0;
+    double anchor_position_ = 0.0;
+    std::optional<CollapseReport> collapse_;  // stays empty: collapsing runs are not supported
+    std::uint64_t stall_window_;
+
+    // Window state.
+    double window_length_;
+    double window_start_ = 0.0;
+    double window_end_ = 0.0;
+    double cut_reach_ = 0.0;  // 2 |v|max W safety: the gap a cut pair must exceed
+    std::uint64_t blocks_last_window_ = 0;
+    double speed_bound_;  // |v|max at the start of the previous window: a bound for all later times
+    std::int32_t block_first_ = -1;  // the current block's boundary clusters (-1: no cuts)
+    std::int32_t block_last_ = -1;
+    std::vector<std::int32_t> pending_;  // pairs due in the window, collected by the scan
+    std::vector<BoundaryChange> left_changes_;   // current block: changes of block_first_
+    std::vector<BoundaryChange> right_changes_;  // current block: changes at its right end
+    std::vector<BoundaryChange> previous_right_changes_;
+    std::vector<BoundaryChange> first_left_changes_;
+    std::uint64_t window_events_ = 0;
+    // Per-block densest run of events within the stall span (see check_stall_bound).
+    double stall_span_ = 0.0;
+    double run_reference_ = 0.0;
+    std::uint64_t run_length_ = 0;
+    std::uint64_t densest_run_ = 0;
+    std::deque<WindowRuns> recent_windows_;
+    std::uint64_t windows_ = 0;
+    std::uint64_t blocks_ = 0;
+};
+
+}  // namespace shockgas

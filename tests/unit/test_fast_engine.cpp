@@ -1,0 +1,213 @@
+// The fast (windowed) engine against the reference global-order loop: the
+// 4-ary queue pops in exactly the reference order, and every engine
+// make_engine picks for "event" gives BIT-IDENTICAL states, collision counts
+// and temperatures to EventEngine, for several seeds and every collision mode
+// (fast path and fallbacks alike).
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "shockgas/engine.hpp"
+#include "shockgas/event_engine.hpp"
+#include "shockgas/event_queue.hpp"
+#include "shockgas/fast_engine.hpp"
+#include "shockgas/fast_queue.hpp"
+#include "shockgas/observables.hpp"
+
+namespace {
+
+using shockgas::ClusterState;
+using shockgas::CollisionModel;
+using shockgas::EventEngine;
+using shockgas::FastEventEngine;
+using shockgas::InitialCondition;
+using shockgas::QuaternaryHeap;
+using shockgas::SimulationParameters;
+using shockgas::Subthreshold;
+
+TEST(QuaternaryHeap, MatchesEventQueueOrderOnRandomWorkloads) {
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+        std::mt19937_64 rng(seed);
+        const std::int32_t slots = 1 + static_cast<std::int32_t>(rng() % 700);
+        QuaternaryHeap heap(slots);
+        shockgas::EventQueue queue(slots);
+        std::set<std::pair<double, std::int32_t>> reference;  // (time, slot): the tie-break rule
+        std::vector<double> scheduled(static_cast<std::size_t>(slots), QuaternaryHeap::never);
+        // Bulk load half the slots, as a block does at the start of a window.
+        std::uniform_int_distribution<int> coarse(0, 64);  // multiples of 1/8: many exact ties
+        for (std::int32_t slot = 0; slot < slots; slot += 2) {
+            const double t = coarse(rng) / 8.0;
+            heap.append_unordered(slot, t);
+            queue.schedule(slot, t);
+            reference.insert({t, slot});
+            scheduled[static_cast<std::size_t>(slot)] = t;
+        }
+        heap.heapify();
+        for (int op = 0; op < 20000; ++op) {
+            const auto slot = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(slots));
+            const auto s = static_cast<std::size_t>(slot);
+            const auto action = rng() % 4;
+            if (action <= 1) {
+                const double t = coarse(rng) / 8.0;
+                if (scheduled[s] != QuaternaryHeap::never) reference.erase({scheduled[s], slot});
+                reference.insert({t, slot});
+                scheduled[s] = t;
+                heap.schedule(slot, t);
+                queue.schedule(slot, t);
+            } else if (action == 2) {
+                if (scheduled[s] != QuaternaryHeap::never) reference.erase({scheduled[s], slot});
+                scheduled[s] = QuaternaryHeap::never;
+                heap.remove(slot);
+                queue.remove(slot);
+            } else if (!reference.empty()) {
+                const auto expected = *reference.begin();
+                ASSERT_EQ(heap.top_slot(), expected.second);
+                ASSERT_EQ(heap.top_time(), expected.first);
+                ASSERT_EQ(queue.top_slot(), expected.second);
+                reference.erase(reference.begin());
+                scheduled[static_cast<std::size_t>(expected.second)] = QuaternaryHeap::never;
+                heap.remove(expected.second);
+                queue.remove(expected.second);
+            }
+            ASSERT_EQ(heap.size(), reference.size());
+        }
+    }
+}
+
+TEST(QuaternaryHeap, EmptyHeapReportsNever) {
+    QuaternaryHeap heap(3);
+    EXPECT_TRUE(heap.empty());
+    EXPECT_EQ(heap.top_time(), QuaternaryHeap::never);
+    heap.schedule(1, 2.0);
+    heap.schedule(1, QuaternaryHeap::never);
+    EXPECT_TRUE(heap.empty());
+    EXPECT_FALSE(heap.contains(1));
+}
+
+// Exact equality of two states, element by element (doubles compared with ==,
+// so -0.0 vs 0.0 would pass, but any last-bit difference fails).
+void expect_identical(const ClusterState& fast, const ClusterState& reference, const std::string& where) {
+    ASSERT_EQ(fast.time, reference.time) << where;
+    ASSERT_EQ(fast.size(), reference.size()) << where;
+    for (std::size_t k = 0; k < fast.size(); ++k) {
+        ASSERT_EQ(fast.first_particle[k], reference.first_particle[k]) << where << " cluster " << k;
+        ASSERT_EQ(fast.position[k], reference.position[k]) << where << " cluster " << k;
+        ASSERT_EQ(fast.velocity[k], reference.velocity[k]) << where << " cluster " << k;
+        ASSERT_EQ(fast.mass[k], reference.mass[k]) << where << " cluster " << k;
+    }
+    const auto a = shockgas::velocity_moments(fast.velocity, fast.mass);
+    const auto b = shockgas::velocity_moments(reference.velocity, reference.mass);
+    ASSERT_EQ(a.temperature, b.temperature) << where;
+}
+
+struct Mode {
+    const char* name;
+    CollisionModel model;
+    bool fast_path;  // whether make_engine must pick the windowed engine
+};
+
+// Runs make_engine("event") and the reference side by side and compares them
+// at every sample time.
+void compare(const Mode& mode, const InitialCondition& initial, const std::vector<double>& times) {
+    SimulationParameters parameters;
+    parameters.particles = initial.size();
+    parameters.collision = mode.model;
+    parameters.engine = "event";
+    auto picked = shockgas::make_engine(parameters, initial, nullptr);
+    EXPECT_EQ(dynamic_cast<FastEventEngine*>(picked.get()) != nullptr, mode.fast_path) << mode.name;
+    EventEngine reference(initial, mode.model, parameters.collapse);
+    ClusterState fast_state;
+    ClusterState reference_state;
+    for (const double t : times) {
+        const bool fast_ok = picked->advance_to(t);
+        const bool reference_ok = reference.advance_to(t);
+        const std::string where = std::string(mode.name) + " t=" + std::to_string(t);
+        ASSERT_EQ(fast_ok, reference_ok) << where;
+        ASSERT_EQ(picked->collisions(), reference.collisions()) << where;
+        ASSERT_EQ(picked->cluster_count(), reference.cluster_count()) << where;
+        ASSERT_EQ(picked->collapse().has_value(), reference.collapse().has_value()) << where;
+        picked->clusters(fast_state);
+        reference.clusters(reference_state);
+        expect_identical(fast_state, reference_state, where);
+        if (!reference_ok) break;
+    }
+    if (reference.collapse()) {
+        EXPECT_EQ(picked->collapse()->time, reference.collapse()->time);
+        EXPECT_EQ(picked->collapse()->left_slot, reference.collapse()->left_slot);
+    }
+}
+
+const std::vector<double> sample_times = {0.0, 0.5, 1.0, 3.0, 10.0, 31.6, 100.0, 300.0};
+
+TEST(FastEngine, BitIdenticalToReferenceInThePapersGas) {
+    // r = 0.9, delta = 1e-2, elastic sub-threshold: the benchmark workload.
+    const Mode mode{"r0.9-elastic", {0.9, 1e-2, Subthreshold::elastic}, true};
+    for (std::uint64_t seed = 1; seed <= 3; ++seed)
+        compare(mode, shockgas::generate_initial_condition(20000, 20000.0, seed, 0), sample_times);
+}
+
+TEST(FastEngine, BitIdenticalToReferenceAtStrongInelasticity) {
+    // r = 0.5 clusters strongly: long quiet stretches, dense clusters, cuts in
+    // between, and many events on block boundaries.
+    const Mode mode{"r0.5-elastic", {0.5, 5e-2, Subthreshold::elastic}, true};
+    for (std::uint64_t seed = 4; seed <= 5; ++seed)
+        compare(mode, shockgas::generate_initial_condition(10000, 10000.0, seed, 0), sample_times);
+}
+
+TEST(FastEngine, BitIdenticalToReferenceInTheStickyGas) {
+    // r = 0: every collision merges; merges across block boundaries move the
+    // cut pairs' left ends. Unequal masses appear at once.
+    const Mode mode{"r0-sticky-gas", {0.0, 1e-2, Subthreshold::elastic}, true};
+    for (std::uint64_t seed = 6; seed <= 8; ++seed)
+        compare(mode, shockgas::generate_initial_condition(20000, 20000.0, seed, 0),
+                {0.0, 1.0, 10.0, 100.0, 1000.0, 1e4, 1e5});
+}
+
+TEST(FastEngine, BitIdenticalFromRandomPositions) {
+    // Non-lattice start (positions uniform on the ring, sorted): gaps of all
+    // sizes from t = 0, including a ring seam inside a block.
+    for (std::uint64_t seed = 9; seed <= 10; ++seed) {
+        auto initial = shockgas::generate_initial_condition(5000, 5000.0, seed, 0);
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> where(0.0, 5000.0);
+        for (double& x : initial.position) x = where(rng);
+        std::sort(initial.position.begin(), initial.position.end());
+        compare({"random-positions-r0.9", {0.9, 1e-2, Subthreshold::elastic}, true}, initial, sample_times);
+        compare({"random-positions-r0", {0.0, 0.0, Subthreshold::elastic}, true}, initial, {1.0, 100.0, 1e4});
+    }
+}
+
+TEST(FastEngine, FallsBackAndStaysIdenticalWhereWindowsCannotBeExact) {
+    // Sticky sub-threshold with r > 0: unequal masses collide inelastically,
+    // |v|max can grow, so make_engine keeps the global loop.
+    compare({"r0.9-sticky", {0.9, 1e-2, Subthreshold::sticky}, false},
+            shockgas::generate_initial_condition(5000, 5000.0, 11, 0), sample_times);
+    // delta = 0: collapse is detected in global time order.
+    compare({"r0.5-delta0", {0.5, 0.0, Subthreshold::elastic}, false},
+            shockgas::generate_initial_condition(5000, 5000.0, 12, 0), sample_times);
+    // Unequal initial masses with r > 0.
+    auto heavy = shockgas::generate_initial_condition(2000, 2000.0, 13, 0);
+    heavy.mass[7] = 3.0;
+    compare({"unequal-masses", {0.9, 1e-2, Subthreshold::elastic}, false}, heavy, sample_times);
+}
+
+TEST(FastEngine, SmallRingsAreIdentical) {
+    // Rings too small for more than one block run as one block (no cuts).
+    for (const std::int64_t particles : {2, 3, 5, 50, 200}) {
+        for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+            const auto initial =
+                shockgas::generate_initial_condition(particles, static_cast<double>(particles), seed, 0);
+            compare({"small-r0.9", {0.9, 1e-2, Subthreshold::elastic}, true}, initial, sample_times);
+            compare({"small-r0", {0.0, 0.0, Subthreshold::elastic}, true}, initial, sample_times);
+        }
+    }
+}
+
+}  // namespace
