@@ -7,14 +7,15 @@
 // mass-weighted mean of y_j = x_j + t v_j. Which particles share a cluster is
 // given by the generalized variational principle (E, Rykov & Sinai, Commun.
 // Math. Phys. 177, 349 (1996); Brenier & Grenier, SIAM J. Numer. Anal. 35,
-// 2317 (1998)): the cluster positions are the
-// slopes of the convex minorant of F(mu) = integral_0^mu y dmu' (mu the
-// cumulative mass), i.e. the blocks of the mass-weighted isotonic regression
-// of (y_j), which pool-adjacent-violators (PAV) computes in O(N). Two facts
-// make the construction exact, not just a recipe:
-//  (a) Pooling lemma. A level set S of the isotonic regression has every
-//      suffix mean <= its value and every prefix mean >= it (else moving the
-//      suffix or prefix would lower the squared error). So if adjacent
+// 2317 (1998)): the cluster positions are the slopes of the convex minorant
+// of F(mu) = integral_0^mu y dmu' (mu the cumulative mass), i.e. the blocks
+// of the mass-weighted isotonic regression of (y_j), which pool-adjacent-
+// violators (PAV) computes in O(N). Two facts make the construction exact,
+// not just a recipe:
+//  (a) Pooling lemma. A level set S of the solution is a straight piece of
+//      the minorant of F, which equals F at both ends of S and lies below
+//      it in between: every prefix of S has mean y >= the piece's slope
+//      (S's value) and every suffix mean <= it. So if adjacent
 //      blocks A | B, each inside a level set, violate (mean_A >= mean_B),
 //      a level-set boundary between them would give mean_A <= value(S_A) <
 //      value(S_B) <= mean_B: impossible. Pooling violators in ANY order
@@ -30,32 +31,31 @@
 //
 // THE RING. Unroll the ring into the periodic line: particle j + kN sits at
 // x_j + kL with velocity v_j, so y_{j+N} = y_j + L (in any frame). Periodic
-// data give the periodic solution, whose clusters are the ring's clusters;
-// a cluster holds at most N consecutive particles (particle j and its copy
-// j + N are always L apart). One period suffices: run PAV along the current
-// clusters from any starting cluster, then check the pair across the seam
-// (last block, first block + L) and, while the last block violates either
-// neighbour, pool and go on around the ring. Every pooled pair was a violator
-// of the periodic problem and none is left, so by (a) the partition is the
-// periodic solution, including clusters that straddle the seam and the lone
-// cluster of all N particles.
-// What the partition does not fix is which particle is FIRST in the lone
-// final cluster: in the event engine it is the one after the gap that never
-// closed (the last merge keeps its left member). In the unrolled line that
-// gap is the contact point of the convex minorant between periodic copies,
-// and the centre-of-mass frame finds it. Let Ybar(t) = Xcm + t Vcm and
-// l(mu) = Ybar + L (mu - M/2) / M the uniform lattice co-moving with the
-// centre of mass (M the total mass). y - l is periodic with zero mass-
-// weighted mean over a period, so H(mu) = F(mu) - integral_0^mu l is
-// periodic, and F = R + H with R a parabola of curvature L / M: F >= R +
-// min H, a convex function touching F at mu* = argmin H. So mu* is a contact
-// point of the minorant, a cluster boundary at t (the only one per period in
-// the final state). At block boundaries H_b = sum_{c<b} M_c (Y_c - l_c), l_c
-// the lattice at the block's mass midpoint; the current boundaries include
-// every boundary at t by (b). The period is cut at mu* before PAV, so the
-// seam check pools nothing except at an exact tie at mu*. A drifting centre
-// of mass changes nothing: H and every comparison below depend on velocities
-// only through differences (Galilean invariance).
+// data give the periodic solution, whose level sets are the ring's clusters.
+// That this periodic problem is well posed, with every cluster a finite run
+// of at most N particles, is where the centre-of-mass frame enters. Let
+// Ybar(t) = Xcm + t Vcm and l(mu) = Ybar + L (mu - M/2) / M the uniform
+// lattice co-moving with the centre of mass (M the total mass). Then y - l is
+// periodic in mu with zero mass-weighted mean over a period, so
+// H(mu) = F(mu) - integral_0^mu l is periodic and bounded, and F = R + H with
+// R a parabola of curvature L / M. Hence F >= R + min H: the convex minorant
+// of F exists, and touches F at mu* = argmin H and its copies mu* + kM, so
+// every period holds a cluster boundary and no cluster is longer than N (the
+// particles j and j + N are always L apart). In the final state these copies
+// are the only boundaries: mu* is the gap that never closes, and the lone
+// cluster's first particle is the one after it (the event engine's last merge
+// keeps its left member).
+// The algorithm needs neither Vcm nor mu* explicitly. It runs PAV along one
+// period of the current clusters, from wherever the list starts, then checks
+// the pair across the seam (last block, first block one ring length on) and,
+// while the last block violates either neighbour, pools and goes on around
+// the ring. Every pooled pair was a violator of the periodic problem and none
+// is left, so by (a) the blocks are its level sets: clusters straddling the
+// seam come out whole, and since no pooling ever crosses a boundary mu* + kM,
+// the lone final cluster starts at mu* (the block that absorbs the others
+// across the seam is the one beginning there). A drifting centre of mass
+// changes nothing: velocities enter every comparison only through the
+// separation of two clusters (Galilean invariance).
 //
 // CONVENTIONS shared with the event engine: a pair that touches exactly at t
 // (equal positions, approaching) is already merged; touching clusters with
@@ -71,11 +71,14 @@
 // - offset_A), each part of size <= L + t |V|; (2) those parts are kept in
 // double-double arithmetic (products exact by fma, sums by two-sum, ~106
 // bits), so a pooling decision is wrong only if the clusters are within
-// ~10^-30 (L + t) ~ 10^-22 of contact. The only double roundings are the
-// cluster mass (exact for integer masses < 2^53, as in the paper), and the
-// reported position and velocity (one rounding each). Tested at N = 10^7,
-// t ~ 10^8 on an initial condition that focuses groups of particles onto
-// points with contact decided at 2^-30 (tests/unit/test_exact_engine.cpp).
+// ~10^-30 (L + t) ~ 10^-22 of contact. A plain-double estimate of the
+// separation, with a bound on its rounding error, settles every pair that is
+// not that close to contact (almost all) before the double-double test runs.
+// The only double roundings are the cluster mass (exact for integer masses
+// < 2^53, as in the paper), and the reported position and velocity (one
+// rounding each). Tested at N = 10^7, t ~ 10^8 on an initial condition that
+// focuses groups of particles onto points with contact decided at 2^-30
+// (tests/unit/test_exact_engine.cpp).
 #include "shockgas/exact_engine.hpp"
 
 #include <algorithm>
@@ -86,6 +89,10 @@ namespace shockgas {
 namespace {
 
 using Extended = ExactEngine::Extended;
+
+// Rounding-error bound of the plain-double separation estimate, in units of
+// u = 2^-53 times its scale (see must_pool; 6 is derived, 16 is used).
+constexpr double filter_unit_roundoffs = 16.0;
 
 // Error-free transformations (Knuth TAOCP vol. 2, 4.2.2; Dekker 1971):
 // a + b = s + e and a * b = p + e exactly.
@@ -123,11 +130,6 @@ Extended subtract(Extended a, Extended b) { return add(a, negate(b)); }
 Extended multiply(Extended a, double b) {
     Extended p = two_product(a.hi, b);
     p.lo += a.lo * b;
-    return fast_two_sum(p.hi, p.lo);
-}
-Extended multiply(Extended a, Extended b) {
-    Extended p = two_product(a.hi, b.hi);
-    p.lo += a.hi * b.lo + a.lo * b.hi;
     return fast_two_sum(p.hi, p.lo);
 }
 Extended divide(Extended a, double b) {
@@ -174,6 +176,22 @@ Extended ExactEngine::separation(const Block& left, const Block& right, double t
 // one's, or they touch at t while approaching (the event engine has merged a
 // pair whose contact time is <= t).
 bool ExactEngine::must_pool(const Block& left, const Block& right, double t) const {
+    // Filter: the separation in plain double, from the leading parts. Each
+    // offset (first moment + t momentum) / M is off by <= 4 u of
+    // (|first moment| + t |momentum|) / M (u = 2^-53: three roundings plus the
+    // dropped low parts), the anchors and their sum by <= 3 u of their
+    // magnitudes: <= 6 u of `scale` in all. 16 u leaves a margin.
+    const double wrap = right.first_particle <= left.first_particle ? ring_length_ : 0.0;
+    const double right_offset = (right.first_moment.hi + t * right.momentum.hi) / right.mass;
+    const double left_offset = (left.first_moment.hi + t * left.momentum.hi) / left.mass;
+    const double estimate = ((right.anchor - left.anchor) + wrap) + (right_offset - left_offset);
+    const double scale = right.anchor + left.anchor + wrap +
+                         (std::abs(right.first_moment.hi) + t * std::abs(right.momentum.hi)) / right.mass +
+                         (std::abs(left.first_moment.hi) + t * std::abs(left.momentum.hi)) / left.mass;
+    const double rounding_bound = filter_unit_roundoffs * 0x1p-53 * scale;
+    if (estimate > rounding_bound) return false;
+    if (estimate < -rounding_bound) return true;
+
     const Extended gap = separation(left, right, t);
     if (is_negative(gap)) return true;
     if (!is_zero(gap)) return false;
@@ -193,48 +211,6 @@ ExactEngine::Block ExactEngine::pooled(const Block& left, const Block& right) co
     return merged;
 }
 
-// Rotates block_ so that it starts at mu* = argmin H, a certain cluster
-// boundary at t (see the top of this file):
-//   H_b = sum_{c<b} M_c (Y_c - l_c),  l_c = Ybar + L (mu_c + M_c/2 - M/2) / M,
-// summed as H_b = A_b - mu_b Ybar - L mu_b (mu_b - M) / (2 M), with
-// A_b = sum_{c<b} M_c Y_c and M_c Y_c = M_c (anchor_c + wrap_c L) + first
-// moment_c + t momentum_c, all in the period starting at block_[0].
-void ExactEngine::cut_at_contact_point(double t) {
-    const std::size_t count = block_.size();
-    const std::int64_t front = block_[0].first_particle;
-    const auto mass_times_position = [&](const Block& b) {
-        // Blocks past particle 0 (first particle before the front's) lie
-        // one ring length on: M (anchor + L), kept exact as two products.
-        Extended anchor_part = two_product(b.mass, b.anchor);
-        if (b.first_particle < front) anchor_part = add(anchor_part, two_product(b.mass, ring_length_));
-        return add(add(anchor_part, b.first_moment), multiply(b.momentum, t));
-    };
-    Extended total_mass{}, total_mass_position{};
-    for (const Block& b : block_) {
-        total_mass = add(total_mass, b.mass);
-        total_mass_position = add(total_mass_position, mass_times_position(b));
-    }
-    const double mass = total_mass.hi;
-    const Extended centre = divide(total_mass_position, mass);  // Ybar(t) = Xcm + t Vcm
-    Extended cumulative_mass{}, cumulative_mass_position{};
-    Extended lowest{};  // H_0 = 0
-    std::size_t cut = 0;
-    for (std::size_t b = 1; b < count; ++b) {
-        cumulative_mass = add(cumulative_mass, block_[b - 1].mass);
-        cumulative_mass_position = add(cumulative_mass_position, mass_times_position(block_[b - 1]));
-        const Extended lattice_part =
-            divide(multiply(multiply(cumulative_mass, subtract(cumulative_mass, total_mass)), ring_length_),
-                   2.0 * mass);
-        const Extended h =
-            subtract(subtract(cumulative_mass_position, multiply(cumulative_mass, centre)), lattice_part);
-        if (less(h, lowest)) {
-            lowest = h;
-            cut = b;
-        }
-    }
-    if (cut != 0) std::rotate(block_.begin(), block_.begin() + static_cast<std::ptrdiff_t>(cut), block_.end());
-}
-
 // Stack PAV (Ayer et al., Ann. Math. Stat. 26, 641 (1955)) along the period,
 // in place: block_[0, top) is the stack of pooled blocks, each non-violating
 // with the one below it.
@@ -251,10 +227,9 @@ void ExactEngine::pool_along_line(double t) {
     block_.resize(top);
 }
 
-// The seam pair (last block, first block one ring length on) is not a
-// violator when the cut is a true contact point; for exact ties it can be.
-// Pool it, and continue PAV around the ring while the grown last block
-// violates either of its neighbours.
+// The seam pair (last block, first block one ring length on), then PAV
+// continued around the ring while the grown last block violates either of its
+// neighbours (see the top of this file).
 void ExactEngine::pool_across_seam(double t) {
     std::size_t head = 0;  // block_[head, end) are live
     while (block_.size() - head >= 2) {
@@ -276,7 +251,6 @@ bool ExactEngine::advance_to(double t) {
     if (live_ != nullptr && live_->stop != nullptr && live_->stop->load(std::memory_order_relaxed)) return false;
     t = std::max(t, now_);
     if (block_.size() > 1) {
-        cut_at_contact_point(t);
         pool_along_line(t);
         pool_across_seam(t);
     }
@@ -299,16 +273,20 @@ void ExactEngine::clusters(ClusterState& out) const {
     out.velocity.reserve(count);
     out.mass.reserve(count);
     out.first_particle.reserve(count);
-    for (std::size_t k = 0; k < count; ++k) {
-        const Block& b = block_[(start + k) % count];
+    const double inverse_ring = 1.0 / ring_length_;
+    for (std::size_t k = 0, index = start; k < count; ++k, index = index + 1 == count ? 0 : index + 1) {
+        const Block& b = block_[index];
         // Y = anchor + offset, reduced mod L in double-double before the one
-        // rounding to double.
+        // rounding to double. The period count may be off by one near a
+        // multiple of L (inverse_ring rounds); the exact corrections fix it.
         Extended position = add(offset_at(b, now_), b.anchor);
-        const double periods = std::floor(position.hi / ring_length_);
+        const double periods = std::floor(position.hi * inverse_ring);
         position = subtract(position, two_product(periods, ring_length_));
         if (is_negative(position)) position = add(position, ring_length_);
         if (!less(position, extended(ring_length_))) position = add(position, -ring_length_);
-        out.position.push_back(wrap_position(position.hi, ring_length_));
+        // A position within half an ulp below L rounds to L, which is 0
+        // (and + 0.0 turns a -0 into +0).
+        out.position.push_back(position.hi < ring_length_ ? position.hi + 0.0 : 0.0);
         out.velocity.push_back(divide(b.momentum, b.mass).hi);
         out.mass.push_back(b.mass);
         out.first_particle.push_back(b.first_particle);

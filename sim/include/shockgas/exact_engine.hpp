@@ -60,7 +60,6 @@ private:
     Extended separation(const Block& left, const Block& right, double t) const;
     bool must_pool(const Block& left, const Block& right, double t) const;
     Block pooled(const Block& left, const Block& right) const;
-    void cut_at_contact_point(double t);
     void pool_along_line(double t);
     void pool_across_seam(double t);
 
