@@ -119,11 +119,11 @@ function(shockgas_plot figure)
   set(figure_dir "${CMAKE_BINARY_DIR}/figures/${SHOCKGAS_FIDELITY}")
   file(MAKE_DIRECTORY "${figure_dir}")
   set(outputs "${figure_dir}/${figure}.png" "${figure_dir}/${figure}.pdf")
+  set(variables "datadir='${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/${figure}'; outbase='${figure_dir}/${figure}'; styledir='${PROJECT_SOURCE_DIR}/figures'; theorydir='${SHOCKGAS_THEORY_DIR}'; fidelity='${SHOCKGAS_FIDELITY}'")
   add_custom_command(
     OUTPUT ${outputs}
-    COMMAND ${GNUPLOT_EXECUTABLE}
-            -e "datadir='${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/${figure}'; outbase='${figure_dir}/${figure}'; styledir='${PROJECT_SOURCE_DIR}/figures'; fidelity='${SHOCKGAS_FIDELITY}'"
-            "${PROJECT_SOURCE_DIR}/figures/${ARG_SCRIPT}"
+    COMMAND ${GNUPLOT_EXECUTABLE} -e "${variables}; format='png'" "${PROJECT_SOURCE_DIR}/figures/${ARG_SCRIPT}"
+    COMMAND ${GNUPLOT_EXECUTABLE} -e "${variables}; format='pdf'" "${PROJECT_SOURCE_DIR}/figures/${ARG_SCRIPT}"
     DEPENDS "${PROJECT_SOURCE_DIR}/figures/${ARG_SCRIPT}" "${PROJECT_SOURCE_DIR}/figures/style.gp" ${ARG_DATA}
     COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] plotting ${figure}.png and ${figure}.pdf"
     VERBATIM)

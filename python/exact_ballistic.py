@@ -462,6 +462,11 @@ def main(argv=None):
     )
     with open(os.path.join(args.out_dir, "constants.json"), "w") as fh:
         json.dump(out, fh, indent=2)
+    # The same constants as gnuplot variables, for the figures' theory curves.
+    with open(os.path.join(args.out_dir, "constants.gp"), "w") as fh:
+        fh.write("# exact sticky-gas constants (python/exact_ballistic.py), D = %.10g\n" % D)
+        for key in ("kappa", "nu", "kurtosis", "tail_constant_c"):
+            fh.write("exact_%s = %.10g\n" % (key, out[key]))
     print(json.dumps({k: out[k] for k in ("kappa", "nu", "variance", "variance_from_phi_table",
                                           "kurtosis", "tail_constant_c", "effective_c_fit_logPhi_vs_z3")}, indent=2))
     return 0

@@ -39,10 +39,21 @@ std::string restitution_label(double restitution) {
     return out.str();
 }
 
+void write_temperature_data(const std::string& data, const std::string& input, const TemperatureHistory& history) {
+    DataFile file(data, "T(t) ensemble mean, " + input, {"time", "temperature", "temperature_sigma"});
+    for (std::size_t k = 0; k < history.time.size(); ++k)
+        file.row({history.time[k], history.mean(k), history.standard_error(k)});
+}
+
 void run_decay(const std::string& input, const std::string& output, const std::string& data, const std::string& scan,
-               double t_lo, double t_hi, const WindowRule& rule, double scan_width, double scan_step) {
+               double t_lo, double t_hi, const WindowRule& rule, double scan_width, double scan_step, bool data_only) {
     const auto history = TemperatureHistory::from(read_timeseries(input));
     if (history.time.empty()) throw InsufficientData(input + ": no sample time reached by every realization");
+    if (data_only) {
+        // Runs stopped by collapse (delta = 0) are drawn, not fitted.
+        write_temperature_data(data, input, history);
+        return;
+    }
     const auto run = run_parameters(input);
     DecayWindow window = automatic_decay_window(run.restitution, run.velocity_threshold, run.particles,
                                                 history.time.back(), rule);
@@ -75,11 +86,7 @@ void run_decay(const std::string& input, const std::string& output, const std::s
     scan_group.write("exponent", exponent);
     scan_group.write("exponent_sigma", sigma);
     results.commit();
-    if (!data.empty()) {
-        DataFile file(data, "T(t) ensemble mean, " + input, {"time", "temperature", "temperature_sigma"});
-        for (std::size_t k = 0; k < history.time.size(); ++k)
-            file.row({history.time[k], history.mean(k), history.standard_error(k)});
-    }
+    if (!data.empty()) write_temperature_data(data, input, history);
     if (!scan.empty()) {
         DataFile file(scan, "decay exponent in moving windows of " + std::to_string(scan_width) + " decades",
                       {"t_centre", "t_lo", "t_hi", "exponent", "exponent_sigma", "chi2_per_dof", "points"});
@@ -290,6 +297,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 
     std::string input, output = "analysis.h5", data, scan;
+    bool data_only = false;
     std::vector<std::string> inputs;
     double t_lo = 0.0, t_hi = 0.0, scan_width = 1.0, scan_step = 0.1;
     WindowRule window_rule;
@@ -298,6 +306,7 @@ int main(int argc, char** argv) {
     decay->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
     decay->add_option("--data", data, "T(t) data file for gnuplot");
     decay->add_option("--scan", scan, "window-scan data file for gnuplot");
+    decay->add_flag("--data-only", data_only, "write the T(t) data file only, no fit (for runs stopped by collapse)");
     decay->add_option("--t-lo", t_lo, "override the window start");
     decay->add_option("--t-hi", t_hi, "override the window end");
     decay->add_option("--start-factor", window_rule.start_factor, "t_lo = factor * max(1, eps^-3/2)")
@@ -343,7 +352,7 @@ int main(int argc, char** argv) {
 
     CLI11_PARSE(app, argc, argv);
     try {
-        if (*decay) run_decay(input, output, data, scan, t_lo, t_hi, window_rule, scan_width, scan_step);
+        if (*decay) run_decay(input, output, data, scan, t_lo, t_hi, window_rule, scan_width, scan_step, data_only);
         if (*crossover) run_crossover(inputs, output, data, crossover_rule);
         if (*scaling) run_scaling(inputs, output, data, tail_rule);
         if (*shocks) run_shocks(input, output, data, shock_rule);

@@ -1,8 +1,9 @@
 // shockgas-dump: turns parts of HDF5 files into plain text for gnuplot.
 //   snapshots FILE.h5 [--realization k]   rows "time position velocity mass first_particle",
 //                                         one block (blank line) per snapshot
-//   gnuplot-vars FILE.h5 GROUP --prefix P  each numeric attribute of GROUP as "P_name = value"
-//                                         and each string attribute as P_name = "value"
+//   gnuplot-vars FILE.h5 GROUP --prefix P [--recursive]
+//                                         each numeric attribute of GROUP as "P_name = value",
+//                                         each string attribute as P_name = "value"
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
@@ -13,10 +14,10 @@
 
 namespace {
 
-void dump_snapshots(const std::string& path, std::int64_t realization) {
+void dump_snapshots(std::FILE* out, const std::string& path, std::int64_t realization) {
     const auto file = shockgas::h5::File::open_read(path);
     const auto snapshots = file.root().open_group("snapshots");
-    fmt::print("# time position velocity mass first_particle  (from {})\n", path);
+    fmt::print(out, "# time position velocity mass first_particle  (from {})\n", path);
     const std::size_t count = snapshots.children().size();
     for (std::size_t s = 0; s < count; ++s) {
         const auto group = snapshots.open_group(fmt::format("{}", s));
@@ -27,12 +28,33 @@ void dump_snapshots(const std::string& path, std::int64_t realization) {
         const auto mass = group.read_doubles("mass");
         const auto first = group.read_integers("first_particle");
         for (std::size_t i = 0; i < position.size(); ++i)
-            fmt::print("{:.9g} {:.12g} {:.9g} {:.9g} {}\n", time, position[i], velocity[i], mass[i], first[i]);
-        fmt::print("\n\n");
+            fmt::print(out, "{:.9g} {:.12g} {:.9g} {:.9g} {}\n", time, position[i], velocity[i], mass[i], first[i]);
+        fmt::print(out, "\n\n");
     }
 }
 
-void dump_gnuplot_vars(const std::string& path, const std::string& group_path, const std::string& prefix) {
+void dump_attributes(std::FILE* out, const shockgas::h5::Group& group, const std::string& prefix, bool recursive) {
+    for (const auto& name : group.attribute_names()) {
+        try {
+            fmt::print(out, "{}_{} = {:.10g}\n", prefix, name, group.attribute_double(name));
+        } catch (const shockgas::h5::Error&) {
+            try {
+                std::string text = group.attribute_string(name);
+                for (auto& c : text)
+                    if (c == '"' || c == '\n') c = '\'';
+                fmt::print(out, "{}_{} = \"{}\"\n", prefix, name, text);
+            } catch (const shockgas::h5::Error&) {
+                // arrays and other kinds are not gnuplot scalars: skipped
+            }
+        }
+    }
+    if (!recursive) return;
+    for (const auto& child : group.children())
+        if (group.is_group(child)) dump_attributes(out, group.open_group(child), prefix + "_" + child, true);
+}
+
+void dump_gnuplot_vars(std::FILE* out, const std::string& path, const std::string& group_path,
+                       const std::string& prefix, bool recursive) {
     const auto file = shockgas::h5::File::open_read(path);
     shockgas::h5::Group group = file.root();
     std::size_t start = 0;
@@ -41,20 +63,7 @@ void dump_gnuplot_vars(const std::string& path, const std::string& group_path, c
         if (end > start) group = group.open_group(group_path.substr(start, end - start));
         start = end + 1;
     }
-    for (const auto& name : group.attribute_names()) {
-        try {
-            fmt::print("{}_{} = {:.10g}\n", prefix, name, group.attribute_double(name));
-        } catch (const shockgas::h5::Error&) {
-            try {
-                std::string text = group.attribute_string(name);
-                for (auto& c : text)
-                    if (c == '"' || c == '\n') c = '\'';
-                fmt::print("{}_{} = \"{}\"\n", prefix, name, text);
-            } catch (const shockgas::h5::Error&) {
-                // arrays and other kinds are not gnuplot scalars: skipped
-            }
-        }
-    }
+    dump_attributes(out, group, prefix, recursive);
 }
 
 }  // namespace
@@ -62,7 +71,8 @@ void dump_gnuplot_vars(const std::string& path, const std::string& group_path, c
 int main(int argc, char** argv) {
     CLI::App app{"shockgas-dump: HDF5 to plain text for gnuplot"};
     app.require_subcommand(1);
-    std::string input, group_path, prefix = "fit";
+    std::string input, group_path, prefix = "fit", output;
+    app.add_option("-o,--output", output, "write here instead of standard output");
     std::int64_t realization = 0;
     auto* snapshots = app.add_subcommand("snapshots", "every snapshot of one realization as text blocks");
     snapshots->add_option("input", input, "shockgas-sim output")->required()->check(CLI::ExistingFile);
@@ -71,14 +81,20 @@ int main(int argc, char** argv) {
     vars->add_option("input", input, "HDF5 file")->required()->check(CLI::ExistingFile);
     vars->add_option("group", group_path, "group path, e.g. /decay")->required();
     vars->add_option("--prefix", prefix, "variable name prefix")->capture_default_str();
+    bool recursive = false;
+    vars->add_flag("--recursive", recursive, "also every subgroup, as PREFIX_<subgroup>_<name>");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
         return app.exit(error);
     }
     try {
-        if (*snapshots) dump_snapshots(input, realization);
-        if (*vars) dump_gnuplot_vars(input, group_path, prefix);
+        std::FILE* out = stdout;
+        if (!output.empty() && (out = std::fopen(output.c_str(), "w")) == nullptr)
+            throw std::runtime_error("cannot write '" + output + "'");
+        if (*snapshots) dump_snapshots(out, input, realization);
+        if (*vars) dump_gnuplot_vars(out, input, group_path, prefix, recursive);
+        if (out != stdout && std::fclose(out) != 0) throw std::runtime_error("cannot finish writing '" + output + "'");
         return 0;
     } catch (const std::exception& error) {
         fmt::print(stderr, "shockgas-dump: error: {}\n", error.what());

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "shockgas/event_engine.hpp"
-#include "shockgas/fast_engine.hpp"
 #include "shockgas/exact_engine.hpp"
+#include "shockgas/fast_engine.hpp"
 
 namespace shockgas {
 

@@ -9,6 +9,8 @@
 #include <mutex>
 #include <thread>
 
+#include <sys/resource.h>
+
 #include <fmt/format.h>
 
 #include "shockgas/observables.hpp"
@@ -73,6 +75,9 @@ public:
         for (auto& worker : workers) worker.join();
         result_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
         result_.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+        rusage usage{};
+        getrusage(RUSAGE_SELF, &usage);
+        result_.peak_memory_bytes = 1024.0 * static_cast<double>(usage.ru_maxrss);  // Linux reports KiB
         if (progress) progress(snapshot_progress(wall_start));
         merge_outputs();
         return std::move(result_);

@@ -134,6 +134,12 @@ Group Group::open_group(const std::string& name) const {
                  where(name));
 }
 
+bool Group::is_group(const std::string& name) const {
+    if (!has(name)) return false;
+    const Handle object(H5Oopen(id(), name.c_str(), H5P_DEFAULT), H5Oclose);
+    return object.valid() && H5Iget_type(object.id()) == H5I_GROUP;
+}
+
 std::vector<std::string> Group::children() const {
     std::vector<std::string> names;
     H5Literate(

@@ -58,6 +58,7 @@ void write_output(const std::string& path, const SimulationParameters& parameter
     root.set_attribute("total_collisions", static_cast<std::int64_t>(result.total_collisions));
     root.set_attribute("cpu_seconds", result.cpu_seconds);
     root.set_attribute("wall_seconds", result.wall_seconds);
+    root.set_attribute("peak_memory_bytes", result.peak_memory_bytes);
 
     const auto realizations = static_cast<hsize_t>(result.realizations);
     const auto samples = static_cast<hsize_t>(result.times.size());
@@ -198,6 +199,7 @@ OutputFile read_output(const std::string& path) {
     r.total_collisions = static_cast<std::uint64_t>(root.attribute_integer("total_collisions"));
     r.cpu_seconds = root.attribute_double("cpu_seconds");
     r.wall_seconds = root.attribute_double("wall_seconds");
+    r.peak_memory_bytes = root.has_attribute("peak_memory_bytes") ? root.attribute_double("peak_memory_bytes") : 0.0;
     const auto series = root.open_group("timeseries");
     r.times = series.read_doubles("time");
     r.realizations = p.realizations;
@@ -296,6 +298,7 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
         r.total_collisions += p.total_collisions;
         r.cpu_seconds += p.cpu_seconds;
         r.wall_seconds += p.wall_seconds;
+        r.peak_memory_bytes = std::max(r.peak_memory_bytes, p.peak_memory_bytes);
         interrupted |= p.status == "interrupted";
         collapsed |= p.status == "collapsed";
     }

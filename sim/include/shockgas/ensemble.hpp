@@ -54,6 +54,7 @@ struct EnsembleResult {
     std::uint64_t total_collisions = 0;
     double cpu_seconds = 0.0;
     double wall_seconds = 0.0;
+    double peak_memory_bytes = 0.0;  // resident set high-water mark of the process
 };
 
 // What the driver reports while running, about once a second.

@@ -61,6 +61,7 @@ public:
     Group create_group(const std::string& name);
     Group open_group(const std::string& name) const;
     std::vector<std::string> children() const;
+    bool is_group(const std::string& name) const;
 
     // Datasets: dims empty means 1-D of data.size(); otherwise product(dims) == data.size().
     void write(const std::string& name, const std::vector<double>& data, std::vector<hsize_t> dims = {});

@@ -1,0 +1,34 @@
+# Fig. 5 of Ben-Naim et al. (1999): shock profile of the inelastic gas.
+# Top: density (mass per unit length, bins of width L/200); bottom: velocity
+# against position, with a line of slope 1/t (Eq. 6: v = (x - q)/t between shocks).
+load styledir.'/style.gp'
+load datadir.'/shocks.gp'
+t = shocks_shocks0_time
+L = shocks_input_ring_length
+N = shocks_input_particles
+width = L / 200.0
+bin(x) = width * (floor(x / width) + 0.5)
+set multiplot layout 2,1 title sprintf('Fig. 5: shocks at t = %.0f, N = %d, r = %.2f, δ = %g  (%s)', \
+    t, N, shocks_input_restitution, shocks_input_velocity_threshold, fidelity_note)
+set lmargin 12
+set xrange [0:L]
+set ylabel 'density ρ(x)'
+set format x ''
+set logscale y
+set format y "10^{%L}"
+unset key
+plot datadir.'/profile.dat' index 0 using (bin($1)):($3 / width) smooth frequency with steps lt 3
+unset logscale y
+set format y '%g'
+set format x '%g'
+set xlabel 'position x'
+set ylabel 'velocity v(x)'
+set key top right
+x0 = L / 2
+set label 1 sprintf("%.0f shocks (|Δv| ≥ v_{rms}); N t^{-2/3} = %.1f\nsegment slope × t = %.2f ± %.2f (density-corrected %.2f ± %.2f)", \
+    shocks_shocks0_shock_count, shocks_shocks0_expected_shock_count, shocks_shocks0_slope_times_t, shocks_shocks0_slope_times_t_sigma, \
+    shocks_shocks0_density_corrected_slope_times_t, shocks_shocks0_density_corrected_slope_times_t_sigma) \
+    at graph 0.02, graph 0.93 left font ',9'
+plot datadir.'/profile.dat' index 0 using 1:2 with points lt 1 pt 7 ps 0.25 title 'particles', \
+     (x - x0) / t with lines lt 4 lw 1.5 title 'slope 1/t'
+unset multiplot

@@ -1,0 +1,33 @@
+# Shared style for every shockgas figure. CMake runs each figure script twice,
+# with format = 'png' and format = 'pdf'; loading this file sets the terminal
+# and the output file, so the scripts themselves only plot.
+# Variables passed by CMake (-e): datadir, outbase, styledir, theorydir,
+# fidelity, format.
+set encoding utf8
+if (format eq 'pdf') {
+    set terminal pdfcairo size 6in,4.5in font 'Sans,9'
+} else {
+    set terminal pngcairo size 1000,760 font 'Sans,12'
+}
+set output outbase.'.'.format
+set termoption enhanced
+set border lw 1.2
+set grid lt 1 lc rgb '#dddddd' lw 0.8
+set key top right box opaque samplen 2.5 spacing 1.15 font ',10'
+set tics out nomirror
+set mxtics 10
+set mytics 10
+
+# Okabe-Ito colour-blind-safe palette.
+set linetype 1 lc rgb '#000000' lw 2 pt 7 ps 0.6
+set linetype 2 lc rgb '#E69F00' lw 2 pt 5 ps 0.6
+set linetype 3 lc rgb '#0072B2' lw 2 pt 9 ps 0.7
+set linetype 4 lc rgb '#D55E00' lw 2 pt 11 ps 0.7
+set linetype 5 lc rgb '#009E73' lw 2 pt 13 ps 0.7
+set linetype 6 lc rgb '#CC79A7' lw 2 pt 6 ps 0.7
+set linetype 7 lc rgb '#56B4E9' lw 2 pt 4 ps 0.7
+set linetype 8 lc rgb '#999999' lw 1.5 dt 2
+set linetype cycle 8
+
+decades = 'set format x "10^{%L}"; set format y "10^{%L}"'
+fidelity_note = sprintf('%s fidelity', fidelity)

@@ -1,0 +1,11 @@
+# Fig. 5: density and velocity profile at the snapshot time; shocks counted and
+# the slopes of the segments between them fitted (Eq. 6: slope 1/t).
+shockgas_figure_runs(fig5)
+add_custom_command(
+  OUTPUT "${fig5_DIR}/profile.dat" "${fig5_DIR}/shocks.h5" "${fig5_DIR}/shocks.gp"
+  COMMAND shockgas-analyze shocks "${fig5_profile_H5}" -o "${fig5_DIR}/shocks.h5" --data "${fig5_DIR}/profile.dat"
+  COMMAND shockgas-dump gnuplot-vars "${fig5_DIR}/shocks.h5" / --recursive --prefix shocks --output "${fig5_DIR}/shocks.gp"
+  DEPENDS "${fig5_profile_H5}" shockgas-analyze shockgas-dump
+  COMMENT "[fig5] shocks"
+  VERBATIM)
+shockgas_plot(fig5 SCRIPT fig5.gp DATA "${fig5_DIR}/profile.dat" "${fig5_DIR}/shocks.gp" ${SHOCKGAS_THEORY_OUTPUTS})
