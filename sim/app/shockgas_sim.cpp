@@ -84,7 +84,10 @@ int main(int argc, char** argv) {
     app.add_option("--first-realization", p.first_realization,
                    "index of the first realization (seed stream), to split an ensemble into parts")
         ->capture_default_str();
-    app.add_option("-s,--seed", p.seed, "random seed; realization k uses splitmix64(seed, k)")->capture_default_str();
+    // NonNegativeNumber: CLI11 would otherwise wrap "-5" silently to 2^64 - 5.
+    app.add_option("-s,--seed", p.seed, "random seed; realization k uses splitmix64(seed, k)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_option("-j,--threads", p.threads, "threads for realizations; 0 means every core")->capture_default_str();
     app.add_option("--init", p.init_file,
                    "initial condition FILE.h5: datasets position, velocity, optional mass; root attribute "
@@ -101,10 +104,23 @@ int main(int argc, char** argv) {
     app.footer("Output schema: see README.md, 'Output files'. Ctrl-C writes what has been computed, marked "
                "interrupted.");
 
+    // A config file's unknown key is an error, not silently ignored: a typo
+    // (`restitutoin = 0.5`) would otherwise run with the default.
+    app.allow_config_extras(CLI::config_extras_mode::error);
+
     try {
         app.parse(argc, argv);
+    } catch (const CLI::Success& help) {  // --help: print it, exit 0
+        return app.exit(help);
     } catch (const CLI::ParseError& error) {
-        return app.exit(error);
+        // Every parse problem (bad value, unknown option or config key,
+        // missing config file) is one line naming it and exit status 2, like
+        // the validation errors below; CLI11's own report adds a second line.
+        std::string message = error.what();
+        for (char& c : message)
+            if (c == '\n' || c == '\r') c = ' ';
+        fmt::print(stderr, "shockgas-sim: error: {}\n", message);
+        return 2;
     }
 
     try {

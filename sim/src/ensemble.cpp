@@ -6,6 +6,7 @@
 #include <ctime>
 #include <limits>
 #include <condition_variable>
+#include <exception>
 #include <mutex>
 #include <thread>
 
@@ -13,6 +14,8 @@
 
 #include <fmt/format.h>
 
+#include "shockgas/event_engine.hpp"
+#include "shockgas/fast_engine.hpp"
 #include "shockgas/observables.hpp"
 
 namespace shockgas {
@@ -73,6 +76,10 @@ public:
             if (progress) progress(snapshot_progress(wall_start));
         }
         for (auto& worker : workers) worker.join();
+        // A worker's exception (std::bad_alloc at huge N, an engine's internal
+        // check) is rethrown here, on the caller's thread: escaping a
+        // std::thread it would have aborted the process.
+        if (failure_) std::rethrow_exception(failure_);
         result_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
         result_.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
         rusage usage{};
@@ -88,7 +95,14 @@ private:
         for (;;) {
             const std::int64_t k = next_.fetch_add(1);
             if (k >= parameters_.realizations || (stop_ && stop_->load())) break;
-            run_realization(k);
+            try {
+                run_realization(k);
+            } catch (...) {
+                std::lock_guard lock(progress_mutex_);
+                if (!failure_) failure_ = std::current_exception();
+                next_.store(parameters_.realizations);  // no further realizations
+                break;
+            }
             finished_[static_cast<std::size_t>(k)].store(true);
             done_.fetch_add(1);
         }
@@ -106,8 +120,28 @@ private:
             initial_override_ ? *initial_override_
                               : generate_initial_condition(parameters_.particles, parameters_.effective_ring_length(),
                                                            parameters_.seed, parameters_.first_realization + k);
+        try {
+            run_realization_with(k, initial, make_engine(parameters_, initial, &live_[index]));
+        } catch (const StallUndecidable&) {
+            // The windowed engine cannot decide the stall detector (see
+            // StallUndecidable): redo the realization with the global loop,
+            // which it matches bit for bit up to that point and which detects
+            // the stall exactly. Discard the partial rows and records first.
+            out = RealizationOutput{};
+            const std::size_t samples = result_.times.size();
+            for (auto* table : {&result_.temperature, &result_.collisions_per_particle, &result_.clusters,
+                                &result_.kinetic_energy})
+                std::fill_n(table->begin() + static_cast<std::ptrdiff_t>(index * samples), samples, not_reached);
+            run_realization_with(k, initial,
+                                 std::make_unique<EventEngine>(initial, parameters_.collision, parameters_.collapse,
+                                                               &live_[index]));
+        }
+    }
+
+    void run_realization_with(std::int64_t k, const InitialCondition& initial, std::unique_ptr<Engine> engine) {
+        const auto index = static_cast<std::size_t>(k);
+        RealizationOutput& out = outputs_[index];
         const double particles = static_cast<double>(initial.size());
-        auto engine = make_engine(parameters_, initial, &live_[index]);
         out.histogram_counts.assign(histogram_times_.size(), {});
         ClusterState state;
         const std::size_t samples = result_.times.size();
@@ -198,6 +232,7 @@ private:
     std::vector<RealizationOutput> outputs_;
     std::vector<LiveStatus> live_;
     std::vector<std::atomic<bool>> finished_;
+    std::exception_ptr failure_;  // the first worker exception, guarded by progress_mutex_
     std::atomic<std::int64_t> next_{0};
     std::atomic<std::int64_t> done_{0};
     int finished_workers_ = 0;

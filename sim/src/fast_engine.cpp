@@ -395,7 +395,7 @@ void FastEventEngine::check_stall_bound(double window_end, std::uint64_t run_eve
     for (const WindowRuns& w : recent_windows_)
         bound += (std::floor(span / w.stall_span) + 2.0) * static_cast<double>(w.run_events);
     if (bound >= static_cast<double>(stall_window_))
-        throw std::runtime_error(
+        throw StallUndecidable(
             "FastEventEngine: cannot exclude a stall (events too dense in time); rerun with the reference engine");
 }
 

@@ -41,12 +41,22 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "shockgas/engine.hpp"
 #include "shockgas/fast_queue.hpp"
 
 namespace shockgas {
+
+// Thrown by FastEventEngine::advance_to when its per-window bound cannot rule
+// out the global stall detector firing: events crowd at one instant, as in an
+// inelastic collapse regularized only by a tiny delta (seen at r = 1e-6,
+// delta = 1e-12). Only the global loop can locate that stall, so the run must
+// be redone with EventEngine (run_ensemble does that by itself).
+struct StallUndecidable : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 class FastEventEngine final : public Engine {
 public:
