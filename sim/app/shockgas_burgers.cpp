@@ -1,0 +1,236 @@
+// shockgas-burgers: the Burgers velocity profile from the initial condition of
+// a particle run, for Fig. 5 (TARGETS.md: Burgers with nu -> 0 is the sticky
+// gas; shocks <-> clusters, v = (x - q)/t between shocks, Eq. 6).
+//
+//   shockgas-burgers --run RUN.h5 [--realization k] [--time t] [--cells-per-particle k]
+//                    [--viscosity nu1,nu2,...] [--points P] --output profile.dat
+//                    [--summary vars.gp] [--study study.dat]
+//   shockgas-burgers --particles N [--ring-length L] --seed S --time t ...   (the same initial
+//                    condition shockgas-sim draws) or --init FILE.h5
+//
+// profile.dat: block 0 "x v_inviscid v_nu..." on P equally spaced points; block 1 the
+// inviscid shocks "position mass velocity jump/v_rms". With --run and a snapshot at t,
+// the shocks found in the particles (shockgas::analysis::find_shocks, the Fig. 5 detector)
+// are matched to the Burgers shocks with the same jump criterion (drop >= v_rms), and the
+// distances are printed and written to --summary as gnuplot variables.
+// --study: nu -> 0 and grid-refinement convergence tables (docs/continuum.md).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "shockgas/analysis/shocks.hpp"
+#include "shockgas/burgers.hpp"
+#include "shockgas/h5.hpp"
+#include "shockgas/state.hpp"
+
+namespace {
+
+using shockgas::burgers::Shock;
+using shockgas::burgers::Solver;
+
+double periodic_distance(double a, double b, double length) {
+    double d = std::fmod(std::abs(a - b), length);
+    return std::min(d, length - d);
+}
+
+// For each shock in `from`, the distance to the nearest position in `to`.
+std::vector<double> nearest_distances(const std::vector<double>& from, const std::vector<double>& to, double length) {
+    std::vector<double> out;
+    for (double x : from) {
+        double best = length;
+        for (double y : to) best = std::min(best, periodic_distance(x, y, length));
+        out.push_back(best);
+    }
+    return out;
+}
+
+double median(std::vector<double> values) {
+    if (values.empty()) return std::nan("");
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// Shocks whose velocity drop mass/t (Rankine-Hugoniot: v_- - v_+ = (q_b - q_a)/t) is at
+// least jump_fraction v_rms, the detector's rule (analysis/README.md, "Shocks").
+std::vector<double> strong_shock_positions(const Solver& solver, double t, double jump_fraction) {
+    const double v_rms = std::sqrt(solver.temperature(t));
+    std::vector<double> out;
+    for (const Shock& s : solver.shocks(t))
+        if (s.mass() / t >= jump_fraction * v_rms) out.push_back(s.position);
+    return out;
+}
+
+double l1_distance(const std::vector<double>& a, const std::vector<double>& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) sum += std::abs(a[i] - b[i]);
+    return sum / static_cast<double>(a.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"shockgas-burgers: inviscid and viscous Burgers profiles from a particle run's initial condition"};
+    std::string run_path, init_path, output, summary, study;
+    std::int64_t particles = 0, realization = 0, cells_per_particle = 4, points = 0;
+    double ring_length = 0.0, time = 0.0, jump_fraction = 1.0;
+    std::uint64_t seed = 1;
+    std::vector<double> viscosities;
+    app.add_option("--run", run_path, "shockgas-sim output: N, L, seed (or init_file) and the snapshot time")
+        ->check(CLI::ExistingFile);
+    app.add_option("--init", init_path, "initial condition file (as shockgas-sim --init)")->check(CLI::ExistingFile);
+    app.add_option("-N,--particles", particles, "particles (with --seed: shockgas-sim's initial condition)");
+    app.add_option("-L,--ring-length", ring_length, "ring length (default N)");
+    app.add_option("-s,--seed", seed, "seed")->capture_default_str();
+    app.add_option("--realization", realization, "realization")->capture_default_str();
+    app.add_option("-t,--time", time, "time (default: the run's first snapshot time)");
+    app.add_option("--cells-per-particle", cells_per_particle, "grid cells per particle")->capture_default_str();
+    app.add_option("--viscosity", viscosities, "viscous profiles (Hopf-Cole) at these nu")->delimiter(',');
+    app.add_option("--points", points, "output points (default: 4 per particle)");
+    app.add_option("--jump-fraction", jump_fraction, "a counted shock drops v by >= this x v_rms")->capture_default_str();
+    app.add_option("-o,--output", output, "profile data file")->required();
+    app.add_option("--summary", summary, "gnuplot variables: shock counts and particle-vs-Burgers distances");
+    app.add_option("--study", study, "convergence tables (nu -> 0, grid refinement)");
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        shockgas::InitialCondition initial;
+        std::vector<shockgas::analysis::Snapshot> snapshots;
+        if (!run_path.empty()) {
+            const auto file = shockgas::h5::File::open_read(run_path);
+            const auto root = file.root();
+            particles = root.attribute_integer("particles");
+            ring_length = root.attribute_double("ring_length");
+            seed = static_cast<std::uint64_t>(root.attribute_integer("seed"));
+            const std::string init_file = root.attribute_string("init_file");
+            if (!init_file.empty() && init_path.empty()) init_path = init_file;
+            snapshots = shockgas::analysis::read_snapshots(run_path);
+            std::erase_if(snapshots, [&](const auto& s) { return s.realization != realization; });
+            if (time <= 0.0 && !snapshots.empty()) time = snapshots.front().time;
+        }
+        if (!init_path.empty()) {
+            initial = shockgas::read_initial_condition(init_path);
+        } else {
+            if (particles < 2) throw std::invalid_argument("give --run, --init or --particles");
+            if (!(ring_length > 0.0)) ring_length = static_cast<double>(particles);
+            initial = shockgas::generate_initial_condition(particles, ring_length, seed, realization);
+        }
+        if (!(time > 0.0)) throw std::invalid_argument("no time: give --time or a run with snapshots");
+        const std::int64_t n = initial.size();
+        const double length = initial.ring_length;
+        if (points <= 0) points = 4 * n;
+        const Solver solver(shockgas::burgers::grid_from_particles(initial, cells_per_particle * n));
+        const auto x = shockgas::burgers::sample_points(length, points);
+        const auto v0 = solver.inviscid(x, time);
+        std::vector<std::vector<double>> viscous;
+        for (double nu : viscosities) viscous.push_back(solver.viscous(x, time, nu));
+        const double v_rms = std::sqrt(solver.temperature(time));
+
+        std::FILE* out = std::fopen(output.c_str(), "w");
+        if (!out) throw std::runtime_error("cannot write " + output);
+        fmt::print(out, "# Burgers profile at t = {:.9g}: N = {}, L = {:.9g}, {} cells per particle, v_rms = {:.6g}\n",
+                   time, n, length, cells_per_particle, v_rms);
+        fmt::print(out, "# x v_inviscid");
+        for (double nu : viscosities) fmt::print(out, " v_nu={:g}", nu);
+        fmt::print(out, "\n");
+        for (std::size_t j = 0; j < x.size(); ++j) {
+            fmt::print(out, "{:.10g} {:.10g}", x[j], v0[j]);
+            for (const auto& v : viscous) fmt::print(out, " {:.10g}", v[j]);
+            fmt::print(out, "\n");
+        }
+        fmt::print(out, "\n\n# shock_position mass velocity jump_over_v_rms\n");
+        for (const Shock& s : solver.shocks(time))
+            fmt::print(out, "{:.10g} {:.10g} {:.10g} {:.6g}\n", s.position, s.mass(), s.velocity, s.mass() / time / v_rms);
+        std::fclose(out);
+
+        const auto burgers_shocks = strong_shock_positions(solver, time, jump_fraction);
+        std::string vars = fmt::format("burgers_time = {:.10g}\nburgers_shock_count = {}\nburgers_v_rms = {:.10g}\n"
+                                       "burgers_cells_per_particle = {}\n",
+                                       time, burgers_shocks.size(), v_rms, cells_per_particle);
+        fmt::print("Burgers at t = {:g}: {} shocks with drop >= {:g} v_rms (v_rms = {:.4g})\n", time,
+                   burgers_shocks.size(), jump_fraction, v_rms);
+        const auto snapshot = std::find_if(snapshots.begin(), snapshots.end(), [&](const auto& s) { return s.time == time; });
+        if (snapshot != snapshots.end()) {
+            // A merging run (sticky gas): its clusters are the shocks, with the same jump rule
+            // (a cluster of mass M at a Burgers shock has drop M/t). Otherwise the Fig. 5 detector.
+            const bool merged = std::any_of(snapshot->mass.begin(), snapshot->mass.end(), [](double m) { return m > 1.5; });
+            std::vector<double> particle_shocks;
+            if (merged) {
+                for (std::size_t i = 0; i < snapshot->mass.size(); ++i)
+                    if (snapshot->mass[i] / time >= jump_fraction * v_rms) particle_shocks.push_back(snapshot->position[i]);
+            } else {
+                shockgas::analysis::ShockRule rule;
+                rule.jump_fraction = jump_fraction;
+                particle_shocks = shockgas::analysis::find_shocks(*snapshot, rule).shock_position;
+            }
+            for (double& p : particle_shocks) p = shockgas::wrap_position(p, length);
+            // Velocity misfit: mass-weighted mean |v_i - v_Burgers(x_i)| over the particles.
+            const auto at_particles = solver.inviscid(snapshot->position, time);
+            double misfit = 0.0, mass = 0.0;
+            for (std::size_t i = 0; i < at_particles.size(); ++i) {
+                misfit += snapshot->mass[i] * std::abs(snapshot->velocity[i] - at_particles[i]);
+                mass += snapshot->mass[i];
+            }
+            misfit /= mass * v_rms;
+            fmt::print("particle shocks from {}; mean |v - v_Burgers| / v_rms = {:.4g}\n",
+                       merged ? "clusters" : "the Fig. 5 detector", misfit);
+            vars += fmt::format("burgers_velocity_misfit = {:.10g}\n", misfit);
+            const auto to_burgers = nearest_distances(particle_shocks, burgers_shocks, length);
+            const auto to_particles = nearest_distances(burgers_shocks, particle_shocks, length);
+            const double separation = length / std::max<double>(1.0, static_cast<double>(burgers_shocks.size()));
+            const double med = median(to_burgers);
+            const double largest = to_burgers.empty() ? std::nan("") : *std::max_element(to_burgers.begin(), to_burgers.end());
+            std::size_t close = 0;
+            for (double d : to_burgers) close += d < 0.1 * separation;
+            fmt::print("particles: {} shocks; distance to the nearest Burgers shock: median {:.4g}, max {:.4g} "
+                       "(mean Burgers shock separation {:.4g}); {} within 0.1 separation; Burgers -> particles median {:.4g}\n",
+                       particle_shocks.size(), med, largest, separation, close, median(to_particles));
+            vars += fmt::format("burgers_particle_shock_count = {}\nburgers_median_distance = {:.10g}\n"
+                                "burgers_max_distance = {:.10g}\nburgers_mean_separation = {:.10g}\n"
+                                "burgers_matched = {}\nburgers_median_distance_reverse = {:.10g}\n",
+                                particle_shocks.size(), med, largest, separation, close, median(to_particles));
+        }
+        if (!summary.empty()) {
+            std::FILE* file = std::fopen(summary.c_str(), "w");
+            if (!file) throw std::runtime_error("cannot write " + summary);
+            fmt::print(file, "{}", vars);
+            std::fclose(file);
+        }
+
+        if (!study.empty()) {
+            std::FILE* file = std::fopen(study.c_str(), "w");
+            if (!file) throw std::runtime_error("cannot write " + study);
+            // (1) nu -> 0 at the run's grid: mean |v_nu - v_0| over the sample points.
+            fmt::print(file, "# nu -> 0 at {} cells per particle, t = {:g}: nu mean|v_nu - v_0| (v_rms = {:.6g})\n",
+                       cells_per_particle, time, v_rms);
+            for (double nu : {1.0, 0.3, 0.1, 0.03, 0.01, 1e-3, 1e-4, 1e-5, 1e-6}) {
+                const auto v = solver.viscous(x, time, nu);
+                fmt::print(file, "{:g} {:.6g}\n", nu, l1_distance(v, v0));
+            }
+            // (2) grid refinement: cells per particle 1/16 .. 4 against the particle field (1 per particle).
+            fmt::print(file, "\n\n# grid: cells_per_particle shocks(drop>=v_rms) median|dx| max|dx| mean|v - v_exact|\n");
+            const Solver exact(shockgas::burgers::grid_from_particles(initial, n));
+            const auto reference = strong_shock_positions(exact, time, jump_fraction);
+            const auto v_exact = exact.inviscid(x, time);
+            for (double per : {1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2, 1.0, 2.0, 4.0}) {
+                const auto cells = static_cast<std::int64_t>(std::llround(per * static_cast<double>(n)));
+                const Solver coarse(shockgas::burgers::grid_from_particles(initial, cells));
+                const auto found = strong_shock_positions(coarse, time, jump_fraction);
+                const auto d = nearest_distances(reference, found, length);
+                fmt::print(file, "{:g} {} {:.6g} {:.6g} {:.6g}\n", per, found.size(), median(d),
+                           d.empty() ? 0.0 : *std::max_element(d.begin(), d.end()),
+                           l1_distance(coarse.inviscid(x, time), v_exact));
+            }
+            std::fclose(file);
+        }
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "shockgas-burgers: error: %s\n", error.what());
+        return 2;
+    }
+    return 0;
+}
