@@ -1,1 +1,44 @@
-# filled below
+# Python cross-checks (issue 7), label python. Each test makes its own input through a
+# FIXTURES_SETUP test (never the figure build) and exits 77 -> SKIPPED without numpy/scipy/h5py.
+if(NOT SHOCKGAS_PYTHON)
+  message(STATUS "no Python interpreter: python tests not registered")
+  return()
+endif()
+set(_py_work "${CMAKE_CURRENT_BINARY_DIR}/work/python")
+file(MAKE_DIRECTORY "${_py_work}")
+
+add_test(NAME python.exact_ballistic COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/test_exact_ballistic.py
+         WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.exact_ballistic PROPERTIES LABELS python TIMEOUT 600 SKIP_RETURN_CODE 77)
+
+# Small sticky-gas run (N = 10^4, r = 0, R = 8) with snapshots and a histogram, and its decay fit.
+add_test(NAME python.setup.run
+         COMMAND shockgas-sim --particles 10000 --restitution 0 --t-max 10000 --realizations 8 --seed 7
+                 --snapshot-times 100 --histogram-times 100 --quiet --output "${_py_work}/small.h5"
+         WORKING_DIRECTORY "${_py_work}")
+add_test(NAME python.setup.decay COMMAND shockgas-analyze decay "${_py_work}/small.h5" -o "${_py_work}/decay.h5"
+         WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.setup.run PROPERTIES FIXTURES_SETUP python_run LABELS python TIMEOUT 120)
+set_tests_properties(python.setup.decay PROPERTIES FIXTURES_SETUP python_decay FIXTURES_REQUIRED python_run
+                     LABELS python TIMEOUT 60)
+
+add_test(NAME python.refit_check COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/refit_check.py
+                 "${_py_work}/decay.h5" --tolerance 1e-6 WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.refit_check PROPERTIES FIXTURES_REQUIRED "python_run;python_decay" LABELS python
+                     TIMEOUT 120 SKIP_RETURN_CODE 77)
+add_test(NAME python.schema COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/test_schema.py
+                 "${_py_work}/small.h5" --readme ${PROJECT_SOURCE_DIR}/README.md WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.schema PROPERTIES FIXTURES_REQUIRED python_run LABELS python TIMEOUT 60
+                     SKIP_RETURN_CODE 77)
+
+# Exact prefactor (label physics): the exact engine at N = 10^6, 20 realizations, to t = 10^4
+# (~25 s wall on 2 cores), T t^(2/3) against kappa from python/exact_ballistic.py.
+add_test(NAME physics.setup.exact_prefactor
+         COMMAND shockgas-sim --particles 1000000 --restitution 0 --t-max 10000 --realizations 20 --seed 1
+                 --engine exact --quiet --output "${_py_work}/exact_1e6.h5"
+         WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(physics.setup.exact_prefactor PROPERTIES FIXTURES_SETUP exact_prefactor LABELS physics TIMEOUT 300)
+add_test(NAME physics.exact_prefactor COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/check_exact_prefactor.py
+                 "${_py_work}/exact_1e6.h5" WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(physics.exact_prefactor PROPERTIES FIXTURES_REQUIRED exact_prefactor LABELS physics TIMEOUT 60
+                     SKIP_RETURN_CODE 77)
