@@ -21,8 +21,10 @@ set format x ''
 set key bottom left
 set size 1, 0.62
 set origin 0, 0.36
-plot for [i = 1:4] file(i) using 1:2 with lines lt i dt (i > 2 ? 2 : 1) \
-         title sprintf('%s:  T ~ t^{-%.3f ± %.3f}', word(names, i), exponent(i), sigma(i)), \
+plot for [i = 1:2] file(i) using 1:2 with lines lt i \
+         title sprintf('%s:  T ∝ t^{-%.3f ± %.3f}', word(names, i), exponent(i), sigma(i)), \
+     for [i = 3:4] file(i) using 1:2 with lines lt i dt 2 \
+         title sprintf('%s:  T ∝ t^{-%.3f ± %.3f}', word(names, i), exponent(i), sigma(i)), \
      0.6 * x**(-2.0/3) with lines lt 8 title 'slope -2/3'
 unset logscale y
 set format y '%.2f'
@@ -33,6 +35,7 @@ set size 1, 0.36
 set origin 0, 0
 set yrange [0.8:1.2]
 set key off
-plot for [i = 1:4] '< paste '.file(i).' '.reference using 1:($2/$5) with lines lt i dt (i > 2 ? 2 : 1), \
+plot for [i = 1:2] '< paste '.file(i).' '.reference using 1:($2/$5) with lines lt i, \
+     for [i = 3:4] '< paste '.file(i).' '.reference using 1:($2/$5) with lines lt i dt 2, \
      1 with lines lt 8
 unset multiplot

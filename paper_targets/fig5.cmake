@@ -4,7 +4,8 @@ shockgas_figure_runs(fig5)
 add_custom_command(
   OUTPUT "${fig5_DIR}/profile.dat" "${fig5_DIR}/shocks.h5" "${fig5_DIR}/shocks.gp"
   COMMAND shockgas-analyze shocks "${fig5_profile_H5}" -o "${fig5_DIR}/shocks.h5" --data "${fig5_DIR}/profile.dat"
-  COMMAND shockgas-dump gnuplot-vars "${fig5_DIR}/shocks.h5" / --recursive --prefix shocks --output "${fig5_DIR}/shocks.gp"
+          --coarse-grain 20 --merge-gap 2
+  COMMAND shockgas-dump gnuplot-vars "${fig5_DIR}/shocks.h5" / --recursive --prefix s --output "${fig5_DIR}/shocks.gp"
   DEPENDS "${fig5_profile_H5}" shockgas-analyze shockgas-dump
   COMMENT "[fig5] shocks"
   VERBATIM)

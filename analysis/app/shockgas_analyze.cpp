@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "shockgas/analysis/collapse.hpp"
+#include "shockgas/analysis/compare.hpp"
 #include "shockgas/analysis/results.hpp"
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
@@ -290,6 +291,66 @@ void run_collapse(const std::vector<std::string>& inputs, const std::string& out
     results.commit();
 }
 
+// The speed/accuracy trade: each input against the reference run (P5).
+void run_compare(const std::string& reference_path, const std::vector<std::string>& inputs, const std::string& output,
+                 const std::string& data, const std::string& curves) {
+    const auto reference = TemperatureHistory::from(read_timeseries(reference_path));
+    std::vector<std::string> all{reference_path};
+    all.insert(all.end(), inputs.begin(), inputs.end());
+    ResultsFile results(output, "shockgas-analyze compare", all);
+    std::unique_ptr<DataFile> table, deviation_curves;
+    if (!data.empty())
+        table = std::make_unique<DataFile>(
+            data, "cost and deviation of T(t) from the reference " + reference_path,
+            std::vector<std::string>{"delta", "sticky", "collisions_per_particle", "cpu_seconds", "max_abs_deviation",
+                                     "time_of_max", "departure_time", "t_valid_delta_cubed"});
+    if (!curves.empty())
+        deviation_curves = std::make_unique<DataFile>(curves, "<T>/<T_ref> - 1 per input, one block each",
+                                                      std::vector<std::string>{"time", "deviation", "sigma"});
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const auto series = read_timeseries(inputs[i]);
+        const auto comparison = compare_temperatures(TemperatureHistory::from(series), reference);
+        const auto file = h5::File::open_read(inputs[i]);
+        const auto root = file.root();
+        const double delta = root.attribute_double("velocity_threshold");
+        const bool sticky = root.attribute_string("subthreshold") == "sticky";
+        const double cpu = root.attribute_double("cpu_seconds");
+        // Collisions per particle at the last sample every realization reached.
+        double collisions = 0.0;
+        std::int64_t counted = 0;
+        for (std::int64_t r = 0; r < series.realizations; ++r) {
+            const double value = series.at(series.collisions_per_particle, r, series.time.size() - 1);
+            if (std::isfinite(value)) collisions += value, ++counted;
+        }
+        collisions = counted > 0 ? collisions / static_cast<double>(counted) : 0.0;
+        const double t_valid = delta > 0.0 ? std::pow(delta, -3.0) : INFINITY;
+        auto group = results.section("compare" + std::to_string(i));
+        group.set_attribute("input", inputs[i]);
+        group.set_attribute("velocity_threshold", delta);
+        group.set_attribute("subthreshold", sticky ? "sticky" : "elastic");
+        group.set_attribute("collisions_per_particle", collisions);
+        group.set_attribute("cpu_seconds", cpu);
+        group.set_attribute("max_abs_deviation", comparison.max_abs_deviation);
+        group.set_attribute("time_of_max", comparison.time_of_max);
+        group.set_attribute("departure_time", comparison.departure_time);
+        group.set_attribute("t_valid", t_valid);
+        std::printf("%-40s delta %-8g %-7s %10.4g coll/particle %8.2f s CPU  max |dT/T| %.3g at t = %g, departs at %g "
+                    "(delta^-3 = %g)\n",
+                    inputs[i].c_str(), delta, sticky ? "sticky" : "elastic", collisions, cpu,
+                    comparison.max_abs_deviation, comparison.time_of_max, comparison.departure_time, t_valid);
+        if (table)
+            table->row({delta, sticky ? 1.0 : 0.0, collisions, cpu, comparison.max_abs_deviation, comparison.time_of_max,
+                        comparison.departure_time, t_valid});
+        if (deviation_curves) {
+            deviation_curves->comment(inputs[i]);
+            for (std::size_t k = 0; k < comparison.time.size(); ++k)
+                deviation_curves->row({comparison.time[k], comparison.relative_deviation[k], comparison.relative_sigma[k]});
+            deviation_curves->blank_line();
+        }
+    }
+    results.commit();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -344,11 +405,26 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     shocks->add_option("--segment-break", shock_rule.segment_break_fraction, "segments end at drops >= this * v_rms")
         ->capture_default_str();
+    shocks->add_option("--coarse-grain", shock_rule.coarse_grain_mass,
+                       "merge consecutive clusters into cells of at least this mass first (0: off)")
+        ->capture_default_str();
+    shocks->add_option("--merge-gap", shock_rule.merge_gap_points,
+                       "compressive runs at most this many expanding pairs apart are one shock")
+        ->capture_default_str();
 
     auto* collapse = app.add_subcommand("collapse", "collapse time and cluster mass per eps (delta = 0 runs)");
     collapse->add_option("inputs", inputs, "shockgas-sim outputs, one per eps")->required()->check(CLI::ExistingFile);
     collapse->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
     collapse->add_option("--data", data, "collapse table for gnuplot");
+
+    std::string reference, curves;
+    auto* compare = app.add_subcommand("compare", "deviation of T(t) from a reference run, with cost (the speed/accuracy trade)");
+    compare->add_option("reference", reference, "the reference (most accurate) shockgas-sim output")->required()
+        ->check(CLI::ExistingFile);
+    compare->add_option("inputs", inputs, "the runs to compare with it")->required()->check(CLI::ExistingFile);
+    compare->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
+    compare->add_option("--data", data, "table: delta, cost, deviation, departure time");
+    compare->add_option("--curves", curves, "deviation against time, one block per input");
 
     CLI11_PARSE(app, argc, argv);
     try {
@@ -357,6 +433,7 @@ int main(int argc, char** argv) {
         if (*scaling) run_scaling(inputs, output, data, tail_rule);
         if (*shocks) run_shocks(input, output, data, shock_rule);
         if (*collapse) run_collapse(inputs, output, data);
+        if (*compare) run_compare(reference, inputs, output, data, curves);
     } catch (const std::exception& error) {
         std::fprintf(stderr, "shockgas-analyze: %s\n", error.what());
         return 1;

@@ -45,7 +45,37 @@ std::vector<Snapshot> read_snapshots(const std::string& path) {
     return out;
 }
 
-ShockProfile find_shocks(const Snapshot& snapshot, const ShockRule& rule) {
+Snapshot coarse_grained(const Snapshot& snapshot, double cell_mass) {
+    Snapshot out = snapshot;
+    out.position.clear();
+    out.velocity.clear();
+    out.mass.clear();
+    const double half_ring = 0.5 * snapshot.ring_length;
+    double mass = 0.0, moment = 0.0, momentum = 0.0, first = 0.0;
+    auto flush = [&] {
+        if (mass <= 0.0) return;
+        double x = moment / mass;
+        if (x >= snapshot.ring_length) x -= snapshot.ring_length;
+        out.position.push_back(x);
+        out.velocity.push_back(momentum / mass);
+        out.mass.push_back(mass);
+        mass = moment = momentum = 0.0;
+    };
+    for (std::size_t i = 0; i < snapshot.velocity.size(); ++i) {
+        double x = snapshot.position[i];
+        if (mass == 0.0) first = x;
+        if (x < first - half_ring) x += snapshot.ring_length;  // the cell crosses the seam
+        mass += snapshot.mass[i];
+        moment += snapshot.mass[i] * x;
+        momentum += snapshot.mass[i] * snapshot.velocity[i];
+        if (mass >= cell_mass) flush();
+    }
+    flush();
+    return out;
+}
+
+ShockProfile find_shocks(const Snapshot& input, const ShockRule& rule) {
+    const Snapshot snapshot = rule.coarse_grain_mass > 0.0 ? coarse_grained(input, rule.coarse_grain_mass) : input;
     const std::size_t n = snapshot.velocity.size();
     ShockProfile profile;
     profile.time = snapshot.time;
@@ -88,9 +118,18 @@ ShockProfile find_shocks(const Snapshot& snapshot, const ShockRule& rule) {
         }
         const std::size_t run_begin = s;
         double velocity_change = 0.0;
-        while (s + 1 < n && compressive(order[s])) {
-            velocity_change += drop(order[s]);
-            ++s;
+        for (;;) {
+            while (s + 1 < n && compressive(order[s])) {
+                velocity_change += drop(order[s]);
+                ++s;
+            }
+            // A compressive run resuming within merge_gap_points expanding
+            // pairs belongs to the same shock (a cluster whose members have
+            // not all merged yet): the net velocity change spans both.
+            std::size_t next = s;
+            while (next + 1 < n && next - s < rule.merge_gap_points && !compressive(order[next])) ++next;
+            if (next == s || next + 1 >= n || !compressive(order[next])) break;
+            for (; s < next; ++s) velocity_change += drop(order[s]);
         }
         // Points run_begin..s form the run.
         if (-velocity_change >= rule.segment_break_fraction * v_rms)

@@ -4,6 +4,7 @@
 //   gnuplot-vars FILE.h5 GROUP --prefix P [--recursive]
 //                                         each numeric attribute of GROUP as "P_name = value",
 //                                         each string attribute as P_name = "value"
+#include <cmath>
 #include <cstdio>
 
 #include <CLI/CLI.hpp>
@@ -36,7 +37,12 @@ void dump_snapshots(std::FILE* out, const std::string& path, std::int64_t realiz
 void dump_attributes(std::FILE* out, const shockgas::h5::Group& group, const std::string& prefix, bool recursive) {
     for (const auto& name : group.attribute_names()) {
         try {
-            fmt::print(out, "{}_{} = {:.10g}\n", prefix, name, group.attribute_double(name));
+            // gnuplot knows NaN but not nan or inf: a non-finite number is written as NaN.
+            const double value = group.attribute_double(name);
+            if (std::isfinite(value))
+                fmt::print(out, "{}_{} = {:.10g}\n", prefix, name, value);
+            else
+                fmt::print(out, "{}_{} = NaN\n", prefix, name);
         } catch (const shockgas::h5::Error&) {
             try {
                 std::string text = group.attribute_string(name);
@@ -71,6 +77,7 @@ void dump_gnuplot_vars(std::FILE* out, const std::string& path, const std::strin
 int main(int argc, char** argv) {
     CLI::App app{"shockgas-dump: HDF5 to plain text for gnuplot"};
     app.require_subcommand(1);
+    app.fallthrough();  // --output may follow the subcommand
     std::string input, group_path, prefix = "fit", output;
     app.add_option("-o,--output", output, "write here instead of standard output");
     std::int64_t realization = 0;

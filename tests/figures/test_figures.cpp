@@ -25,7 +25,7 @@ double attribute(const std::string& file, const std::string& group, const std::s
 constexpr double k_sigma = 3.0;
 
 TEST(Figures, EveryFigureHasPngAndPdf) {
-    for (const char* name : {"fig1", "fig2", "fig3", "fig4", "fig5", "fig_crossovers", "fig_haff"})
+    for (const char* name : {"fig1", "fig2", "fig3", "fig4", "fig5", "fig_crossovers", "fig_haff", "fig_tradeoff"})
         for (const char* extension : {".png", ".pdf"}) {
             const fs::path path = fs::path(figure_dir) / (std::string(name) + extension);
             ASSERT_TRUE(fs::exists(path)) << path;
@@ -55,16 +55,37 @@ TEST(Figures, Fig1PureInelasticRunsStopAtCollapse) {
     }
 }
 
-TEST(Figures, CrossoverTimesScaleAsPredicted) {
+TEST(Figures, StickTimeScalesAsEpsToMinusThreeHalves) {
     const std::string file = "fig_crossovers/crossovers.h5";
     const double stick = attribute(file, "scaling_in_eps", "t_stick_exponent");
     const double stick_sigma = attribute(file, "scaling_in_eps", "t_stick_exponent_sigma");
     // t_stick ~ eps^(-3/2): matching eps^-2 t^-2 with t^(-2/3) (Eq. 3).
     EXPECT_NEAR(stick, -1.5, k_sigma * stick_sigma) << stick << " +- " << stick_sigma;
-    const double dissip = attribute(file, "scaling_in_eps", "t_dissip_exponent");
-    const double dissip_sigma = attribute(file, "scaling_in_eps", "t_dissip_exponent_sigma");
-    // t_dissip ~ eps^-1 (Eq. 2).
-    EXPECT_NEAR(dissip, -1.0, k_sigma * dissip_sigma) << dissip << " +- " << dissip_sigma;
+}
+
+// Haff's law for this rule (README, "Haff's law"): T = T0 / (1 + A eps (1 - eps)
+// sqrt(T0) t)^2 with A = 6 sqrt(3)/5, so T = T0/2 at
+//   t_dissip = (sqrt 2 - 1) / (A sqrt(T0) eps (1 - eps)) = 0.3452 / (eps (1 - eps)):
+// the paper's t_dissip ~ 1/eps, with its constant and the (1 - eps) of Eq. (1).
+// Tolerance: the lattice start delays the first collisions, so the effective A
+// at t ~ 8 is 1.99, 4.3% below A (README, Haff table); every t_dissip here is
+// >= 7.5, so it can be late by at most that much.
+constexpr double haff_dissipation_time_tolerance = 0.045;
+
+TEST(Figures, DissipationTimeIsHaffsWithTheDerivedConstant) {
+    const double predicted = (std::sqrt(2.0) - 1.0) / (6.0 * std::sqrt(3.0) / 5.0 * std::sqrt(1.0 / 3.0));
+    const auto h5 = shockgas::h5::File::open_read(pipeline_dir + "/fig_crossovers/crossovers.h5");
+    int checked = 0;
+    for (int k = 0;; ++k) {
+        const std::string group = "crossover" + std::to_string(k);
+        if (!h5.root().has(group)) break;
+        const double eps = h5.root().open_group(group).attribute_double("inelasticity");
+        const double t_dissip = h5.root().open_group(group).attribute_double("t_dissip");
+        EXPECT_NEAR(t_dissip * eps * (1 - eps), predicted, haff_dissipation_time_tolerance * predicted)
+            << "eps = " << eps;
+        ++checked;
+    }
+    EXPECT_GE(checked, 3);
 }
 
 TEST(Figures, VelocityDistributionsCollapseWithOneThird) {

@@ -131,6 +131,8 @@ TEST(AnalysisDecay, WindowRuleAndScan) {
     EXPECT_NEAR(window.t_lo, 10.0 * std::pow(0.05, -1.5), 1e-9);
     EXPECT_DOUBLE_EQ(window.t_hi, 1e5);  // min(t_last = 1e5, 0.01 N^3/2 = 1e7, delta^-3 = 1e6)
     EXPECT_THROW(sa::automatic_decay_window(0.99, 1e-2, 1e4, 1e3), sa::InsufficientData);
+    // The sticky gas (eps = 1/2, eps^-3/2 = 2.8) still starts at t = 100, after its own transient.
+    EXPECT_DOUBLE_EQ(sa::automatic_decay_window(0.0, 1e-2, 1e6, 1e5).t_lo, 100.0);
     std::mt19937_64 random(7);
     const auto history = synthetic_history(random, 2.0 / 3.0, 10);
     const auto scan = sa::scan_decay_windows(history, 1.0, 0.5);

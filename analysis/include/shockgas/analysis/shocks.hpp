@@ -42,7 +42,22 @@ struct ShockRule {
     double segment_break_fraction = 0.1; // segments end at drops above 0.1 v_rms
     double cluster_gap = 1e-6;        // positions this close (in spacings) belong to one cluster
     std::size_t min_segment_points = 5;  // a straight line fitted to fewer says little
+    // When > 0: first merge consecutive clusters into cells of at least this
+    // mass (mass-weighted position and velocity), so that the velocity jitter
+    // of particles inside a dense, not yet merged cluster (elastic or r > 0
+    // collisions below the threshold) is not counted as many small shocks.
+    // A cell much smaller than a sawtooth tooth (N t^(-2/3) teeth of mass
+    // ~t^(2/3)) leaves shocks and slopes intact.
+    double coarse_grain_mass = 0.0;
+    // Compressive runs separated by at most this many expanding pairs are one
+    // shock (0: every run stands alone).
+    std::size_t merge_gap_points = 0;
 };
+
+// Consecutive clusters merged into cells of mass >= cell_mass (the last cell
+// takes the remainder): mass summed, position and velocity mass-weighted,
+// positions unwrapped across the seam inside a cell.
+Snapshot coarse_grained(const Snapshot& snapshot, double cell_mass);
 
 struct SegmentFit {
     double x_lo = 0.0, x_hi = 0.0;  // unwrapped positions of the first and last point

@@ -34,11 +34,13 @@ struct TemperatureHistory {
 };
 
 // The automatic post-crossover window (see analysis/README.md, "Window rule"):
-//   t_lo = start_factor * max(1, eps^(-3/2)),  eps = (1 - r)/2, the sticky crossover of Eq. (3);
+//   t_lo = start_factor * max(scaling_onset, eps^(-3/2)),  eps = (1 - r)/2, the sticky crossover of
+//          Eq. (3), but no earlier than the sticky gas's own approach to scaling (t ~ 100);
 //   t_hi = min(last common sample time, end_factor * N^(3/2), delta^(-3) when delta > 0),
 // the finite-ring crossover of Eq. (3) and the threshold's validity bound t_valid ~ delta^(-3).
 struct WindowRule {
     double start_factor = 10.0;  // "t >> t_stick" of Eq. (3) read as one decade past eps^(-3/2)
+    double scaling_onset = 10.0; // ... and never before t = 100: the sticky gas's own approach to scaling
     double end_factor = 0.01;    // stays two decades below N^(3/2), where a few dozen clusters remain
 };
 struct DecayWindow {

@@ -1,0 +1,30 @@
+// How far one run's T(t) lies from a reference run's: the measure of the
+// speed/accuracy trade (a larger threshold delta, or the sticky sub-threshold
+// mechanism, is cheaper; how much does T(t) move?). P5 of the paper: results
+// are independent of delta while v ~ t^(-1/3) >> delta, i.e. up to
+// t_valid ~ delta^(-3).
+#pragma once
+
+#include <vector>
+
+#include "shockgas/analysis/temperature.hpp"
+
+namespace shockgas::analysis {
+
+struct TemperatureComparison {
+    std::vector<double> time;                // common sample times
+    std::vector<double> relative_deviation;  // <T>/<T_ref> - 1
+    std::vector<double> relative_sigma;      // its standard error (both ensembles, independent)
+    double max_abs_deviation = 0.0;          // max_k |<T>/<T_ref> - 1|
+    double time_of_max = 0.0;
+    // The first sample time from which on the deviation exceeds
+    // max(k_sigma * relative_sigma, floor) at every later time; +inf if never.
+    double departure_time = 0.0;
+};
+
+// Compares at the sample times both histories share (they must come from the
+// same sample grid). relative_sigma = |ratio| sqrt((SE/T)^2 + (SE_ref/T_ref)^2).
+TemperatureComparison compare_temperatures(const TemperatureHistory& run, const TemperatureHistory& reference,
+                                           double k_sigma = 3.0, double floor = 0.02);
+
+}  // namespace shockgas::analysis
