@@ -14,8 +14,8 @@ set logscale xy
 @decades
 set xlabel 'ε(1 - ε) t'
 set ylabel 'T(t) / T_0'
-set xrange [1e-3:1e3]
-set yrange [1e-6:1.5]
+set xrange [1e-3:1e2]
+set yrange [1e-3:1.5]
 set key bottom left
 plot for [i = 1:4] datadir.'/'.word(runs, i).'.T.dat' \
          using (word(eps_list, i) * (1 - word(eps_list, i)) * $1):($2 / T0) with linespoints lt i pt 7 ps 0.4 \

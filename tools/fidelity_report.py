@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Cost and accuracy of every figure at one fidelity, as Markdown tables.
+
+Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper]
+
+Reads the runs (build/paper_targets/<fidelity>/<fig>/*.h5 written by shockgas-sim:
+particles, realizations, cpu_seconds, peak_memory_bytes, total_collisions) and the
+analysis results next to them (decay exponents, crossover and scaling fits,
+shocks, the speed/accuracy comparison), and prints what the README's fidelity
+tables show. Reads only; computes nothing but sums and ratios.
+"""
+import glob
+import os
+import sys
+
+import h5py
+
+build = sys.argv[1] if len(sys.argv) > 1 else "build"
+fidelity = sys.argv[2] if len(sys.argv) > 2 else "quick"
+base = os.path.join(build, "paper_targets", fidelity)
+
+
+def runs(figure):
+    for path in sorted(glob.glob(os.path.join(base, figure, "*.h5"))):
+        with h5py.File(path, "r") as f:
+            if "timeseries" in f and ".part" not in path:
+                yield os.path.basename(path)[:-3], dict(f.attrs)
+
+
+print(f"### Cost per figure ({fidelity} fidelity, {build})\n")
+print("| figure | runs | N | realizations | collisions | CPU s | peak memory |")
+print("|---|---|---|---|---|---|---|")
+total_cpu = 0.0
+for figure in ["fig1", "fig2", "fig3", "fig4", "fig5", "fig_crossovers", "fig_haff", "fig_tradeoff"]:
+    items = list(runs(figure))
+    if not items:
+        continue
+    cpu = sum(a["cpu_seconds"] for _, a in items)
+    total_cpu += cpu
+    collisions = sum(int(a["total_collisions"]) for _, a in items)
+    sizes = sorted({int(a["particles"]) for _, a in items})
+    reals = sorted({int(a["realizations"]) for _, a in items})
+    memory = max(a.get("peak_memory_bytes", 0.0) for _, a in items)
+    fmt_n = ", ".join(f"{n:.0e}".replace("e+0", "e") for n in sizes)
+    print(f"| {figure} | {len(items)} | {fmt_n} | {', '.join(map(str, reals))} | {collisions:.3g} | "
+          f"{cpu:.0f} | {memory / 2**20:.0f} MiB |")
+print(f"| **all** | | | | | **{total_cpu:.0f}** | |\n")
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def attrs(path, group):
+    with h5py.File(path, "r") as f:
+        return dict(f[group].attrs)
+
+
+print("### Fitted numbers\n")
+print("| quantity | measured | paper / theory |")
+print("|---|---|---|")
+for run, paper in [("r0", "0.67 / 2/3"), ("r0.5", "0.67"), ("r0.9", "0.66"), ("r0.99", "—")]:
+    path = os.path.join(base, "fig1", run + ".decay.h5")
+    if os.path.exists(path):
+        d = attrs(path, "decay")
+        print(f"| Fig. 1 decay exponent, {run.replace('r', 'r = ')} (window [{d['t_lo']:.0f}, {d['t_hi']:.0f}]) | "
+              f"{d['exponent']:.3f} ± {d['exponent_sigma']:.3f} (stat) ± {d['exponent_window_systematic']:.3f} (window) | {paper} |")
+path = os.path.join(base, "fig_crossovers", "crossovers.h5")
+if os.path.exists(path):
+    d = attrs(path, "scaling_in_eps")
+    for name, label, expected in [("t_dissip", "t_dissip vs ε", "−1 (leading order)"),
+                                  ("t_stick", "t_stick vs ε", "−3/2"),
+                                  ("temperature_at_stick", "T(t_stick) vs ε", "+1")]:
+        print(f"| {label} exponent | {d[name + '_exponent']:.3f} ± {d[name + '_exponent_sigma']:.3f} | {expected} |")
+path = os.path.join(base, "fig4", "scaling.h5")
+if os.path.exists(path):
+    d = attrs(path, "collapse")
+    print(f"| Fig. 4 scaling exponent β | {d['beta']:.3f} ± {d['beta_sigma']:.3f} | 1/3 |")
+    with h5py.File(path, "r") as f:
+        for g in sorted(k for k in f if k.startswith("histogram")):
+            a = f[g].attrs
+            line = f"| Fig. 4 {text(a['label'])}: kurtosis"
+            value = f"{a['kurtosis']:.3f} ± {a['kurtosis_sigma']:.3f}"
+            if "tail_gamma" in a:
+                line += ", tail γ"
+                value += f"; γ = {a['tail_gamma']:.2f} ± {a['tail_gamma_sigma']:.2f}"
+            print(f"{line} | {value} | 3.041 (exact Φ); γ = 3 asymptotically |")
+path = os.path.join(base, "fig5", "shocks.h5")
+if os.path.exists(path):
+    d = attrs(path, "shocks0")
+    print(f"| Fig. 5 shocks at t = {d['time']:g} | {d['shock_count']:.0f} | N t^(−2/3) = {d['expected_shock_count']:.1f} |")
+    print(f"| Fig. 5 segment slope × t, density-corrected | {d['density_corrected_slope_times_t']:.2f} ± "
+          f"{d['density_corrected_slope_times_t_sigma']:.2f} | 1 (Eq. 6) |")
+
+path = os.path.join(base, "fig_tradeoff", "tradeoff.h5")
+if os.path.exists(path):
+    print("\n### Threshold and sub-threshold mechanism (r = 0.9; deviation from the reference run)\n")
+    with h5py.File(path, "r") as f:  # input0_*: the reference run's attributes, copied forward
+        a = {k[len("input0_"):]: v for k, v in f.attrs.items() if k.startswith("input0_")}
+        coll = a["total_collisions"] / a["particles"] / a["realizations"]
+        print(f"Reference: δ = {a['velocity_threshold']:g}, {text(a['subthreshold'])}, N = {a['particles']}, "
+              f"{a['realizations']} realizations, t = {a['t_max']:g}: {coll:.3g} collisions per particle, "
+              f"{a['cpu_seconds']:.1f} CPU s.\n")
+    print("| δ | sub-threshold | collisions/particle | CPU s | max \\|ΔT/T\\| | departs at t | δ^−3 |")
+    print("|---|---|---|---|---|---|---|")
+    with h5py.File(path, "r") as f:
+        for g in sorted((k for k in f if k.startswith("compare")), key=lambda k: int(k[7:])):
+            a = f[g].attrs
+            sub = text(a["subthreshold"])
+            print(f"| {a['velocity_threshold']:g} | {sub} | {a['collisions_per_particle']:.3g} | {a['cpu_seconds']:.1f} | "
+                  f"{a['max_abs_deviation']:.2g} | {a['departure_time']:g} | {a['t_valid']:.0e} |")
+    print("\n### Statistical error of the sticky-gas exponent against CPU (r = 0, t ≤ 10⁴)\n")
+    print("| N | realizations | CPU s | α ± σ |")
+    print("|---|---|---|---|")
+    for path in sorted(glob.glob(os.path.join(base, "fig_tradeoff", "stat_*.decay.h5")),
+                       key=lambda p: (int(p.split("_N")[1].split("_")[0]), int(p.split("_R")[1].split(".")[0]))):
+        with h5py.File(path, "r") as f:
+            a, d = f.attrs, f["decay"].attrs
+            print(f"| {int(a['input_particles']):.0e} | {int(a['input_realizations'])} | {a['input_cpu_seconds']:.2f} | "
+                  f"{d['exponent']:.4f} ± {d['exponent_sigma']:.4f} |")
