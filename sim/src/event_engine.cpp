@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "shockgas/collision.hpp"
+#include "shockgas/ring_kinematics.hpp"
 
 namespace shockgas {
 
@@ -46,7 +47,7 @@ EventEngine::EventEngine(const InitialCondition& initial, const CollisionModel& 
 double EventEngine::gap_at(std::int32_t slot, double t) const {
     const Cluster& left = cluster_[static_cast<std::size_t>(slot)];
     const Cluster& right = cluster_[static_cast<std::size_t>(left.next)];
-    return left.gap + (right.velocity - left.velocity) * (t - std::max(left.clock, right.clock));
+    return gap_at_time(left.gap, left.velocity, right.velocity, left.clock, right.clock, t);
 }
 
 // Pair (slot, next) collides at tau + gap / (v_left - v_right) if approaching;
@@ -63,9 +64,7 @@ void EventEngine::reschedule(std::int32_t slot) {
         queue_.remove(slot);
         return;
     }
-    double t = std::max(left.clock, right.clock) + left.gap / closing_speed;
-    if (!(t >= now_)) t = now_;
-    queue_.schedule(slot, t);
+    queue_.schedule(slot, contact_time(left.gap, closing_speed, left.clock, right.clock, now_));
 }
 
 void EventEngine::move_anchor_clock(std::int32_t slot, double t) {
@@ -197,34 +196,8 @@ std::vector<double> EventEngine::gaps() const {
 }
 
 void EventEngine::clusters(ClusterState& out) const {
-    out.clear();
-    out.time = now_;
-    const auto count = static_cast<std::size_t>(alive_);
-    std::vector<double> walk_position(count);
-    std::vector<std::int32_t> walk_slot(count);
-    const Cluster& anchor = cluster_[static_cast<std::size_t>(anchor_)];
-    double x = anchor_position_ + anchor.velocity * (now_ - anchor.clock);
-    std::int32_t s = anchor_;
-    std::size_t first = 0;
-    for (std::size_t k = 0; k < count; ++k) {
-        walk_position[k] = x;
-        walk_slot[k] = s;
-        if (s < walk_slot[first]) first = k;
-        x += gap_at(s, now_);
-        s = cluster_[static_cast<std::size_t>(s)].next;
-    }
-    out.position.reserve(count);
-    out.velocity.reserve(count);
-    out.mass.reserve(count);
-    out.first_particle.reserve(count);
-    for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t w = (first + k) % count;
-        const Cluster& c = cluster_[static_cast<std::size_t>(walk_slot[w])];
-        out.position.push_back(wrap_position(walk_position[w], ring_length_));
-        out.velocity.push_back(c.velocity);
-        out.mass.push_back(c.mass);
-        out.first_particle.push_back(walk_slot[w]);
-    }
+    walk_ring(cluster_, anchor_, anchor_position_, now_, alive_, ring_length_,
+              [this](std::int32_t slot, double t) { return gap_at(slot, t); }, out);
 }
 
 }  // namespace shockgas

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "shockgas/collision.hpp"
+#include "shockgas/ring_kinematics.hpp"
 
 namespace shockgas {
 
@@ -75,7 +76,7 @@ FastEventEngine::FastEventEngine(const InitialCondition& initial, const Collisio
 double FastEventEngine::gap_at(std::int32_t slot, double t) const {
     const Node& left = node_[static_cast<std::size_t>(slot)];
     const Node& right = node_[static_cast<std::size_t>(left.next)];
-    return left.gap + (right.velocity - left.velocity) * (t - std::max(left.clock, right.clock));
+    return gap_at_time(left.gap, left.velocity, right.velocity, left.clock, right.clock, t);
 }
 
 // The key EventEngine::reschedule would give pair (slot, next) at now_.
@@ -85,9 +86,7 @@ double FastEventEngine::key_for(std::int32_t slot) const {
     const Node& right = node_[static_cast<std::size_t>(left.next)];
     const double closing_speed = left.velocity - right.velocity;
     if (!(closing_speed > 0.0)) return never;
-    double t = std::max(left.clock, right.clock) + left.gap / closing_speed;
-    if (!(t >= now_)) t = now_;
-    return t;
+    return contact_time(left.gap, closing_speed, left.clock, right.clock, now_);
 }
 
 // Within a block: record the key, and keep the pair in the block's heap only
@@ -353,7 +352,7 @@ void FastEventEngine::replay_cut(const Cut& cut, const std::vector<BoundaryChang
         }
         const BoundaryChange& change = take_left ? left_side[a++] : right_side[b++];
         const double t = change.time;
-        gap = gap + (right_velocity - left_velocity) * (t - std::max(left_clock, right_clock));
+        gap = gap_at_time(gap, left_velocity, right_velocity, left_clock, right_clock, t);
         if (take_left) {
             left = change.end_slot;
             left_velocity = change.velocity;
@@ -364,10 +363,7 @@ void FastEventEngine::replay_cut(const Cut& cut, const std::vector<BoundaryChang
         }
         const double closing_speed = left_velocity - right_velocity;
         key = never;
-        if (closing_speed > 0.0) {
-            key = std::max(left_clock, right_clock) + gap / closing_speed;
-            if (!(key >= t)) key = t;
-        }
+        if (closing_speed > 0.0) key = contact_time(gap, closing_speed, left_clock, right_clock, t);
         if (!(key > window_end_))
             throw std::logic_error("FastEventEngine: a cut pair became due inside its window");
     }
@@ -400,35 +396,8 @@ void FastEventEngine::check_stall_bound(double window_end, std::uint64_t run_eve
 }
 
 void FastEventEngine::clusters(ClusterState& out) const {
-    // EventEngine::clusters with this engine's records: same walk, same sums.
-    out.clear();
-    out.time = now_;
-    const auto count = static_cast<std::size_t>(alive_);
-    std::vector<double> walk_position(count);
-    std::vector<std::int32_t> walk_slot(count);
-    const Node& anchor = node_[static_cast<std::size_t>(anchor_)];
-    double x = anchor_position_ + anchor.velocity * (now_ - anchor.clock);
-    std::int32_t s = anchor_;
-    std::size_t first = 0;
-    for (std::size_t k = 0; k < count; ++k) {
-        walk_position[k] = x;
-        walk_slot[k] = s;
-        if (s < walk_slot[first]) first = k;
-        x += gap_at(s, now_);
-        s = node_[static_cast<std::size_t>(s)].next;
-    }
-    out.position.reserve(count);
-    out.velocity.reserve(count);
-    out.mass.reserve(count);
-    out.first_particle.reserve(count);
-    for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t w = (first + k) % count;
-        const Node& c = node_[static_cast<std::size_t>(walk_slot[w])];
-        out.position.push_back(wrap_position(walk_position[w], ring_length_));
-        out.velocity.push_back(c.velocity);
-        out.mass.push_back(c.mass);
-        out.first_particle.push_back(walk_slot[w]);
-    }
+    walk_ring(node_, anchor_, anchor_position_, now_, alive_, ring_length_,
+              [this](std::int32_t slot, double t) { return gap_at(slot, t); }, out);
 }
 
 }  // namespace shockgas

@@ -57,12 +57,15 @@ elif [ "$mode" = run ]; then
   fi
   scratch="$out_dir/corpus_$harness"
   mkdir -p "$scratch"
+  # A fixed seed and a fixed number of runs make the ctest repeatable (the
+  # same inputs on every machine); max_total_time only bounds a slow machine.
   # Leak detection off: HDF5 keeps global state on purpose. allocator_may_return_null:
   # on corrupt headers HDF5 itself asks malloc for absurd sizes (~2^44 bytes,
   # in H5C_protect); a plain malloc returns NULL there and HDF5 reports an error,
   # which is what happens outside the sanitizer, so let ASan do the same.
   ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:allocator_may_return_null=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-    "$out_dir/$harness" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
+    "$out_dir/$harness" -seed=1 -runs=$((seconds * 300)) -max_total_time=$((seconds * 10)) -timeout=10 \
+      -rss_limit_mb=2048 -max_len=4096 \
       -close_fd_mask=3 -artifact_prefix="$out_dir/crash_$harness-" "$scratch" "$corpus"
 else
   echo "usage: run_fuzz.sh build|run ..." >&2
