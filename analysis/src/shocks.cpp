@@ -5,7 +5,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
 
 namespace shockgas::analysis {
 
@@ -20,29 +20,9 @@ std::vector<Snapshot> snapshots_from(const EnsembleResult& result, double ring_l
 }
 
 std::vector<Snapshot> read_snapshots(const std::string& path) {
-    const auto file = h5::File::open_read(path);
-    const auto root = file.root();
-    double ring_length = root.attribute_double("ring_length");
-    if (!(ring_length > 0.0)) ring_length = static_cast<double>(root.attribute_integer("particles"));
-    std::vector<Snapshot> out;
-    if (!root.has("snapshots")) return out;
-    const auto group = root.open_group("snapshots");
-    auto names = group.children();
-    std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-        return a.size() != b.size() ? a.size() < b.size() : a < b;
-    });
-    for (const auto& name : names) {
-        const auto entry = group.open_group(name);
-        Snapshot s;
-        s.time = entry.attribute_double("time");
-        s.realization = entry.attribute_integer("realization");
-        s.ring_length = ring_length;
-        s.position = entry.read_doubles("position");
-        s.velocity = entry.read_doubles("velocity");
-        s.mass = entry.read_doubles("mass");
-        out.push_back(std::move(s));
-    }
-    return out;
+    // The schema is read in one place (shockgas::read_output).
+    const OutputFile file = read_output(path);
+    return snapshots_from(file.result, file.parameters.effective_ring_length());
 }
 
 Snapshot coarse_grained(const Snapshot& snapshot, double cell_mass) {

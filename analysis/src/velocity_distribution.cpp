@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
 
 namespace shockgas::analysis {
 
@@ -126,26 +127,19 @@ std::vector<VelocityHistogram> histograms_from(const EnsembleResult& result, con
 }
 
 std::vector<VelocityHistogram> read_histograms(const std::string& path, const std::string& label_prefix) {
-    const auto file = h5::File::open_read(path);
-    const auto root = file.root();
+    // The schema is read in one place (shockgas::read_output).
+    const OutputFile file = read_output(path);
+    const auto realizations = static_cast<std::size_t>(file.result.realizations);
     std::vector<VelocityHistogram> out;
-    if (!root.has("histograms")) return out;
-    const auto group = root.open_group("histograms");
-    auto names = group.children();
-    std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-        return a.size() != b.size() ? a.size() < b.size() : a < b;  // numeric order of "0", "1", ..., "10"
-    });
-    for (const auto& name : names) {
-        const auto entry = group.open_group(name);
+    for (const auto& record : file.result.histograms) {
+        if (record.counts.size() != realizations * (record.edges.size() + 1))
+            throw h5::Error(path + ": a /histograms counts table is not realizations x (bins + 2)");
         VelocityHistogram h;
-        h.time = entry.attribute_double("time");
+        h.time = record.time;
         h.label = time_label(label_prefix, h.time);
-        h.edges = entry.read_doubles("edges");
-        std::vector<hsize_t> dims;
-        h.counts = entry.read_doubles("counts", &dims);
-        if (dims.size() != 2 || dims[1] != h.edges.size() + 1)
-            throw h5::Error(path + ": /histograms/" + name + "/counts is not realizations x (bins + 2)");
-        h.realizations = static_cast<std::size_t>(dims[0]);
+        h.edges = record.edges;
+        h.counts = record.counts;
+        h.realizations = realizations;
         out.push_back(std::move(h));
     }
     return out;

@@ -182,15 +182,6 @@ std::vector<std::int64_t> Group::read_integers(const std::string& name, std::vec
     return read_dataset<std::int64_t>(id(), where(name), name, dims, H5T_NATIVE_INT64);
 }
 
-std::vector<hsize_t> Group::dataset_dims(const std::string& name) const {
-    std::vector<hsize_t> dims;
-    Handle dataset(check(H5Dopen2(id(), name.c_str(), H5P_DEFAULT), "missing dataset " + where(name)), H5Dclose);
-    Handle space(check(H5Dget_space(dataset.id()), "cannot read shape of " + where(name)), H5Sclose);
-    dims.resize(static_cast<std::size_t>(std::max(H5Sget_simple_extent_ndims(space.id()), 0)));
-    H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
-    return dims;
-}
-
 void Group::set_attribute(const std::string& name, double value) {
     write_numeric_attribute(id(), where(name), name, &value, 1, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, true);
 }

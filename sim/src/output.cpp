@@ -161,9 +161,6 @@ ClusterState read_state(const h5::Group& group) {
     return state;
 }
 
-// Children of a group named 0, 1, 2, ... in numeric order.
-std::size_t numbered_children(const h5::Group& group) { return group.children().size(); }
-
 }  // namespace
 
 OutputFile read_output(const std::string& path) {
@@ -209,12 +206,15 @@ OutputFile read_output(const std::string& path) {
     r.kinetic_energy = series.read_doubles("kinetic_energy");
     r.realization_status = series.read_integers("realization_status");
     const auto snapshots = root.open_group("snapshots");
-    for (std::size_t s = 0; s < numbered_children(snapshots); ++s) {
+    // Groups are named 0, 1, 2, ...: open them in numeric order.
+    const std::size_t snapshot_count = snapshots.children().size();
+    for (std::size_t s = 0; s < snapshot_count; ++s) {
         const auto group = snapshots.open_group(fmt::format("{}", s));
         r.snapshots.push_back({group.attribute_integer("realization"), read_state(group)});
     }
     const auto histograms = root.open_group("histograms");
-    for (std::size_t h = 0; h < numbered_children(histograms); ++h) {
+    const std::size_t histogram_count = histograms.children().size();
+    for (std::size_t h = 0; h < histogram_count; ++h) {
         const auto group = histograms.open_group(fmt::format("{}", h));
         r.histograms.push_back({group.attribute_double("time"), group.read_doubles("edges"), group.read_doubles("counts")});
     }

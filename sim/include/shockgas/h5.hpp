@@ -68,7 +68,6 @@ public:
     void write(const std::string& name, const std::vector<std::int64_t>& data, std::vector<hsize_t> dims = {});
     std::vector<double> read_doubles(const std::string& name, std::vector<hsize_t>* dims = nullptr) const;
     std::vector<std::int64_t> read_integers(const std::string& name, std::vector<hsize_t>* dims = nullptr) const;
-    std::vector<hsize_t> dataset_dims(const std::string& name) const;
 
     // Attributes on this group.
     void set_attribute(const std::string& name, double value);
