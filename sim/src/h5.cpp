@@ -67,6 +67,15 @@ std::vector<T> read_dataset(hid_t group, const std::string& where, const std::st
                             std::vector<hsize_t>* dims_out, hid_t memory_type) {
     if (H5Lexists(group, name.c_str(), H5P_DEFAULT) <= 0) throw Error(fmt::format("missing dataset {}", where));
     Handle dataset(check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "cannot open dataset " + where), H5Dclose);
+    // Only plain numbers are converted: a hostile file can declare an element
+    // type of gigabytes (found by fuzzing), for which HDF5 itself would
+    // allocate a conversion buffer of that size.
+    {
+        const Handle type(check(H5Dget_type(dataset.id()), "cannot read type of " + where), H5Tclose);
+        const H5T_class_t kind = H5Tget_class(type.id());
+        if ((kind != H5T_FLOAT && kind != H5T_INTEGER) || H5Tget_size(type.id()) > 16)
+            throw Error(fmt::format("dataset {} is not stored as plain numbers", where));
+    }
     Handle space(check(H5Dget_space(dataset.id()), "cannot read shape of " + where), H5Sclose);
     const int rank = H5Sget_simple_extent_ndims(space.id());
     std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));

@@ -157,4 +157,15 @@ TEST(Output, PartsMergeIntoTheSingleRunResult) {
     EXPECT_THROW(shockgas::merge_outputs({parts[1], parts[0]}, {names[1], names[0]}), shockgas::InputError);
 }
 
+TEST(InitFile, HostileFilesFoundByFuzzingAreRefusedBeforeAllocating) {
+    // Two 2 kB files from the libFuzzer run (tests/fuzz): one declares a
+    // dataset of 1.7e11 bytes, the other an element type of 4 GB per value.
+    // Both must be a one-line InputError, not an allocation of that size.
+    for (const char* name : {"hostile-regression-huge-dims.h5", "hostile-regression-huge-element-type.h5"}) {
+        const std::string path = std::string(SHOCKGAS_TEST_DATA_DIR) + "/" + name;
+        ASSERT_TRUE(fs::exists(path)) << path;
+        EXPECT_THROW(shockgas::read_initial_condition(path), InputError) << name;
+    }
+}
+
 }  // namespace
