@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/distributed.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
@@ -44,6 +45,9 @@ void print_table(const shockgas::EnsembleResult& result) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Under mpirun each rank runs a block of the realizations and rank 0
+    // writes the joined file (distributed.hpp); otherwise one rank, no change.
+    shockgas::DistributedSession session(argc, argv);
     shockgas::SimulationParameters p;
     std::string output = "shockgas.h5";
     std::string subthreshold = "elastic";
@@ -141,20 +145,27 @@ int main(int argc, char** argv) {
             p.ring_length = initial.ring_length;
         }
         shockgas::validate(p);
-        shockgas::h5::check_writable(output);
+        if (session.is_root()) shockgas::h5::check_writable(output);
+        const shockgas::SimulationParameters mine = session.share(p);
 
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
         shockgas::ProgressCallback progress;
-        if (isatty(STDERR_FILENO) && !quiet)
+        if (isatty(STDERR_FILENO) && !quiet && session.is_root())
             progress = [](const shockgas::Progress& status) {
                 fmt::print(stderr, "\r{:<110}", shockgas::format_progress(status));
                 std::fflush(stderr);
             };
-        const auto result =
-            shockgas::run_ensemble(p, p.init_file.empty() ? nullptr : &initial, &interrupt_requested, progress);
+        auto mine_result = mine.realizations == 0
+                               ? shockgas::EnsembleResult{}  // an MPI rank beyond the realizations: idle
+                               : shockgas::run_ensemble(mine, p.init_file.empty() ? nullptr : &initial,
+                                                        &interrupt_requested, progress);
+        const auto joined = session.reduce(mine, std::move(mine_result));
+        if (!joined) return 0;  // not rank 0: rank 0 writes the file and reports
+        const auto& result = *joined;
         if (progress) fmt::print(stderr, "\n");
         shockgas::write_output(output, p, result);
+        session.record_provenance(output);
         if (!quiet) print_table(result);
         fmt::print(stderr, "shockgas-sim: {} ({} engine, {} collisions, {:.2f} s wall, {:.2f} s CPU) -> {}\n",
                    result.status, result.engine, result.total_collisions, result.wall_seconds, result.cpu_seconds,

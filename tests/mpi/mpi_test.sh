@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# mpi_test.sh CASE SIM PYTHON WORK_DIR MPIEXEC...: end-to-end tests of
+# `mpirun -np 2 shockgas-sim` (tests/mpi/CMakeLists.txt registers them).
+#   identical     5 realizations over 2 ranks (3 + 2, uneven on purpose) give
+#                 the datasets of a single-process run, bit for bit
+#   idle_rank     1 realization over 2 ranks: rank 1 idles, same file again
+#   failing_rank  a rank that fails before or after its run makes the job
+#                 fail with a line naming it, no output file, and no hang
+# MPIEXEC... is the launcher and its process-count flag, e.g. "mpiexec -n".
+set -u
+case_name=$1 sim=$2 python=$3 work=$4
+shift 4
+mpiexec=("$@")
+here=$(cd "$(dirname "$0")" && pwd)
+compare="$here/compare_outputs.py"
+ranks=2
+
+# Open MPI refuses root without these, and by default binds each rank to
+# one core and refuses more ranks than cores; a test machine may be a
+# container run as root with few cores.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_hwloc_base_binding_policy=none
+# Containers often forbid the cross-memory attach Open MPI uses for large
+# messages on one node; plain copies work everywhere.
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
+
+# The run of the task: N = 2000, r = 0.9, delta = 1e-2 to t = 100, with
+# snapshots and histograms so that every dataset kind is compared.
+physics=(-N 2000 -r 0.9 -d 1e-2 -t 100 --snapshot-times 10,100 --histogram-times 10,100 -q)
+
+fail() { echo "FAIL: $*"; exit 1; }
+
+mkdir -p "$work" && cd "$work" || fail "cannot enter $work"
+rm -f ./*.h5 ./*.stderr
+
+case "$case_name" in
+identical)
+  "$sim" "${physics[@]}" -R 5 -s 7 -o single.h5 || fail "single-process run failed"
+  "${mpiexec[@]}" "$ranks" "$sim" "${physics[@]}" -R 5 -s 7 -j 1 -o distributed.h5 ||
+    fail "mpirun -np $ranks run failed"
+  "$python" "$compare" single.h5 distributed.h5 "$ranks" || fail "the distributed file differs from the single run"
+  # The comparison must be able to fail: another seed gives other datasets.
+  "$sim" "${physics[@]}" -R 5 -s 8 -o other_seed.h5 || fail "single-process run (seed 8) failed"
+  if "$python" "$compare" other_seed.h5 distributed.h5 "$ranks" >other_seed.stderr; then
+    fail "compare_outputs.py accepted files from different seeds"
+  fi
+  grep -q "dataset /timeseries/temperature differs" other_seed.stderr ||
+    fail "compare_outputs.py rejected seed 8 without naming the temperature: $(cat other_seed.stderr)"
+  echo "ok: a different seed is caught"
+  ;;
+idle_rank)
+  "$sim" "${physics[@]}" -R 1 -o single.h5 || fail "single-process run failed"
+  "${mpiexec[@]}" "$ranks" "$sim" "${physics[@]}" -R 1 -j 1 -o distributed.h5 ||
+    fail "mpirun -np $ranks run with one realization failed"
+  "$python" "$compare" single.h5 distributed.h5 "$ranks" || fail "the distributed file differs from the single run"
+  ;;
+failing_rank)
+  # Rank 1 cannot even start: a parameter out of range on its command line.
+  if "${mpiexec[@]}" 1 "$sim" "${physics[@]}" -R 4 -o setup.h5 : \
+     "${mpiexec[@]:1}" 1 "$sim" "${physics[@]}" -R 4 --samples-per-decade 0 -o setup.h5 2>setup.stderr; then
+    fail "the job succeeded although rank 1 had an invalid argument"
+  fi
+  cat setup.stderr
+  grep -q "rank 1 of 2 failed before the run" setup.stderr || fail "no line naming rank 1 (setup)"
+  grep -q "samples per decade must lie in" setup.stderr || fail "rank 1's own error is missing"
+  [ ! -e setup.h5 ] || fail "setup.h5 written by a failed job"
+  # Rank 1 runs but cannot package its block: no temporary directory.
+  if "${mpiexec[@]}" 1 "$sim" "${physics[@]}" -R 4 -o reduce.h5 : \
+     "${mpiexec[@]:1}" 1 env TMPDIR=/nonexistent/shockgas "$sim" "${physics[@]}" -R 4 -o reduce.h5 \
+     2>reduce.stderr; then
+    fail "the job succeeded although rank 1 could not send its block"
+  fi
+  cat reduce.stderr
+  grep -q "rank 1 of 2 could not send its realizations" reduce.stderr || fail "no line naming rank 1 (reduce)"
+  [ ! -e reduce.h5 ] || fail "reduce.h5 written by a failed job"
+  ;;
+*)
+  fail "unknown case '$case_name'"
+  ;;
+esac
+echo "ok: $case_name"
