@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
-# mpi_test.sh CASE SIM PYTHON WORK_DIR MPIEXEC...: end-to-end tests of
+# mpi_test.sh CASE SIM FAILING_RUN PYTHON WORK_DIR MPIEXEC...: end-to-end tests of
 # `mpirun -np 2 shockgas-sim` (tests/mpi/CMakeLists.txt registers them).
 #   identical     5 realizations over 2 ranks (3 + 2, uneven on purpose) give
 #                 the datasets of a single-process run, bit for bit
 #   idle_rank     1 realization over 2 ranks: rank 1 idles, same file again
 #   failing_rank  a rank that fails before or after its run makes the job
 #                 fail with a line naming it, no output file, and no hang
+#   failing_run   a rank that fails during its run stops the whole job at once
+#                 (FAILING_RUN, tests/mpi/failing_run.cpp)
 # MPIEXEC... is the launcher and its process-count flag, e.g. "mpiexec -n".
 set -u
-case_name=$1 sim=$2 python=$3 work=$4
-shift 4
+case_name=$1 sim=$2 failing_run=$3 python=$4 work=$5
+shift 5
 mpiexec=("$@")
 here=$(cd "$(dirname "$0")" && pwd)
 compare="$here/compare_outputs.py"
@@ -73,6 +75,15 @@ failing_rank)
   cat reduce.stderr
   grep -q "rank 1 of 2 could not send its realizations" reduce.stderr || fail "no line naming rank 1 (reduce)"
   [ ! -e reduce.h5 ] || fail "reduce.h5 written by a failed job"
+  ;;
+failing_run)
+  # Rank 0 would run for 10 minutes; rank 1's failure must end the job now.
+  max_seconds=30
+  start=$SECONDS
+  if "${mpiexec[@]}" "$ranks" "$failing_run" 2>run.stderr; then fail "the job succeeded although rank 1 failed"; fi
+  cat run.stderr
+  grep -q "simulated failure during the run of rank 1" run.stderr || fail "rank 1's error is missing"
+  [ $((SECONDS - start)) -lt "$max_seconds" ] || fail "the job took $((SECONDS - start)) s to stop after rank 1 failed"
   ;;
 *)
   fail "unknown case '$case_name'"
