@@ -6,7 +6,9 @@
 # parameter file is the complete record of every run. "parts" > 1 splits the
 # realizations into separately stored parts (shockgas-sim --first-realization)
 # merged by shockgas-merge: an interrupted build keeps the finished parts and
-# continues where it stopped.
+# continues where it stopped. Every run also checkpoints (shockgas-sim's
+# default, every 300 s) and is started with --resume, so a killed build loses
+# at most one checkpoint interval of the run it was in.
 
 set(SHOCKGAS_SIM_STAMP "${CMAKE_BINARY_DIR}/shockgas-sim.stamp")
 string(TOUPPER "${CMAKE_BUILD_TYPE}" _pipeline_build_type)
@@ -72,7 +74,7 @@ function(shockgas_figure_runs figure)
     if(parts EQUAL 1)
       add_custom_command(
         OUTPUT "${h5}"
-        COMMAND shockgas-sim ${args} --realizations ${realizations} --quiet --output "${h5}"
+        COMMAND shockgas-sim ${args} --realizations ${realizations} --quiet --resume --output "${h5}"
         DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
         COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}: ${args_text}"
         VERBATIM)
@@ -88,7 +90,8 @@ function(shockgas_figure_runs figure)
         set(part "${out_dir}/${name}.part${first}.h5")
         add_custom_command(
           OUTPUT "${part}"
-          COMMAND shockgas-sim ${args} --realizations ${count} --first-realization ${first} --quiet --output "${part}"
+          COMMAND shockgas-sim ${args} --realizations ${count} --first-realization ${first} --quiet --resume
+                  --output "${part}"
           DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
           COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}, realizations ${first}..+${count}"
           VERBATIM)

@@ -104,9 +104,20 @@ int main(int argc, char** argv) {
                    "declare inelastic collapse at an inelastic collision slower than this")
         ->capture_default_str();
     app.add_option("-o,--output", output, "output HDF5 file (written atomically)")->capture_default_str();
+    shockgas::CheckpointOptions checkpoint;
+    std::string checkpoint_file;
+    app.add_option("--checkpoint-interval", checkpoint.interval_seconds,
+                   "write a checkpoint every this many seconds of wall time (0: never); also on Ctrl-C")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    app.add_option("--checkpoint", checkpoint_file, "checkpoint file (default: OUTPUT.checkpoint)");
+    app.add_flag("--resume", checkpoint.resume,
+                 "continue from the checkpoint if there is one of this run (same parameters and code version); "
+                 "the output is bit-identical to an uninterrupted run. Without a checkpoint, start from t = 0");
     app.add_flag("-q,--quiet", quiet, "do not print the T(t) table");
     app.footer("Output schema: see README.md, 'Output files'. Ctrl-C writes what has been computed, marked "
-               "interrupted.");
+               "interrupted, and a checkpoint that --resume continues. The checkpoint is removed once the output "
+               "is written.");
 
     // A config file's unknown key is an error, not silently ignored: a typo
     // (`restitutoin = 0.5`) would otherwise run with the default.
@@ -148,6 +159,25 @@ int main(int argc, char** argv) {
         if (session.is_root()) shockgas::h5::check_writable(output);
         const shockgas::SimulationParameters mine = session.share(p);
 
+        // Each MPI rank keeps its own checkpoint of its own block.
+        if (checkpoint_file.empty()) checkpoint_file = shockgas::checkpoint_path_for(output);
+        if (session.ranks() > 1) checkpoint_file += fmt::format(".rank{}", session.rank());
+        if (checkpoint.interval_seconds > 0.0 || checkpoint.resume) {
+            checkpoint.path = checkpoint_file;
+            shockgas::h5::check_writable(checkpoint.path);
+        }
+        const bool terminal = isatty(STDERR_FILENO) != 0;
+        checkpoint.note = [&session, terminal](const std::string& text) {
+            const std::string line = session.ranks() > 1
+                                         ? fmt::format("shockgas-sim[rank {}]: {}", session.rank(), text)
+                                         : fmt::format("shockgas-sim: {}", text);
+            // On a terminal, overwrite the progress line rather than append to it.
+            if (terminal)
+                fmt::print(stderr, "\r{:<110}\n", line);
+            else
+                fmt::print(stderr, "{}\n", line);
+        };
+
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
         shockgas::ProgressCallback progress;
@@ -159,13 +189,19 @@ int main(int argc, char** argv) {
         auto mine_result = mine.realizations == 0
                                ? shockgas::EnsembleResult{}  // an MPI rank beyond the realizations: idle
                                : shockgas::run_ensemble(mine, p.init_file.empty() ? nullptr : &initial,
-                                                        &interrupt_requested, progress);
+                                                        &interrupt_requested, progress, checkpoint);
+        const bool mine_interrupted = mine_result.status == "interrupted";
         const auto joined = session.reduce(mine, std::move(mine_result));
-        if (!joined) return 0;  // not rank 0: rank 0 writes the file and reports
+        if (!joined) {
+            if (!mine_interrupted && !checkpoint.path.empty()) std::remove(checkpoint.path.c_str());
+            return 0;
+        }  // not rank 0: rank 0 writes the file and reports
         const auto& result = *joined;
         if (progress) fmt::print(stderr, "\n");
         shockgas::write_output(output, p, result);
         session.record_provenance(output);
+        // The output is safely in place: the checkpoint has served its purpose.
+        if (result.status != "interrupted" && !checkpoint.path.empty()) std::remove(checkpoint.path.c_str());
         if (!quiet) print_table(result);
         fmt::print(stderr, "shockgas-sim: {} ({} engine, {} collisions, {:.2f} s wall, {:.2f} s CPU) -> {}\n",
                    result.status, result.engine, result.total_collisions, result.wall_seconds, result.cpu_seconds,

@@ -22,6 +22,27 @@ std::string resolve_engine_name(const SimulationParameters& parameters) {
     return parameters.engine;
 }
 
+void Engine::restore(const EngineSnapshot& snapshot) {
+    throw InputError(fmt::format("checkpoint: the {} engine keeps no state to restore (got '{}')", name(),
+                                 snapshot.kind));
+}
+
+// A snapshot names the class that wrote it: the windowed engine's and the
+// reference loop's states differ (the windowed one also carries its window
+// history), and a realization may have fallen back to the reference loop.
+std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const SimulationParameters& parameters,
+                                       const InitialCondition& initial, LiveStatus* live) {
+    std::unique_ptr<Engine> engine;
+    if (snapshot.kind == FastEventEngine::snapshot_kind)
+        engine = std::make_unique<FastEventEngine>(initial, parameters.collision, parameters.collapse, live);
+    else if (snapshot.kind == EventEngine::snapshot_kind)
+        engine = std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
+    else
+        throw InputError(fmt::format("checkpoint: unknown engine state kind '{}'", snapshot.kind));
+    engine->restore(snapshot);
+    return engine;
+}
+
 std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, const InitialCondition& initial,
                                     LiveStatus* live) {
     const std::string name = resolve_engine_name(parameters);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "shockgas/collision.hpp"
+#include "shockgas/engine_snapshot.hpp"
 #include "shockgas/ring_kinematics.hpp"
 
 namespace shockgas {
@@ -89,7 +90,7 @@ bool EventEngine::advance_to(double t) {
         if (live_ != nullptr && (collisions_ & live_status_period_mask) == 0) {
             live_->time.store(now_, std::memory_order_relaxed);
             live_->collisions.store(collisions_, std::memory_order_relaxed);
-            if (live_->stop != nullptr && live_->stop->load(std::memory_order_relaxed)) return false;
+            if (live_->halt_requested()) return false;
         }
     }
     if (collapse_) return false;
@@ -193,6 +194,42 @@ std::vector<double> EventEngine::gaps() const {
         s = cluster_[static_cast<std::size_t>(s)].next;
     }
     return out;
+}
+
+std::optional<EngineSnapshot> EventEngine::snapshot() const {
+    if (collapse_) return std::nullopt;  // a collapsed run is finished, not paused
+    EngineSnapshot out;
+    out.kind = snapshot_kind;
+    snapshot_io::save_ring(cluster_, out);
+    auto& key = out.reals["key"];
+    for (std::size_t s = 0; s < cluster_.size(); ++s) key.push_back(queue_.time_of(static_cast<std::int32_t>(s)));
+    out.reals["scalars"] = {now_, anchor_position_, stall_reference_time_};
+    out.integers["counters"] = {static_cast<std::int64_t>(collisions_), alive_, anchor_,
+                                static_cast<std::int64_t>(stall_events_)};
+    return out;
+}
+
+// The queue is rebuilt from the saved keys: it orders events by (time, slot),
+// a total order, so its pops do not depend on the heap's internal layout.
+void EventEngine::restore(const EngineSnapshot& snapshot) {
+    if (snapshot.kind != snapshot_kind)
+        throw InputError("checkpoint: engine state of kind '" + snapshot.kind + "' given to the event engine");
+    snapshot_io::restore_ring(snapshot, cluster_);
+    const auto& key = snapshot_io::array(snapshot.reals, "key", cluster_.size(), snapshot);
+    const auto& scalars = snapshot_io::array(snapshot.reals, "scalars", 3, snapshot);
+    const auto& counters = snapshot_io::array(snapshot.integers, "counters", 4, snapshot);
+    now_ = scalars[0];
+    anchor_position_ = scalars[1];
+    stall_reference_time_ = scalars[2];
+    collisions_ = static_cast<std::uint64_t>(counters[0]);
+    alive_ = counters[1];
+    anchor_ = static_cast<std::int32_t>(counters[2]);
+    stall_events_ = static_cast<std::uint64_t>(counters[3]);
+    if (alive_ < 1 || alive_ > particles_ || anchor_ < 0 || anchor_ >= particles_)
+        throw InputError("checkpoint: event engine state has an impossible cluster count or anchor");
+    queue_.reset(static_cast<std::int32_t>(cluster_.size()));
+    for (std::size_t s = 0; s < key.size(); ++s)
+        if (key[s] != EventQueue::never) queue_.schedule(static_cast<std::int32_t>(s), key[s]);
 }
 
 void EventEngine::clusters(ClusterState& out) const {

@@ -248,7 +248,7 @@ void ExactEngine::pool_across_seam(double t) {
 }
 
 bool ExactEngine::advance_to(double t) {
-    if (live_ != nullptr && live_->stop != nullptr && live_->stop->load(std::memory_order_relaxed)) return false;
+    if (live_ != nullptr && live_->halt_requested()) return false;
     t = std::max(t, now_);
     if (block_.size() > 1) {
         pool_along_line(t);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "shockgas/collision.hpp"
+#include "shockgas/engine_snapshot.hpp"
 #include "shockgas/ring_kinematics.hpp"
 
 namespace shockgas {
@@ -142,7 +143,7 @@ bool FastEventEngine::advance_to(double t) {
         if (live_ != nullptr) {
             live_->time.store(now_, std::memory_order_relaxed);
             live_->collisions.store(collisions_, std::memory_order_relaxed);
-            if (live_->stop != nullptr && live_->stop->load(std::memory_order_relaxed)) return false;
+            if (live_->halt_requested()) return false;
         }
         if (!(now_ < t)) break;
     }
@@ -393,6 +394,55 @@ void FastEventEngine::check_stall_bound(double window_end, std::uint64_t run_eve
     if (bound >= static_cast<double>(stall_window_))
         throw StallUndecidable(
             "FastEventEngine: cannot exclude a stall (events too dense in time); rerun with the reference engine");
+}
+
+std::optional<EngineSnapshot> FastEventEngine::snapshot() const {
+    EngineSnapshot out;
+    out.kind = snapshot_kind;
+    snapshot_io::save_ring(node_, out);
+    auto& key = out.reals["key"];
+    for (const Node& c : node_) key.push_back(c.key);
+    out.reals["scalars"] = {now_, anchor_position_, window_length_, speed_bound_, window_start_};
+    out.integers["counters"] = {static_cast<std::int64_t>(collisions_), alive_, anchor_,
+                                static_cast<std::int64_t>(windows_), static_cast<std::int64_t>(blocks_)};
+    auto& recent_end = out.reals["recent_window_end"];
+    auto& recent_span = out.reals["recent_window_stall_span"];
+    auto& recent_events = out.integers["recent_window_run_events"];
+    for (const WindowRuns& w : recent_windows_) {
+        recent_end.push_back(w.end);
+        recent_span.push_back(w.stall_span);
+        recent_events.push_back(static_cast<std::int64_t>(w.run_events));
+    }
+    return out;
+}
+
+void FastEventEngine::restore(const EngineSnapshot& snapshot) {
+    if (snapshot.kind != snapshot_kind)
+        throw InputError("checkpoint: engine state of kind '" + snapshot.kind + "' given to the fast event engine");
+    snapshot_io::restore_ring(snapshot, node_);
+    const auto& key = snapshot_io::array(snapshot.reals, "key", node_.size(), snapshot);
+    for (std::size_t s = 0; s < node_.size(); ++s) node_[s].key = key[s];
+    const auto& scalars = snapshot_io::array(snapshot.reals, "scalars", 5, snapshot);
+    const auto& counters = snapshot_io::array(snapshot.integers, "counters", 5, snapshot);
+    now_ = scalars[0];
+    anchor_position_ = scalars[1];
+    window_length_ = scalars[2];
+    speed_bound_ = scalars[3];
+    window_start_ = scalars[4];
+    collisions_ = static_cast<std::uint64_t>(counters[0]);
+    alive_ = counters[1];
+    anchor_ = static_cast<std::int32_t>(counters[2]);
+    windows_ = static_cast<std::uint64_t>(counters[3]);
+    blocks_ = static_cast<std::uint64_t>(counters[4]);
+    if (alive_ < 1 || alive_ > particles_ || anchor_ < 0 || anchor_ >= particles_)
+        throw InputError("checkpoint: fast engine state has an impossible cluster count or anchor");
+    const auto windows = snapshot.reals.count("recent_window_end") ? snapshot.reals.at("recent_window_end").size() : 0;
+    const auto& recent_end = snapshot_io::array(snapshot.reals, "recent_window_end", windows, snapshot);
+    const auto& recent_span = snapshot_io::array(snapshot.reals, "recent_window_stall_span", windows, snapshot);
+    const auto& recent_events = snapshot_io::array(snapshot.integers, "recent_window_run_events", windows, snapshot);
+    recent_windows_.clear();
+    for (std::size_t w = 0; w < windows; ++w)
+        recent_windows_.push_back({recent_end[w], recent_span[w], static_cast<std::uint64_t>(recent_events[w])});
 }
 
 void FastEventEngine::clusters(ClusterState& out) const {

@@ -48,9 +48,11 @@ void write_parameter_attributes(h5::Group& root, const SimulationParameters& p) 
                                            : "from init_file");
 }
 
-void write_output(const std::string& path, const SimulationParameters& parameters, const EnsembleResult& result) {
-    h5::AtomicFile file(path);
-    auto root = file.root();
+namespace {
+
+// The output schema, written into root: shared by the output file and the
+// checkpoint, which is an output file of the partial result plus /checkpoint.
+void write_result(h5::Group& root, const SimulationParameters& parameters, const EnsembleResult& result) {
     write_provenance(root, "shockgas-sim");
     write_parameter_attributes(root, parameters);
     root.set_attribute("engine", result.engine);
@@ -117,6 +119,14 @@ void write_output(const std::string& path, const SimulationParameters& parameter
             write_state(group, result.collapses[c].state);
         }
     }
+}
+
+}  // namespace
+
+void write_output(const std::string& path, const SimulationParameters& parameters, const EnsembleResult& result) {
+    h5::AtomicFile file(path);
+    auto root = file.root();
+    write_result(root, parameters, result);
     file.commit();
 }
 
@@ -163,9 +173,9 @@ ClusterState read_state(const h5::Group& group) {
 
 }  // namespace
 
-OutputFile read_output(const std::string& path) {
-    const auto file = h5::File::open_read(path);
-    const auto root = file.root();
+namespace {
+
+OutputFile read_result(const h5::Group& root) {
     OutputFile out;
     SimulationParameters& p = out.parameters;
     p.particles = root.attribute_integer("particles");
@@ -239,6 +249,13 @@ OutputFile read_output(const std::string& path) {
     return out;
 }
 
+}  // namespace
+
+OutputFile read_output(const std::string& path) {
+    const auto file = h5::File::open_read(path);
+    return read_result(file.root());
+}
+
 namespace {
 
 // Every parameter that changes the physics or the sampling must agree.
@@ -305,6 +322,74 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
     r.status = interrupted ? "interrupted" : collapsed ? "collapsed" : "complete";
     merged.parameters.realizations = static_cast<int>(r.realizations);
     return merged;
+}
+
+std::string checkpoint_path_for(const std::string& output_path) { return output_path + ".checkpoint"; }
+
+std::string run_signature(const SimulationParameters& p) {
+    return fmt::format("{} R={} first={}", physics_signature(p), p.realizations, p.first_realization);
+}
+
+// /checkpoint holds what the output schema has no place for: the run's
+// signature, the samples each realization has done, the CPU and wall time
+// spent so far, and one group per unfinished realization with its engine
+// state (reals and integers as datasets, doubles stored bit for bit).
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
+    h5::AtomicFile file(path);
+    auto root = file.root();
+    write_result(root, checkpoint.parameters, checkpoint.result);
+    auto group = root.create_group("checkpoint");
+    group.set_attribute("run_signature", run_signature(checkpoint.parameters));
+    group.set_attribute("description",
+                        "a shockgas-sim run in progress: the datasets above hold what is done "
+                        "(realization_status 4: in progress); shockgas-sim --resume continues it");
+    group.write("samples_done", checkpoint.samples_done);
+    auto engines = group.create_group("engines");
+    for (const auto& [realization, snapshot] : checkpoint.engines) {
+        auto state = engines.create_group(fmt::format("{}", realization));
+        state.set_attribute("kind", snapshot.kind);
+        auto reals = state.create_group("reals");
+        for (const auto& [name, values] : snapshot.reals) reals.write(name, values);
+        auto integers = state.create_group("integers");
+        for (const auto& [name, values] : snapshot.integers) integers.write(name, values);
+    }
+    file.commit();
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+    const auto file = h5::File::open_read(path);
+    const auto root = file.root();
+    if (!root.has("checkpoint")) throw InputError(fmt::format("'{}' is not a shockgas checkpoint", path));
+    OutputFile partial = read_result(root);
+    Checkpoint out;
+    out.parameters = std::move(partial.parameters);
+    out.result = std::move(partial.result);
+    out.version = std::move(partial.version);
+    const auto group = root.open_group("checkpoint");
+    out.signature = group.attribute_string("run_signature");
+    out.samples_done = group.read_integers("samples_done");
+    if (out.samples_done.size() != static_cast<std::size_t>(out.result.realizations))
+        throw InputError(fmt::format("checkpoint '{}': samples_done has {} entries for {} realizations", path,
+                                     out.samples_done.size(), out.result.realizations));
+    const auto engines = group.open_group("engines");
+    for (const std::string& name : engines.children()) {
+        const auto state = engines.open_group(name);
+        EngineSnapshot snapshot;
+        snapshot.kind = state.attribute_string("kind");
+        const auto reals = state.open_group("reals");
+        for (const std::string& array : reals.children()) snapshot.reals[array] = reals.read_doubles(array);
+        const auto integers = state.open_group("integers");
+        for (const std::string& array : integers.children()) snapshot.integers[array] = integers.read_integers(array);
+        std::int64_t realization = -1;
+        try {
+            realization = std::stoll(name);
+        } catch (const std::exception&) {
+        }
+        if (realization < 0 || realization >= out.result.realizations)
+            throw InputError(fmt::format("checkpoint '{}': engine state for unknown realization '{}'", path, name));
+        out.engines.emplace(realization, std::move(snapshot));
+    }
+    return out;
 }
 
 }  // namespace shockgas

@@ -91,3 +91,14 @@ shockgas_cli_error(init_directory "init" --init "${_cli_dir}")
 add_test(NAME cli.config_file_run
          COMMAND ${_sim} --config "${_cli_dir}/config_good.toml" -q -o "${_cli_dir}/config_run.h5")
 set_tests_properties(cli.config_file_run PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "complete \\(event engine")
+
+# --- issue 8: runs that survive being killed ---
+# SIGKILL mid-run, then --resume: bit-identical to an uninterrupted run.
+if(SHOCKGAS_PYTHON)
+  add_test(NAME cli.sigkill_resume_bit_identical
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/sigkill_resume_test.sh ${_sim} ${SHOCKGAS_PYTHON}
+                   ${CMAKE_CURRENT_SOURCE_DIR}/same_datasets.py "${_cli_dir}/sigkill")
+  set_tests_properties(cli.sigkill_resume_bit_identical PROPERTIES LABELS cli TIMEOUT 300)
+endif()
+shockgas_cli_error(checkpoint_interval_negative "checkpoint-interval" -N 10 --checkpoint-interval -1)
+shockgas_cli_error(checkpoint_unwritable "directory .* does not exist" -N 10 --checkpoint "${_cli_dir}/absent_dir/c.h5")

@@ -6,9 +6,11 @@
 
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "shockgas/parameters.hpp"
 #include "shockgas/state.hpp"
@@ -25,11 +27,30 @@ struct CollapseReport {
 };
 
 // Lets a long run be watched and stopped: the engine publishes its time and
-// collision count every few thousand events and stops when asked.
+// collision count every few thousand events and returns from advance_to when
+// asked to stop (the user's Ctrl-C) or to pause (the driver wants a
+// checkpoint). Either way it returns between two events, in a state that
+// snapshot() captures exactly and from which advance_to can simply go on.
 struct LiveStatus {
     std::atomic<double> time{0.0};
     std::atomic<std::uint64_t> collisions{0};
     const std::atomic<bool>* stop = nullptr;
+    const std::atomic<bool>* pause = nullptr;
+
+    bool halt_requested() const {
+        return (stop != nullptr && stop->load(std::memory_order_relaxed)) ||
+               (pause != nullptr && pause->load(std::memory_order_relaxed));
+    }
+};
+
+// An engine's whole state between two events, for checkpoints: named arrays
+// stored as they are (doubles bit for bit), so that an engine restored from it
+// continues exactly as the one that made it would have. `kind` names the
+// engine class that can read it.
+struct EngineSnapshot {
+    std::string kind;
+    std::map<std::string, std::vector<double>> reals;
+    std::map<std::string, std::vector<std::int64_t>> integers;
 };
 
 class Engine {
@@ -44,11 +65,21 @@ public:
     virtual std::int64_t cluster_count() const = 0;
     virtual const std::optional<CollapseReport>& collapse() const = 0;
     virtual std::string name() const = 0;
+    // The state for a checkpoint, or nothing if this engine is cheap enough to
+    // rerun from t = 0 instead (the exact engine).
+    virtual std::optional<EngineSnapshot> snapshot() const { return std::nullopt; }
+    // Replaces the state by a snapshot of an engine of the same kind built
+    // from the same initial condition; throws InputError if it does not fit.
+    virtual void restore(const EngineSnapshot& snapshot);
 };
 
 // The engine selected by parameters.engine ("auto" resolved here).
 std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, const InitialCondition& initial,
                                     LiveStatus* live);
 std::string resolve_engine_name(const SimulationParameters& parameters);
+// The engine that can restore `snapshot` (snapshot.kind), built from the
+// realization's initial condition and then restored.
+std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const SimulationParameters& parameters,
+                                       const InitialCondition& initial, LiveStatus* live);
 
 }  // namespace shockgas

@@ -17,7 +17,9 @@
 
 namespace shockgas {
 
-enum class RealizationStatus : std::int64_t { complete = 0, collapsed = 1, interrupted = 2, not_run = 3 };
+// in_progress appears only in checkpoints: a realization whose engine state
+// the checkpoint holds.
+enum class RealizationStatus : std::int64_t { complete = 0, collapsed = 1, interrupted = 2, not_run = 3, in_progress = 4 };
 
 struct SnapshotRecord {
     std::int64_t realization = 0;
@@ -69,12 +71,33 @@ struct Progress {
 };
 using ProgressCallback = std::function<void(const Progress&)>;
 
+// Checkpoints, so that a run survives being killed. Every interval_seconds
+// of wall time the driver asks each running realization to pause between two
+// events, copies its engine state (Engine::snapshot) and lets it go on at
+// once, then writes the finished realizations, the partial ones and their
+// engine states to `path` (temporary file, then rename: a kill during the
+// write leaves the previous checkpoint). A run stopped through `stop` writes
+// one last checkpoint. With resume, a checkpoint of the same run at `path`
+// (same run_signature and code version) is loaded and the run continues from
+// it; the result is bit-identical to an uninterrupted run, because pausing
+// changes nothing (the engines return between events and go on from exactly
+// that state) and a snapshot holds the whole engine state. A checkpoint of a
+// different run or code version is ignored, with a note. The caller removes
+// the checkpoint once the output is safely written.
+struct CheckpointOptions {
+    std::string path;                // empty: no checkpoints
+    double interval_seconds = 300.0; // wall time between checkpoints
+    bool resume = false;
+    std::function<void(const std::string&)> note;  // one-line messages: written, resumed, ignored
+};
+
 // Runs the ensemble. initial_override, when non-null, replaces the generated
 // initial condition (the --init file; then realizations must be 1).
 // stop may be raised from a signal handler: the run ends within milliseconds
 // and the result is marked interrupted.
 EnsembleResult run_ensemble(const SimulationParameters& parameters, const InitialCondition* initial_override,
-                            const std::atomic<bool>* stop = nullptr, const ProgressCallback& progress = {});
+                            const std::atomic<bool>* stop = nullptr, const ProgressCallback& progress = {},
+                            const CheckpointOptions& checkpoint = {});
 
 // One line of progress for a terminal: time, rate, ETA.
 std::string format_progress(const Progress& progress);

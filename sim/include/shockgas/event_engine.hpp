@@ -33,6 +33,9 @@ public:
     std::int64_t cluster_count() const override { return alive_; }
     const std::optional<CollapseReport>& collapse() const override { return collapse_; }
     std::string name() const override { return "event"; }
+    std::optional<EngineSnapshot> snapshot() const override;
+    void restore(const EngineSnapshot& snapshot) override;
+    static constexpr const char* snapshot_kind = "event";
 
     // Processes exactly one event if one is due at or before t_limit.
     // Exposed for tests that step through hand-solved cases.

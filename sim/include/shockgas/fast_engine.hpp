@@ -78,6 +78,12 @@ public:
     // Same name as the reference: the two engines give the same output, so the
     // file's `engine` attribute need not say which one ran.
     std::string name() const override { return "event"; }
+    // Checkpoints are taken between windows (advance_to returns only there),
+    // where the per-window state is empty: the records, the clocks, the window
+    // length and the stall-bound history are the whole state.
+    std::optional<EngineSnapshot> snapshot() const override;
+    void restore(const EngineSnapshot& snapshot) override;
+    static constexpr const char* snapshot_kind = "fast_event";
 
     // Diagnostics for the benchmark.
     std::uint64_t windows() const { return windows_; }

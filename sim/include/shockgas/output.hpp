@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -53,5 +54,27 @@ OutputFile read_output(const std::string& path);
 // InputError naming the part that differs in parameters, engine, version, or
 // leaves a gap in the realization sequence.
 OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector<std::string>& names);
+
+// A checkpoint of a run in progress (written by run_ensemble every
+// CheckpointOptions::interval_seconds and when interrupted): the partial
+// result in the output schema, with realization_status 4 (in progress) for
+// the unfinished realizations, how many sample times each realization has
+// done, and the engine state of each unfinished one.
+struct Checkpoint {
+    SimulationParameters parameters;
+    EnsembleResult result;
+    std::vector<std::int64_t> samples_done;          // per realization
+    std::map<std::int64_t, EngineSnapshot> engines;  // realization index -> state
+    std::string version;                             // provenance of the writer
+    std::string signature;                           // run_signature of the writer's parameters
+};
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+Checkpoint read_checkpoint(const std::string& path);  // throws InputError / h5::Error naming the problem
+// <output>.checkpoint: where shockgas-sim keeps the checkpoint of <output>.
+std::string checkpoint_path_for(const std::string& output_path);
+// Every parameter that decides a run's datasets (physics, sampling, seed,
+// realization range), as one string: a checkpoint resumes only a run with
+// the same signature.
+std::string run_signature(const SimulationParameters& parameters);
 
 }  // namespace shockgas

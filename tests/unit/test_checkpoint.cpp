@@ -1,0 +1,258 @@
+// Checkpoints (stability issue, "runs that survive being killed"): an engine
+// restored from a snapshot continues bit for bit as the original; pausing a
+// run for checkpoints changes nothing; a run stopped mid-way and resumed from
+// its checkpoint file gives the uninterrupted run's result exactly; and a
+// checkpoint of another run is ignored, a damaged one refused.
+//
+// Every comparison here is exact (==, NaN == NaN): the same seeds and the
+// same arithmetic must give the same doubles, so no tolerance is needed and
+// any difference is a bug.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "shockgas/engine.hpp"
+#include "shockgas/ensemble.hpp"
+#include "shockgas/event_engine.hpp"
+#include "shockgas/fast_engine.hpp"
+#include "shockgas/output.hpp"
+
+namespace {
+
+using shockgas::CheckpointOptions;
+using shockgas::ClusterState;
+using shockgas::EnsembleResult;
+using shockgas::Engine;
+using shockgas::EngineSnapshot;
+using shockgas::SimulationParameters;
+using shockgas::Subthreshold;
+
+SimulationParameters parameters(std::int64_t particles, double restitution, double threshold, Subthreshold mechanism) {
+    SimulationParameters p;
+    p.particles = particles;
+    p.collision.restitution = restitution;
+    p.collision.velocity_threshold = threshold;
+    p.collision.subthreshold = mechanism;
+    return p;
+}
+
+// Bitwise equality of doubles, NaN equal to NaN (unreached samples).
+bool same(const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
+    return true;
+}
+
+void expect_same_state(const Engine& a, const Engine& b, const std::string& what) {
+    ClusterState sa, sb;
+    a.clusters(sa);
+    b.clusters(sb);
+    EXPECT_EQ(a.collisions(), b.collisions()) << what;
+    EXPECT_EQ(a.time(), b.time()) << what;
+    EXPECT_TRUE(same(sa.position, sb.position)) << what;
+    EXPECT_TRUE(same(sa.velocity, sb.velocity)) << what;
+    EXPECT_TRUE(same(sa.mass, sb.mass)) << what;
+    EXPECT_EQ(sa.first_particle, sb.first_particle) << what;
+}
+
+struct Mode {
+    std::string name;
+    double restitution;
+    double threshold;
+    Subthreshold mechanism;
+};
+
+// The engine make_engine picks (windowed where supported, the reference loop
+// otherwise) and the reference loop itself, in every collision mode: advance
+// to t1, snapshot, restore into a fresh engine, advance both to t2.
+TEST(EngineSnapshot, RestoredEngineContinuesBitForBit) {
+    const std::vector<Mode> modes = {{"r=0.5 elastic", 0.5, 1e-2, Subthreshold::elastic},
+                                     {"r=0.9 sticky sub-threshold", 0.9, 1e-2, Subthreshold::sticky},
+                                     {"r=0 sticky gas", 0.0, 1e-2, Subthreshold::elastic},
+                                     {"delta=0 before collapse", 0.5, 0.0, Subthreshold::elastic}};
+    for (const Mode& mode : modes) {
+        SimulationParameters p = parameters(3000, mode.restitution, mode.threshold, mode.mechanism);
+        p.engine = "event";
+        for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+            const auto initial = shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), seed, 0);
+            std::vector<std::unique_ptr<Engine>> originals;
+            originals.push_back(shockgas::make_engine(p, initial, nullptr));
+            originals.push_back(
+                std::make_unique<shockgas::EventEngine>(initial, p.collision, p.collapse, nullptr));
+            for (auto& original : originals) {
+                const std::string what = mode.name + ", seed " + std::to_string(seed);
+                // delta = 0 collapses near t ~ 1-10 at this size: checkpoint early.
+                const double t1 = mode.threshold == 0.0 ? 0.2 : 20.0;
+                ASSERT_TRUE(original->advance_to(t1)) << what;
+                const std::uint64_t collisions_at_checkpoint = original->collisions();
+                const auto snapshot = original->snapshot();
+                ASSERT_TRUE(snapshot.has_value()) << what;
+                auto restored = shockgas::restore_engine(*snapshot, p, initial, nullptr);
+                expect_same_state(*original, *restored, what + " (at the checkpoint)");
+                const bool original_ran = original->advance_to(200.0);
+                const bool restored_ran = restored->advance_to(200.0);
+                EXPECT_EQ(original_ran, restored_ran) << what;
+                EXPECT_EQ(original->collapse().has_value(), restored->collapse().has_value()) << what;
+                expect_same_state(*original, *restored, what + " (after it)");
+                EXPECT_GT(original->collisions(), collisions_at_checkpoint + 100) << what << ": too few events to test";
+            }
+        }
+    }
+}
+
+TEST(EngineSnapshot, DamagedStateIsRefused) {
+    const SimulationParameters p = parameters(100, 0.5, 1e-2, Subthreshold::elastic);
+    const auto initial = shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), 1, 0);
+    auto engine = shockgas::make_engine(p, initial, nullptr);
+    ASSERT_TRUE(engine->advance_to(5.0));
+    auto snapshot = *engine->snapshot();
+    auto short_array = snapshot;
+    short_array.reals["velocity"].pop_back();
+    EXPECT_THROW(shockgas::restore_engine(short_array, p, initial, nullptr), shockgas::InputError);
+    auto bad_link = snapshot;
+    bad_link.integers["next"][3] = 100000;
+    EXPECT_THROW(shockgas::restore_engine(bad_link, p, initial, nullptr), shockgas::InputError);
+    auto unknown = snapshot;
+    unknown.kind = "warp";
+    EXPECT_THROW(shockgas::restore_engine(unknown, p, initial, nullptr), shockgas::InputError);
+}
+
+// Sizes chosen so that a run takes a few hundred milliseconds on one core:
+// long enough for several checkpoints at a 20 ms interval.
+SimulationParameters ensemble_parameters() {
+    SimulationParameters p = parameters(20000, 0.9, 1e-2, Subthreshold::elastic);
+    p.t_max = 300.0;
+    p.realizations = 3;
+    p.threads = 2;
+    p.seed = 7;
+    p.snapshot_times = {50.0};
+    p.histogram_times = {30.0, 300.0};
+    return p;
+}
+
+void expect_same_result(const EnsembleResult& a, const EnsembleResult& b) {
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_TRUE(same(a.times, b.times));
+    EXPECT_TRUE(same(a.temperature, b.temperature));
+    EXPECT_TRUE(same(a.collisions_per_particle, b.collisions_per_particle));
+    EXPECT_TRUE(same(a.clusters, b.clusters));
+    EXPECT_TRUE(same(a.kinetic_energy, b.kinetic_energy));
+    EXPECT_EQ(a.realization_status, b.realization_status);
+    EXPECT_EQ(a.total_collisions, b.total_collisions);
+    ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
+    for (std::size_t s = 0; s < a.snapshots.size(); ++s) {
+        EXPECT_EQ(a.snapshots[s].realization, b.snapshots[s].realization);
+        EXPECT_TRUE(same(a.snapshots[s].state.position, b.snapshots[s].state.position));
+        EXPECT_TRUE(same(a.snapshots[s].state.velocity, b.snapshots[s].state.velocity));
+    }
+    ASSERT_EQ(a.histograms.size(), b.histograms.size());
+    for (std::size_t h = 0; h < a.histograms.size(); ++h) EXPECT_TRUE(same(a.histograms[h].counts, b.histograms[h].counts));
+}
+
+std::string fresh_path(const std::string& name) {
+    const std::string path = name + ".checkpoint";
+    std::filesystem::remove(path);
+    return path;
+}
+
+TEST(Checkpoint, PausingForCheckpointsChangesNothing) {
+    const SimulationParameters p = ensemble_parameters();
+    const EnsembleResult reference = shockgas::run_ensemble(p, nullptr);
+    CheckpointOptions options;
+    options.path = fresh_path("pausing");
+    options.interval_seconds = 0.02;
+    int written = 0;
+    options.note = [&](const std::string& text) { written += text.rfind("checkpoint:", 0) == 0 ? 1 : 0; };
+    const EnsembleResult paused = shockgas::run_ensemble(p, nullptr, nullptr, {}, options);
+    EXPECT_GE(written, 2) << "the run ended before checkpoints were taken: the test did not test";
+    expect_same_result(reference, paused);
+}
+
+TEST(Checkpoint, StoppedRunResumedFromItsFileEqualsUninterruptedRun) {
+    const SimulationParameters p = ensemble_parameters();
+    const EnsembleResult reference = shockgas::run_ensemble(p, nullptr);
+
+    CheckpointOptions options;
+    options.path = fresh_path("stopped");
+    options.interval_seconds = 0.02;
+    std::atomic<int> written{0};
+    options.note = [&](const std::string& text) { written += text.rfind("checkpoint:", 0) == 0 ? 1 : 0; };
+    std::atomic<bool> stop{false};
+    std::thread stopper([&] {
+        while (written.load() < 2) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        stop.store(true);  // as Ctrl-C does
+    });
+    const EnsembleResult stopped = shockgas::run_ensemble(p, nullptr, &stop, {}, options);
+    stopper.join();
+    ASSERT_EQ(stopped.status, "interrupted") << "the run ended before it was stopped: the test did not test";
+    ASSERT_TRUE(std::filesystem::exists(options.path));
+    const auto checkpoint = shockgas::read_checkpoint(options.path);
+    EXPECT_FALSE(checkpoint.engines.empty()) << "no realization was caught mid-way";
+
+    CheckpointOptions resume = options;
+    resume.resume = true;
+    resume.interval_seconds = 0.0;
+    std::string resumed_note;
+    resume.note = [&](const std::string& text) {
+        if (text.rfind("resuming", 0) == 0) resumed_note = text;
+    };
+    const EnsembleResult resumed = shockgas::run_ensemble(p, nullptr, nullptr, {}, resume);
+    EXPECT_NE(resumed_note, "") << "the checkpoint was not used";
+    expect_same_result(reference, resumed);
+}
+
+TEST(Checkpoint, CheckpointOfAnotherRunIsIgnoredWithANote) {
+    SimulationParameters p = ensemble_parameters();
+    p.realizations = 1;
+    p.t_max = 60.0;
+    p.histogram_times = {30.0};
+    CheckpointOptions options;
+    options.path = fresh_path("other_run");
+    std::atomic<bool> stop{true};  // stopped at once: a checkpoint with nothing done
+    shockgas::run_ensemble(p, nullptr, &stop, {}, options);
+    ASSERT_TRUE(std::filesystem::exists(options.path));
+
+    SimulationParameters other = p;
+    other.seed = p.seed + 1;
+    options.resume = true;
+    std::string note;
+    options.note = [&](const std::string& text) { note += text; };
+    const EnsembleResult fresh = shockgas::run_ensemble(other, nullptr, nullptr, {}, options);
+    EXPECT_NE(note.find("other parameters"), std::string::npos) << note;
+    expect_same_result(shockgas::run_ensemble(other, nullptr), fresh);
+}
+
+TEST(Checkpoint, FileRoundTripKeepsEngineStateBitForBit) {
+    const SimulationParameters p = parameters(500, 0.9, 1e-2, Subthreshold::elastic);
+    const auto initial = shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), 3, 0);
+    auto engine = shockgas::make_engine(p, initial, nullptr);
+    ASSERT_TRUE(engine->advance_to(30.0));
+    shockgas::Checkpoint checkpoint;
+    checkpoint.parameters = p;
+    checkpoint.parameters.realizations = 1;
+    checkpoint.result = shockgas::run_ensemble(checkpoint.parameters, nullptr);
+    checkpoint.samples_done = {0};
+    checkpoint.engines.emplace(0, *engine->snapshot());
+    const std::string path = fresh_path("roundtrip");
+    shockgas::write_checkpoint(path, checkpoint);
+    const auto back = shockgas::read_checkpoint(path);
+    ASSERT_EQ(back.engines.size(), 1u);
+    const EngineSnapshot& a = checkpoint.engines.at(0);
+    const EngineSnapshot& b = back.engines.at(0);
+    EXPECT_EQ(a.kind, b.kind);
+    EXPECT_EQ(a.integers, b.integers);
+    ASSERT_EQ(a.reals.size(), b.reals.size());
+    for (const auto& [name, values] : a.reals) EXPECT_TRUE(same(values, b.reals.at(name))) << name;
+    EXPECT_EQ(back.signature, shockgas::run_signature(checkpoint.parameters));
+}
+
+}  // namespace
