@@ -45,6 +45,12 @@ constexpr int payload_tag = 2;
 constexpr std::int64_t max_message_bytes = std::int64_t{1} << 30;
 // Exit status of a job stopped because one rank failed during its run.
 constexpr int failed_run_status = 1;
+// Set by MPI launchers for every process they start: Open MPI's mpirun
+// (OMPI_*), PMIx launchers (Open MPI 5, srun --mpi=pmix), and PMI-1/2 ones
+// (MPICH's and Intel MPI's hydra, srun --mpi=pmi2). A launcher that sets none
+// of them starts K independent one-rank runs: each would run the whole
+// ensemble and write the same file, correct but not faster.
+constexpr const char* launcher_variables[] = {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"};
 
 // What a rank sends to rank 0 at the reduction, first in a two-integer
 // header {kind, payload bytes}, then the payload.
@@ -146,6 +152,12 @@ int cores_available() {
 }  // namespace
 
 DistributedSession::DistributedSession(int& argc, char**& argv) {
+    // A plain `shockgas-sim` (the figure pipeline's many short runs) would pay
+    // Open MPI's singleton start-up, about 0.5 s, for nothing: initialize MPI
+    // only when a launcher announced ranks in the environment.
+    launched_ = std::any_of(std::begin(launcher_variables), std::end(launcher_variables),
+                            [](const char* name) { return std::getenv(name) != nullptr; });
+    if (!launched_) return;
     // FUNNELED: the ensemble's worker threads never call MPI; only main does.
     int provided = 0;
     MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
@@ -154,6 +166,7 @@ DistributedSession::DistributedSession(int& argc, char**& argv) {
 }
 
 DistributedSession::~DistributedSession() {
+    if (!launched_) return;
     switch (phase_) {
     case Phase::setup: {
         // This rank leaves before share(): take part in share()'s agreement
@@ -176,8 +189,8 @@ DistributedSession::~DistributedSession() {
 SimulationParameters DistributedSession::share(const SimulationParameters& whole) {
     // Every rank reports ranks_ (ready) or its own index (failed, from the
     // destructor); the minimum names the first failing rank, if any.
-    int ready = ranks_, lowest_failing = 0;
-    MPI_Allreduce(&ready, &lowest_failing, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    int ready = ranks_, lowest_failing = ranks_;
+    if (launched_) MPI_Allreduce(&ready, &lowest_failing, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
     if (lowest_failing < ranks_) {
         phase_ = Phase::reduced;  // all ranks have agreed to stop: nothing left to wait for
         throw InputError(fmt::format("rank {} of {} failed before the run (see its own error message)",

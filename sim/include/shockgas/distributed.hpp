@@ -38,8 +38,9 @@ inline RealizationBlock realization_block(std::int64_t total, int rank, int rank
 
 class DistributedSession {
 public:
-    // Initializes MPI (MPI build); must be the first thing main does, since
-    // MPI_Init may consume its own arguments from argv.
+    // Initializes MPI when started by an MPI launcher (MPI build); must be the
+    // first thing main does, since MPI_Init may consume arguments from argv.
+    // Without a launcher the program is one rank and never touches MPI.
     DistributedSession(int& argc, char**& argv);
     // Finalizes MPI; see the failure rule above.
     ~DistributedSession();
@@ -72,6 +73,7 @@ private:
     int rank_ = 0;
     int ranks_ = 1;
     Phase phase_ = Phase::setup;
+    bool launched_ = false;  // MPI initialized (started by an MPI launcher)
 };
 
 }  // namespace shockgas
