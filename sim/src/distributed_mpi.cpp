@@ -12,12 +12,10 @@
 #include "shockgas/distributed.hpp"
 
 #include <sched.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -30,7 +28,6 @@
 
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
-#include "shockgas/provenance.hpp"
 
 namespace shockgas {
 

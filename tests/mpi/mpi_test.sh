@@ -6,6 +6,8 @@
 #   idle_rank     1 realization over 2 ranks: rank 1 idles, same file again
 #   failing_rank  a rank that fails before or after its run makes the job
 #                 fail with a line naming it, no output file, and no hang
+#   interrupted   Ctrl-C on mpirun (which sends SIGTERM to every rank) still
+#                 gives one file, written by rank 0, marked interrupted
 #   failing_run   a rank that fails during its run stops the whole job at once
 #                 (FAILING_RUN, tests/mpi/failing_run.cpp)
 # MPIEXEC... is the launcher and its process-count flag, e.g. "mpiexec -n".
@@ -33,7 +35,7 @@ physics=(-N 2000 -r 0.9 -d 1e-2 -t 100 --snapshot-times 10,100 --histogram-times
 fail() { echo "FAIL: $*"; exit 1; }
 
 mkdir -p "$work" && cd "$work" || fail "cannot enter $work"
-rm -f ./*.h5 ./*.stderr
+rm -f ./*.h5 ./*.h5.* ./*.stderr
 
 case "$case_name" in
 identical)
@@ -75,6 +77,22 @@ failing_rank)
   cat reduce.stderr
   grep -q "rank 1 of 2 could not send its realizations" reduce.stderr || fail "no line naming rank 1 (reduce)"
   [ ! -e reduce.h5 ] || fail "reduce.h5 written by a failed job"
+  ;;
+interrupted)
+  # A run far too long to finish; the signal comes once every rank has had
+  # ample time to install its handler (start-up takes about 0.5 s).
+  startup_seconds=5
+  "${mpiexec[@]}" "$ranks" "$sim" -N 200000 -r 0.9 -d 1e-2 -t 1e6 -R 3 -j 1 -q -o interrupted.h5 \
+    2>interrupted.stderr &
+  launcher=$!
+  sleep "$startup_seconds"
+  kill -INT "$launcher"
+  wait "$launcher" && fail "the interrupted job reported success"
+  cat interrupted.stderr
+  [ -s interrupted.h5 ] || fail "no output file after the interrupt"
+  read_status='import sys, h5py; s = h5py.File(sys.argv[1], "r").attrs["status"]; print(getattr(s, "decode", lambda: s)())'
+  status=$("$python" -c "$read_status" interrupted.h5)
+  [ "$status" = interrupted ] || fail "the file's status is '$status', not interrupted"
   ;;
 failing_run)
   # Rank 0 would run for 10 minutes; rank 1's failure must end the job now.
