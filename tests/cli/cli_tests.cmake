@@ -97,7 +97,7 @@ set_tests_properties(cli.config_file_run PROPERTIES LABELS cli PASS_REGULAR_EXPR
 if(SHOCKGAS_PYTHON)
   add_test(NAME cli.sigkill_resume_bit_identical
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/sigkill_resume_test.sh ${_sim} ${SHOCKGAS_PYTHON}
-                   ${CMAKE_CURRENT_SOURCE_DIR}/same_datasets.py "${_cli_dir}/sigkill")
+                   ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/sigkill")
   set_tests_properties(cli.sigkill_resume_bit_identical PROPERTIES LABELS cli TIMEOUT 300)
 endif()
 shockgas_cli_error(checkpoint_interval_negative "checkpoint-interval" -N 10 --checkpoint-interval -1)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# sigkill_resume_test.sh SIM PYTHON SAME_DATASETS DIR
+# sigkill_resume_test.sh SIM PYTHON COMPARE_OUTPUTS DIR
 # A run killed with SIGKILL (no chance to clean up) and continued with
 # --resume writes exactly the file an uninterrupted run writes:
 #   1. an uninterrupted reference run;
@@ -7,7 +7,7 @@
 #      its second checkpoint is on disk: it must leave no output file (the
 #      output is written atomically), only the checkpoint;
 #   3. `--resume`: must say it resumed, finish, remove the checkpoint, and
-#      give datasets bit-identical to the reference (same_datasets.py).
+#      give datasets bit-identical to the reference (compare_outputs.py).
 # The test fails, rather than passing vacuously, if the run ends before it
 # can be killed.
 set -u

@@ -16,7 +16,7 @@ case_name=$1 sim=$2 failing_run=$3 python=$4 work=$5
 shift 5
 mpiexec=("$@")
 here=$(cd "$(dirname "$0")" && pwd)
-compare="$here/compare_outputs.py"
+compare="$here/../compare_outputs.py"  # shared with the checkpoint tests
 ranks=2
 
 # Open MPI refuses root without these, and by default binds each rank to

@@ -1,11 +1,15 @@
 #!/usr/bin/env python3
-"""compare_outputs.py SINGLE DISTRIBUTED [MPI_RANKS]: exit 0 when every group,
+"""compare_outputs.py REFERENCE OTHER [MPI_RANKS]: exit 0 when every group,
 dataset and attribute of two shockgas-sim files is identical bit for bit,
 except the root attributes that describe the run rather than its results.
+Used for a one-process run against an MPI run (MPI_RANKS: the rank count the
+second file must record) and for an uninterrupted run against a killed and
+resumed one.
 
 Bitwise, not within a tolerance: both files come from the same seed streams
 through the same arithmetic, so any difference at all is a bug (a realization
-run twice or with the wrong seed, a block joined in the wrong order).
+run twice or with the wrong seed, a block joined in the wrong order, an
+engine state restored incompletely).
 """
 import sys
 
@@ -31,6 +35,7 @@ def objects(h5file):
 
 
 def compare(single_path, distributed_path, ranks):
+    """single_path: the reference; distributed_path: the file under test."""
     problems = []
     with h5py.File(single_path, "r") as single, h5py.File(distributed_path, "r") as distributed:
         single_names, distributed_names = objects(single), objects(distributed)
