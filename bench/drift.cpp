@@ -49,6 +49,7 @@
 #include <fmt/format.h>
 
 #include "shockgas/engine.hpp"
+#include "shockgas/event_engine.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/parameters.hpp"
 #include "shockgas/provenance.hpp"
@@ -125,22 +126,50 @@ Snapshot inspect(const shockgas::ClusterState& state, double ring_length) {
     return s;
 }
 
+// Every pair out of order by more than `resolution`: which clusters, where,
+// how fast they separate and how long ago they would have met.
+void print_disorder(const shockgas::ClusterState& state, double ring_length, double resolution,
+                    std::uint64_t collisions) {
+    const std::size_t n = state.size();
+    std::size_t closing_pair = 0;  // where the ring closes: the most negative difference (as in inspect)
+    for (std::size_t k = 1; k < n; ++k)
+        if (state.position[(k + 1) % n] - state.position[k] <
+            state.position[(closing_pair + 1) % n] - state.position[closing_pair])
+            closing_pair = k;
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t j = (k + 1) % n;
+        double d = state.position[j] - state.position[k];
+        if (k == closing_pair) d += ring_length;
+        if (!(d < -resolution)) continue;
+        const double closing = state.velocity[k] - state.velocity[j];
+        fmt::print("# disorder at t = {:.17g} after {} collisions: clusters {} (slot {}, x = {:.17g}, v = {:.17g}) and "
+                   "{} (slot {}, x = {:.17g}, v = {:.17g}): gap {:.3e}, closing speed {:.3e}, overlap / |closing| = "
+                   "{:.3e}\n",
+                   state.time, collisions, k, state.first_particle[k], state.position[k], state.velocity[k], j,
+                   state.first_particle[j], state.position[j], state.velocity[j], d, closing,
+                   closing != 0.0 ? -d / std::fabs(closing) : 0.0);
+    }
+}
+
 double ulp(double x) { return std::nextafter(std::fabs(x), std::numeric_limits<double>::infinity()) - std::fabs(x); }
 
 struct Row {
     double collisions, time, clusters, momentum, drift, bound, energy_ratio, max_rise, min_gap, min_gap_run,
-        gap_resolution, order, nonfinite, cpu_seconds, rate, collision_rate_in_time;
+        gap_resolution, order, nonfinite, cpu_seconds, rate, collision_rate_in_time, stored_min_gap,
+        ring_length_drift;
 };
 
 const char* const column_names[] = {"collisions", "time", "clusters", "momentum", "momentum_drift",
                                     "momentum_drift_bound", "energy_ratio", "max_energy_rise", "min_gap",
                                     "min_gap_so_far", "gap_resolution", "ring_order", "nonfinite",
-                                    "cpu_seconds", "collisions_per_cpu_second", "collisions_per_unit_time"};
+                                    "cpu_seconds", "collisions_per_cpu_second", "collisions_per_unit_time",
+                                    "stored_min_gap", "ring_length_drift"};
 
 std::vector<double> as_vector(const Row& r) {
     return {r.collisions, r.time,        r.clusters,       r.momentum,  r.drift,       r.bound,
             r.energy_ratio, r.max_rise,  r.min_gap,        r.min_gap_run, r.gap_resolution, r.order,
-            r.nonfinite,  r.cpu_seconds, r.rate,           r.collision_rate_in_time};
+            r.nonfinite,  r.cpu_seconds, r.rate,           r.collision_rate_in_time, r.stored_min_gap,
+            r.ring_length_drift};
 }
 
 void print_header() {
@@ -180,6 +209,8 @@ int main(int argc, char** argv) {
     std::string output;
     bool check = false;
     double inject_momentum_error = 0.0;
+    bool stop_on_disorder = false;
+    bool reference = false;
 
     CLI::App app{"shockgas-drift: drift of total momentum, kinetic energy and the smallest gap over one long "
                  "realization (engine chosen by make_engine). Units: initial spacing 1, velocity scale 1."};
@@ -210,6 +241,11 @@ int main(int argc, char** argv) {
     app.add_flag("--check", check,
                  "exit 1 if the momentum drift or an energy rise exceeds its rounding bound, ring order breaks, a "
                  "value is non-finite or the run ends early (equal masses, no merges only)");
+    app.add_flag("--reference", reference,
+                 "run EventEngine, the global-order loop the fast engine is bit-identical to (slower), and read its "
+                 "stored gaps: smallest stored gap and ring-length drift sum(gaps) - L per row");
+    app.add_flag("--stop-on-disorder", stop_on_disorder,
+                 "print every pair out of ring order at the first chunk that has one, and stop there");
     app.add_option("--inject-momentum-error", inject_momentum_error,
                    "testing the check only: the engine starts from v[0] + this while P0 is the unperturbed one");
 
@@ -241,11 +277,19 @@ int main(int argc, char** argv) {
         const Snapshot start = inspect(state, ring_length);
         initial.velocity.front() += inject_momentum_error;
 
-        auto engine = shockgas::make_engine(p, initial, nullptr);
+        std::unique_ptr<shockgas::Engine> engine;
+        const shockgas::EventEngine* reference_engine = nullptr;
+        if (reference) {
+            auto global_loop = std::make_unique<shockgas::EventEngine>(initial, p.collision, p.collapse, nullptr);
+            reference_engine = global_loop.get();
+            engine = std::move(global_loop);
+        } else {
+            engine = shockgas::make_engine(p, initial, nullptr);
+        }
         fmt::print("# shockgas-drift: N = {}, L = {}, r = {}, delta = {}, {} sub-threshold, seed {}, realization {}; "
-                   "engine {} (make_engine)\n",
+                   "engine {} ({})\n",
                    p.particles, ring_length, p.collision.restitution, p.collision.velocity_threshold, subthreshold,
-                   p.seed, realization, engine->name());
+                   p.seed, realization, engine->name(), reference ? "EventEngine, --reference" : "make_engine");
         fmt::print("# P0 = {:.17g}, S0 = sum m|v0| = {:.17g}, E0 = {:.17g}, |v|max0 = {:.17g}\n",
                    static_cast<double>(start.momentum), static_cast<double>(start.momentum_scale),
                    static_cast<double>(start.energy), start.max_speed);
@@ -296,6 +340,7 @@ int main(int argc, char** argv) {
             const double resolution = ulp(2.0 * ring_length + start.max_speed * engine->time()) + ulp(ring_length);
             const bool order = now.min_gap >= -resolution;
             order_held = order_held && order;
+            if (!order) print_disorder(state, ring_length, resolution, engine->collisions());
             nonfinite = std::max(nonfinite, now.nonfinite);
             min_gap_run = std::min(min_gap_run, now.min_gap);
             const double rise = static_cast<double>((now.energy - previous_energy) / previous_energy);
@@ -314,7 +359,8 @@ int main(int argc, char** argv) {
             previous_max_speed = now.max_speed;
             previous_chunk_collisions = collisions;
 
-            const bool stopped = !running || engine->cluster_count() == 1 || idle_chunks > 60;
+            const bool stopped =
+                !running || engine->cluster_count() == 1 || idle_chunks > 60 || (stop_on_disorder && !order);
             if (static_cast<double>(collisions) >= milestones[next] || stopped) {
                 Row row{};
                 row.collisions = static_cast<double>(collisions);
@@ -337,14 +383,26 @@ int main(int argc, char** argv) {
                     row.time > last_row_time ? static_cast<double>(collisions - last_row_collisions) /
                                                    (row.time - last_row_time)
                                              : 0.0;
+                row.stored_min_gap = row.ring_length_drift = std::numeric_limits<double>::quiet_NaN();
+                if (reference_engine != nullptr) {
+                    const std::vector<double> gaps = reference_engine->gaps();
+                    long double total = 0;
+                    for (double g : gaps) total += g;
+                    row.stored_min_gap = *std::min_element(gaps.begin(), gaps.end()) / spacing;
+                    row.ring_length_drift = static_cast<double>(total - static_cast<long double>(ring_length));
+                }
                 last_row_time = row.time;
                 last_row_collisions = collisions;
                 rows.push_back(row);
                 print_row(row);
+                if (reference_engine != nullptr)
+                    fmt::print("#   stored gaps: smallest {:.3e} L/N, sum(gaps) - L = {:.3e}\n", row.stored_min_gap,
+                               row.ring_length_drift);
                 while (next < milestones.size() && static_cast<double>(collisions) >= milestones[next]) ++next;
             }
             if (stopped) {
-                ended = !running ? "engine stopped (collapse)"
+                ended = !order ? "stopped at ring disorder"
+                        : !running ? "engine stopped (collapse)"
                         : engine->cluster_count() == 1 ? "one cluster left: no more collisions"
                                                        : "no collisions in 60 chunks";
                 break;
