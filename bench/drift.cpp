@@ -398,6 +398,7 @@ int main(int argc, char** argv) {
                 if (reference_engine != nullptr)
                     fmt::print("#   stored gaps: smallest {:.3e} L/N, sum(gaps) - L = {:.3e}\n", row.stored_min_gap,
                                row.ring_length_drift);
+                std::fflush(stdout);
                 while (next < milestones.size() && static_cast<double>(collisions) >= milestones[next]) ++next;
             }
             if (stopped) {
