@@ -133,7 +133,9 @@ private:
 
     double gap_at(std::int32_t slot, double t) const;
     double key_for(std::int32_t slot) const;
+    double linked_key(std::int32_t slot) const;
     void reschedule(std::int32_t slot);
+    void reschedule_top(std::int32_t slot);
     bool cuttable(std::int32_t slot) const;
     void run_window(double window_end);
     void run_block(std::int32_t first, std::int32_t last);
@@ -168,7 +170,6 @@ private:
     double speed_bound_;  // |v|max at the start of the previous window: a bound for all later times
     std::int32_t block_first_ = -1;  // the current block's boundary clusters (-1: no cuts)
     std::int32_t block_last_ = -1;
-    std::vector<std::int32_t> pending_;  // pairs due in the window, collected by the scan
     std::vector<BoundaryChange> left_changes_;   // current block: changes of block_first_
     std::vector<BoundaryChange> right_changes_;  // current block: changes at its right end
     std::vector<BoundaryChange> previous_right_changes_;

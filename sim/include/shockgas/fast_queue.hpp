@@ -30,6 +30,7 @@ public:
     void reset(std::int32_t slots) {
         position_.assign(static_cast<std::size_t>(slots), absent);
         heap_.clear();
+        heap_.reserve(static_cast<std::size_t>(slots));
     }
 
     bool empty() const { return heap_.empty(); }
@@ -57,6 +58,21 @@ public:
             sift_up(position);
         else
             sift_down(position);
+    }
+
+    // The top entry moved to time t, not earlier than its current time.
+    void replace_top(double t) {
+        heap_.front().time = t;
+        sift_down(0);
+    }
+    // Removes the top entry.
+    void pop_top() {
+        position_[static_cast<std::size_t>(heap_.front().slot)] = absent;
+        const Entry last = heap_.back();
+        heap_.pop_back();
+        if (heap_.empty()) return;
+        heap_.front() = last;
+        sift_down(0);
     }
 
     void remove(std::int32_t slot) {
