@@ -38,8 +38,6 @@ constexpr double target_events_per_cluster = 0.3;
 // sit in L2, so the window is shortened to make more cuts.
 constexpr double max_mean_block_clusters = 4096.0;
 constexpr double first_window = 0.05;
-// Most due pairs a block runs in QuaternaryHeap's linear mode.
-constexpr std::size_t linear_limit = 16;
 }  // namespace
 
 bool FastEventEngine::supports(const InitialCondition& initial, const CollisionModel& model,
@@ -112,40 +110,24 @@ double FastEventEngine::key_for(std::int32_t slot) const {
 
 // Within a block: record the key, and keep the pair in the block's heap only
 // if it is due in this window. Called only while two or more clusters live.
-template <bool linear>
 [[gnu::always_inline]] inline void FastEventEngine::reschedule(std::int32_t slot) {
     const double key = linked_key(slot);
     node_[static_cast<std::size_t>(slot)].key = key;
-    if constexpr (linear) {
-        if (key <= window_end_)
-            heap_.linear_schedule(slot, key);
-        else
-            heap_.linear_remove(slot);
-    } else {
-        if (key <= window_end_)
-            heap_.schedule(slot, key);
-        else
-            heap_.remove(slot);
-    }
+    if (key <= window_end_)
+        heap_.schedule(slot, key);
+    else
+        heap_.remove(slot);
 }
 
 // reschedule for the pair at the top of the heap (the one just taken): its
 // new key is never earlier than the old one.
-template <bool linear>
 [[gnu::always_inline]] inline void FastEventEngine::reschedule_top(std::int32_t slot) {
     const double key = linked_key(slot);
     node_[static_cast<std::size_t>(slot)].key = key;
-    if constexpr (linear) {
-        if (key <= window_end_)
-            heap_.linear_replace_top(key);
-        else
-            heap_.linear_pop_top();
-    } else {
-        if (key <= window_end_)
-            heap_.replace_top(key);
-        else
-            heap_.pop_top();
-    }
+    if (key <= window_end_)
+        heap_.replace_top(key);
+    else
+        heap_.pop_top();
 }
 
 void FastEventEngine::move_anchor_clock(std::int32_t slot, double t) {
@@ -262,6 +244,7 @@ void FastEventEngine::run_window(double window_end) {
     };
 
     auto run_scanned = [&](std::int32_t first, std::int32_t last) {
+        heap_.heapify();
         run_block(first, last);
         run_events += densest_run_ + 1;
         ++blocks_last_window_;
@@ -317,24 +300,12 @@ void FastEventEngine::run_block(std::int32_t first, std::int32_t last) {
     run_reference_ = -std::numeric_limits<double>::infinity();
     run_length_ = 0;
     densest_run_ = 0;
-    // A handful of due pairs: linear mode (see QuaternaryHeap), until the due
-    // set grows past linear_limit; then, or for a larger block, the heap.
-    if (heap_.size() <= linear_limit) {
-        for (;;) {
-            if (heap_.empty()) return;
-            if (heap_.size() > linear_limit) break;
-            heap_.linear_find_top();
-            collide_pair<true>(heap_.linear_top_slot(), heap_.linear_top_time());
-        }
-    }
-    heap_.heapify();
-    while (!heap_.empty()) collide_pair<false>(heap_.top_slot(), heap_.top_time());
+    while (!heap_.empty()) collide_pair(heap_.top_slot(), heap_.top_time());
 }
 
 // EventEngine::collide_pair restricted to a block: the same statements in the
 // same order, except that the cut pairs' gaps and keys (left of block_first_,
 // right of block_last_) are not touched but logged for replay_cut.
-template <bool linear>
 [[gnu::always_inline]] inline void FastEventEngine::collide_pair(std::int32_t i, double t) {
     now_ = t;
     ++window_events_;
@@ -379,33 +350,22 @@ template <bool linear>
             node_[static_cast<std::size_t>(k)].prev = i;
         }
         if (left_is_cut) left_changes_.push_back({t, i, i, a.velocity});
-        if constexpr (linear)
-            heap_.linear_remove(j);
-        else
-            heap_.remove(j);
+        heap_.remove(j);
         b.key = never;
         --alive_;
         if (anchor_ == j) anchor_ = i;
         if (alive_ == 1) {
             a.next = a.prev = i;
             a.gap = ring_length_;
-            if constexpr (linear)
-                heap_.linear_remove(i);
-            else
-                heap_.remove(i);
+            heap_.remove(i);
             a.key = never;
             return;
         }
-        if (!left_is_cut) reschedule<linear>(p);
-        if (right_is_cut) {
-            // (i, k) is now the cut pair: its key comes from replay_cut
-            if constexpr (linear)
-                heap_.linear_remove(i);
-            else
-                heap_.remove(i);
-        } else {
-            reschedule<linear>(i);
-        }
+        if (!left_is_cut) reschedule(p);
+        if (right_is_cut)
+            heap_.remove(i);  // (i, k) is now the cut pair: its key comes from replay_cut
+        else
+            reschedule(i);
         return;
     }
 
@@ -419,9 +379,9 @@ template <bool linear>
     if (right_is_cut) right_changes_.push_back({t, i, j, b.velocity});
     // i is still the heap's top (the order of the three updates does not
     // matter: the heap orders by (time, slot), which is unique).
-    reschedule_top<linear>(i);
-    if (!left_is_cut) reschedule<linear>(p);
-    if (!right_is_cut) reschedule<linear>(j);
+    reschedule_top(i);
+    if (!left_is_cut) reschedule(p);
+    if (!right_is_cut) reschedule(j);
 }
 
 // Replays the cut pair's gap and key updates in global (time, slot) order:

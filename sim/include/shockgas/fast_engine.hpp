@@ -134,14 +134,11 @@ private:
     double gap_at(std::int32_t slot, double t) const;
     double key_for(std::int32_t slot) const;
     double linked_key(std::int32_t slot) const;
-    template <bool linear>
     void reschedule(std::int32_t slot);
-    template <bool linear>
     void reschedule_top(std::int32_t slot);
     bool cuttable(std::int32_t slot) const;
     void run_window(double window_end);
     void run_block(std::int32_t first, std::int32_t last);
-    template <bool linear>
     void collide_pair(std::int32_t i, double t);
     void replay_cut(const Cut& cut, const std::vector<BoundaryChange>& left_side,
                     const std::vector<BoundaryChange>& right_side);

@@ -102,46 +102,8 @@ public:
         for (std::int32_t position = (count - 2) / 4; position >= 0 && count > 1; --position) sift_down(position);
     }
 
-    // Linear mode, for the few entries due in a small block: the same
-    // entries unordered, the top found by a scan in (time, slot) order (a
-    // strict total order, so the scan returns exactly the heap's top). Cheaper
-    // than sifting when only a handful of entries are present. Switch to heap
-    // mode at any time by heapify(); append_unordered loads both modes.
-    void linear_find_top() {
-        const Entry* entry = heap_.data();
-        const auto count = static_cast<std::int32_t>(heap_.size());
-        std::int32_t best = 0;
-        for (std::int32_t c = 1; c < count; ++c) best = before(entry[c], entry[best]) ? c : best;
-        top_ = best;
-    }
-    std::int32_t linear_top_slot() const { return heap_[static_cast<std::size_t>(top_)].slot; }
-    double linear_top_time() const { return heap_[static_cast<std::size_t>(top_)].time; }
-    // Valid only until the next linear_* change other than this one.
-    void linear_replace_top(double t) { heap_[static_cast<std::size_t>(top_)].time = t; }
-    void linear_pop_top() { linear_erase(top_); }
-    void linear_schedule(std::int32_t slot, double t) {
-        const std::int32_t position = position_[static_cast<std::size_t>(slot)];
-        if (position == absent) {
-            append_unordered(slot, t);
-            return;
-        }
-        heap_[static_cast<std::size_t>(position)].time = t;
-    }
-    void linear_remove(std::int32_t slot) {
-        const std::int32_t position = position_[static_cast<std::size_t>(slot)];
-        if (position != absent) linear_erase(position);
-    }
-
 private:
     static constexpr std::int32_t absent = -1;
-
-    void linear_erase(std::int32_t position) {
-        position_[static_cast<std::size_t>(heap_[static_cast<std::size_t>(position)].slot)] = absent;
-        const Entry last = heap_.back();
-        heap_.pop_back();
-        if (static_cast<std::size_t>(position) == heap_.size()) return;
-        place(position, last);
-    }
 
     // (time, slot) order. Bitwise, not short-circuit, operators: the result is
     // computed without branches, which matters because heap comparisons are
@@ -191,7 +153,6 @@ private:
 
     std::vector<std::int32_t> position_;
     std::vector<Entry> heap_;
-    std::int32_t top_ = 0;  // linear mode: the top's position after linear_find_top
 };
 
 }  // namespace shockgas
