@@ -32,7 +32,11 @@ if [ "$mode" = build ]; then
   IFS=';' read -ra libraries <<< "$hdf5_libraries"
   objects=()
   # The library's sources (whatever sim/src holds) and the build's provenance file.
+  # The fuzzers run one process: they take the one-rank stand-in of the
+  # distributed layer, never its MPI version (which needs mpi.h and would
+  # define the same symbols).
   for src in "$source_dir"/sim/src/*.cpp "$build_info"; do
+    [ "$(basename "$src")" = distributed_mpi.cpp ] && continue
     obj="$out_dir/$(basename "${src%.cpp}").o"
     if [ ! -e "$obj" ] || [ "$src" -nt "$obj" ] || [ -n "$(find "$source_dir/sim/include" -newer "$obj" -print -quit)" ]; then
       clang++ "${flags[@]}" -c "$src" -o "$obj" &
