@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include "shockgas/event_engine.hpp"
 
 namespace {
@@ -19,14 +21,7 @@ constexpr double epsilon_machine = std::numeric_limits<double>::epsilon();
 // numbers of order 1..10: 8 ulp of the largest magnitude bounds them.
 constexpr double hand_solved_ulps = 8.0;
 
-InitialCondition make(double ring_length, std::vector<double> position, std::vector<double> velocity) {
-    InitialCondition initial;
-    initial.ring_length = ring_length;
-    initial.position = std::move(position);
-    initial.velocity = std::move(velocity);
-    initial.mass.assign(initial.position.size(), 1.0);
-    return initial;
-}
+constexpr auto make = shockgas::testing::unit_masses;
 
 TEST(EventEngine, TwoParticlesOnARingBounceWithGeometricallySlowerSpeeds) {
     // x = (0, 1), v = (1, -1), L = 2, r = 1/2. The pair meets at t = 1/2 and

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include "shockgas/collision.hpp"
 #include "shockgas/engine.hpp"
 #include "shockgas/event_engine.hpp"
@@ -26,14 +28,7 @@ constexpr double epsilon_machine = std::numeric_limits<double>::epsilon();
 // the largest magnitude bounds them.
 constexpr double hand_solved_tolerance = 16.0 * epsilon_machine;
 
-InitialCondition make(double ring_length, std::vector<double> position, std::vector<double> velocity) {
-    InitialCondition initial;
-    initial.ring_length = ring_length;
-    initial.position = std::move(position);
-    initial.velocity = std::move(velocity);
-    initial.mass.assign(initial.position.size(), 1.0);
-    return initial;
-}
+constexpr auto make = shockgas::testing::unit_masses;
 
 ClusterState state_at(ExactEngine& engine, double t) {
     EXPECT_TRUE(engine.advance_to(t));
