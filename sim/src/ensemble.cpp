@@ -335,7 +335,6 @@ private:
                     checkpoint.engines.emplace(static_cast<std::int64_t>(k), *d->engine);
                 } else {
                     outs[k].status = RealizationStatus::not_run;
-                    outs[k].histogram_counts.assign(histogram_times_.size(), {});
                 }
                 checkpoint.samples_done[k] = outs[k].samples_done;
                 d.reset();  // a deposit serves one checkpoint: free its copy of the state
