@@ -1,9 +1,13 @@
 // Helpers shared by the test executables (header only, tests only).
 #pragma once
 
+#include <string>
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "shockgas/observables.hpp"
 #include "shockgas/state.hpp"
 
 namespace shockgas::testing {
@@ -16,6 +20,23 @@ inline InitialCondition unit_masses(double ring_length, std::vector<double> posi
     initial.velocity = std::move(velocity);
     initial.mass.assign(initial.position.size(), 1.0);
     return initial;
+}
+
+// Exact equality of two ring states, element by element (doubles compared
+// with ==, so -0.0 vs 0.0 would pass, but any last-bit difference fails): the
+// check behind every "bit-identical" claim between engines or runs.
+inline void expect_identical(const ClusterState& a, const ClusterState& b, const std::string& where) {
+    ASSERT_EQ(a.time, b.time) << where;
+    ASSERT_EQ(a.size(), b.size()) << where;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        ASSERT_EQ(a.first_particle[k], b.first_particle[k]) << where << " cluster " << k;
+        ASSERT_EQ(a.position[k], b.position[k]) << where << " cluster " << k;
+        ASSERT_EQ(a.velocity[k], b.velocity[k]) << where << " cluster " << k;
+        ASSERT_EQ(a.mass[k], b.mass[k]) << where << " cluster " << k;
+    }
+    const auto moments_a = velocity_moments(a.velocity, a.mass);
+    const auto moments_b = velocity_moments(b.velocity, b.mass);
+    ASSERT_EQ(moments_a.temperature, moments_b.temperature) << where;
 }
 
 }  // namespace shockgas::testing

@@ -19,6 +19,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include "shockgas/engine.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/event_engine.hpp"
@@ -58,10 +60,7 @@ void expect_same_state(const Engine& a, const Engine& b, const std::string& what
     b.clusters(sb);
     EXPECT_EQ(a.collisions(), b.collisions()) << what;
     EXPECT_EQ(a.time(), b.time()) << what;
-    EXPECT_TRUE(same(sa.position, sb.position)) << what;
-    EXPECT_TRUE(same(sa.velocity, sb.velocity)) << what;
-    EXPECT_TRUE(same(sa.mass, sb.mass)) << what;
-    EXPECT_EQ(sa.first_particle, sb.first_particle) << what;
+    shockgas::testing::expect_identical(sa, sb, what);
 }
 
 struct Mode {
@@ -151,8 +150,7 @@ void expect_same_result(const EnsembleResult& a, const EnsembleResult& b) {
     ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
     for (std::size_t s = 0; s < a.snapshots.size(); ++s) {
         EXPECT_EQ(a.snapshots[s].realization, b.snapshots[s].realization);
-        EXPECT_TRUE(same(a.snapshots[s].state.position, b.snapshots[s].state.position));
-        EXPECT_TRUE(same(a.snapshots[s].state.velocity, b.snapshots[s].state.velocity));
+        shockgas::testing::expect_identical(a.snapshots[s].state, b.snapshots[s].state, "snapshot");
     }
     ASSERT_EQ(a.histograms.size(), b.histograms.size());
     for (std::size_t h = 0; h < a.histograms.size(); ++h) EXPECT_TRUE(same(a.histograms[h].counts, b.histograms[h].counts));

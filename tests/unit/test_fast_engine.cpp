@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include "shockgas/engine.hpp"
 #include "shockgas/event_engine.hpp"
 #include "shockgas/event_queue.hpp"
@@ -91,21 +93,7 @@ TEST(QuaternaryHeap, EmptyHeapReportsNever) {
     EXPECT_FALSE(heap.contains(1));
 }
 
-// Exact equality of two states, element by element (doubles compared with ==,
-// so -0.0 vs 0.0 would pass, but any last-bit difference fails).
-void expect_identical(const ClusterState& fast, const ClusterState& reference, const std::string& where) {
-    ASSERT_EQ(fast.time, reference.time) << where;
-    ASSERT_EQ(fast.size(), reference.size()) << where;
-    for (std::size_t k = 0; k < fast.size(); ++k) {
-        ASSERT_EQ(fast.first_particle[k], reference.first_particle[k]) << where << " cluster " << k;
-        ASSERT_EQ(fast.position[k], reference.position[k]) << where << " cluster " << k;
-        ASSERT_EQ(fast.velocity[k], reference.velocity[k]) << where << " cluster " << k;
-        ASSERT_EQ(fast.mass[k], reference.mass[k]) << where << " cluster " << k;
-    }
-    const auto a = shockgas::velocity_moments(fast.velocity, fast.mass);
-    const auto b = shockgas::velocity_moments(reference.velocity, reference.mass);
-    ASSERT_EQ(a.temperature, b.temperature) << where;
-}
+using shockgas::testing::expect_identical;
 
 struct Mode {
     const char* name;
