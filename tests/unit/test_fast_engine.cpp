@@ -7,13 +7,13 @@
 #include <cstdint>
 #include <memory>
 #include <random>
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "../queue_workload.hpp"
 #include "../test_support.hpp"
 
 #include "shockgas/engine.hpp"
@@ -34,52 +34,20 @@ using shockgas::QuaternaryHeap;
 using shockgas::SimulationParameters;
 using shockgas::Subthreshold;
 
+// The fast engine's heap against the reference engine's queue and the
+// reference order, starting, as a block does, from a bulk load.
 TEST(QuaternaryHeap, MatchesEventQueueOrderOnRandomWorkloads) {
     for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-        std::mt19937_64 rng(seed);
-        const std::int32_t slots = 1 + static_cast<std::int32_t>(rng() % 700);
-        QuaternaryHeap heap(slots);
-        shockgas::EventQueue queue(slots);
-        std::set<std::pair<double, std::int32_t>> reference;  // (time, slot): the tie-break rule
-        std::vector<double> scheduled(static_cast<std::size_t>(slots), QuaternaryHeap::never);
-        // Bulk load half the slots, as a block does at the start of a window.
-        std::uniform_int_distribution<int> coarse(0, 64);  // multiples of 1/8: many exact ties
-        for (std::int32_t slot = 0; slot < slots; slot += 2) {
-            const double t = coarse(rng) / 8.0;
+        shockgas::testing::QueueWorkload workload(seed, 700);
+        QuaternaryHeap heap(workload.slots());
+        shockgas::EventQueue queue(workload.slots());
+        for (const auto& [slot, t] : workload.bulk_load()) {
             heap.append_unordered(slot, t);
             queue.schedule(slot, t);
-            reference.insert({t, slot});
-            scheduled[static_cast<std::size_t>(slot)] = t;
         }
         heap.heapify();
-        for (int op = 0; op < 20000; ++op) {
-            const auto slot = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(slots));
-            const auto s = static_cast<std::size_t>(slot);
-            const auto action = rng() % 4;
-            if (action <= 1) {
-                const double t = coarse(rng) / 8.0;
-                if (scheduled[s] != QuaternaryHeap::never) reference.erase({scheduled[s], slot});
-                reference.insert({t, slot});
-                scheduled[s] = t;
-                heap.schedule(slot, t);
-                queue.schedule(slot, t);
-            } else if (action == 2) {
-                if (scheduled[s] != QuaternaryHeap::never) reference.erase({scheduled[s], slot});
-                scheduled[s] = QuaternaryHeap::never;
-                heap.remove(slot);
-                queue.remove(slot);
-            } else if (!reference.empty()) {
-                const auto expected = *reference.begin();
-                ASSERT_EQ(heap.top_slot(), expected.second);
-                ASSERT_EQ(heap.top_time(), expected.first);
-                ASSERT_EQ(queue.top_slot(), expected.second);
-                reference.erase(reference.begin());
-                scheduled[static_cast<std::size_t>(expected.second)] = QuaternaryHeap::never;
-                heap.remove(expected.second);
-                queue.remove(expected.second);
-            }
-            ASSERT_EQ(heap.size(), reference.size());
-        }
+        workload.run(20000, heap, queue);
+        ASSERT_FALSE(HasFatalFailure()) << "seed " << seed;
     }
 }
 
