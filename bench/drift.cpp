@@ -29,8 +29,10 @@
 //            rounding; a pair out of order shows as a negative gap)
 //   bad      non-finite positions or velocities seen so far
 //
-// --check turns the two rounding bounds into pass/fail (exit status 1); the
-// ctest `drift.check` runs it for 10^6 collisions.
+// --check turns the two rounding bounds into pass/fail (exit status 1), and
+// with --reference a third, on the ring length (ring_length_rounding_bound);
+// the ctests `drift.check` (10^6 collisions) and `drift.ring_length` (10^7,
+// --reference) run it.
 //
 // Example (the README's long run, ~20 min of one core):
 //   build/bench/shockgas-drift -N 1000 -r 0.5 -d 1e-2 --collisions 1e10 -o drift.h5
@@ -69,6 +71,22 @@ constexpr double unit_roundoff_2 = 0x1p-52;  // 2u, u = 2^-53 the unit roundoff 
 //   |P - P0| <= C * 2u * m |v|max0, relative to sum m |v0|.
 double momentum_rounding_bound(double collisions, double mass, double max_speed0, double momentum_scale) {
     return collisions * unit_roundoff_2 * mass * max_speed0 / momentum_scale;
+}
+
+// |sum(gaps) - L| that rounding alone should stay within (--reference only).
+// The engines store gaps, never L, and no collision moves mass across the
+// ring, so the sum stays L but for rounding: each collision rewrites three
+// gaps (the pair's own contact gap and its two neighbours'), each rounded to
+// within 2^-53 of its value. Those errors have random signs, so the sum
+// random-walks as sqrt(3 C) 2^-53 g for gaps g of about the mean spacing;
+// the factor 20 covers gaps a few spacings wide and a 4-sigma excursion. It is
+// not a worst case (that, 3 C 2^-53 g_max, grows too fast to tell anything
+// apart). Measured at N = 1000, C = 10^7: 2.4e-13 L/N against a bound of
+// 1.2e-11; setting the contact gap to 0 instead, as the engines did until the
+// contact gap was kept, gives 1.3e-9, because it drops c * (t rounded - t
+// exact) ~ c ulp(t) at every collision.
+double ring_length_rounding_bound(double collisions, double spacing) {
+    return 20.0 * std::sqrt(3.0 * collisions) * 0x1p-53 * spacing;
 }
 
 // Worst-case energy increase over `collisions` collisions, relative to E:
@@ -474,6 +492,12 @@ int main(int argc, char** argv) {
                 fail(fmt::format("momentum drift {:.3e} exceeds the rounding bound {:.3e}", last.drift, last.bound));
             if (!energy_within_bound) fail("kinetic energy rose beyond rounding");
             if (!order_held) fail("ring order broken (a gap below -resolution)");
+            if (reference_engine != nullptr) {
+                const double bound = ring_length_rounding_bound(last.collisions, spacing);
+                if (!(std::fabs(last.ring_length_drift) <= bound))
+                    fail(fmt::format("ring length drift sum(gaps) - L = {:.3e} exceeds the rounding bound {:.3e}",
+                                     last.ring_length_drift, bound));
+            }
             if (nonfinite > 0) fail("non-finite values");
             return ok ? 0 : 1;
         }

@@ -329,7 +329,8 @@ void FastEventEngine::run_block(std::int32_t first, std::int32_t last) {
 
     if (!left_is_cut) node_[static_cast<std::size_t>(p)].gap = gap_at(p, t);
     if (j != p && !right_is_cut) b.gap = gap_at(j, t);
-    a.gap = 0.0;
+    const double contact_gap = gap_at(i, t);  // kept, as in EventEngine
+    a.gap = contact_gap;
     move_anchor_clock(i, t);
     move_anchor_clock(j, t);
     ++collisions_;
@@ -339,21 +340,25 @@ void FastEventEngine::run_block(std::int32_t first, std::int32_t last) {
         a.velocity = merged.velocity;
         a.mass = merged.mass;
         a.clock = t;
-        a.gap = b.gap;
+        a.gap = contact_gap + b.gap;  // if (i, k) is the cut, replay_cut sets it
         const std::int32_t k = b.next;
         a.next = k;
         if (right_is_cut) {
-            // i is now the left end of the cut; k's prev is set by the replay.
+            // i is now the left end of the cut; k's prev is set by the replay,
+            // which adds the contact gap to the cut's gap as the line above.
             block_last_ = i;
-            right_changes_.push_back({t, i, i, a.velocity});
+            right_changes_.push_back({t, i, i, a.velocity, contact_gap});
         } else {
             node_[static_cast<std::size_t>(k)].prev = i;
         }
-        if (left_is_cut) left_changes_.push_back({t, i, i, a.velocity});
+        if (left_is_cut) left_changes_.push_back({t, i, i, a.velocity, 0.0});
         heap_.remove(j);
         b.key = never;
         --alive_;
-        if (anchor_ == j) anchor_ = i;
+        if (anchor_ == j) {
+            anchor_ = i;
+            anchor_position_ -= contact_gap;
+        }
         if (alive_ == 1) {
             a.next = a.prev = i;
             a.gap = ring_length_;
@@ -375,8 +380,8 @@ void FastEventEngine::run_block(std::int32_t first, std::int32_t last) {
     b.velocity = after.right_velocity;
     a.clock = t;
     b.clock = t;
-    if (left_is_cut) left_changes_.push_back({t, i, i, a.velocity});
-    if (right_is_cut) right_changes_.push_back({t, i, j, b.velocity});
+    if (left_is_cut) left_changes_.push_back({t, i, i, a.velocity, 0.0});
+    if (right_is_cut) right_changes_.push_back({t, i, j, b.velocity, 0.0});
     // i is still the heap's top (the order of the three updates does not
     // matter: the heap orders by (time, slot), which is unique).
     reschedule_top(i);
@@ -411,6 +416,10 @@ void FastEventEngine::replay_cut(const Cut& cut, const std::vector<BoundaryChang
         const double t = change.time;
         gap = gap_at_time(gap, left_velocity, right_velocity, left_clock, right_clock, t);
         if (take_left) {
+            // A merge moved the cut's left end from one cluster to its left
+            // neighbour: the gap grows by their contact gap (EventEngine's
+            // contact_gap + b.gap).
+            if (change.end_slot != left) gap = change.contact_gap + gap;
             left = change.end_slot;
             left_velocity = change.velocity;
             left_clock = t;

@@ -117,12 +117,14 @@ private:
         double right_clock;
     };
     // One velocity change of a boundary cluster: the event (time, slot) that
-    // made it, the cluster now at the boundary and its new velocity.
+    // made it, the cluster now at the boundary, its new velocity and, after a
+    // merge that moved the boundary to the left partner, their contact gap.
     struct BoundaryChange {
         double time;
         std::int32_t event_slot;
         std::int32_t end_slot;
         double velocity;
+        double contact_gap;
     };
     // Windows whose events might join one stall run (see check_stall_bound).
     struct WindowRuns {
