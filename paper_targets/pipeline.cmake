@@ -24,6 +24,19 @@ add_custom_target(shockgas_sim_stamp
   VERBATIM)
 add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge)
 
+# Where a run writes before its output is final: <dir>/<name>.running.h5 for
+# <dir>/<name>.h5. An interrupted shockgas-sim (Ctrl-C, SIGTERM, a killed
+# build) still writes its file, marked "interrupted", and exits 130; were that
+# the rule's OUTPUT, make would take it as up to date and the next build would
+# feed a partial run to the analysis (seen: a killed paper build, then
+# "no /snapshots" from shockgas-analyze). So the run writes the staged name and
+# the rule renames it only after shockgas-sim exits 0; the next build reruns it
+# and --resume continues from the staged name's checkpoint.
+function(_shockgas_run_to output result)
+  string(REGEX REPLACE "\\.h5$" ".running.h5" staged "${output}")
+  set(${result} "${staged}" PARENT_SCOPE)
+endfunction()
+
 # shockgas_figure_runs(<figure>): defines the simulations of <figure> at the
 # configured fidelity. Sets in the caller's scope:
 #   <figure>_RUNS            run names, in file order
@@ -72,9 +85,11 @@ function(shockgas_figure_runs figure)
     string(REPLACE ";" " " args_text "${args} --realizations ${realizations} parts=${parts}")
     file(CONFIGURE OUTPUT "${out_dir}/${name}.args" CONTENT "${args_text}\n")
     if(parts EQUAL 1)
+      _shockgas_run_to("${h5}" staged)
       add_custom_command(
         OUTPUT "${h5}"
-        COMMAND shockgas-sim ${args} --realizations ${realizations} --quiet --resume --output "${h5}"
+        COMMAND shockgas-sim ${args} --realizations ${realizations} --quiet --resume --output "${staged}"
+        COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${h5}"
         DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
         COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}: ${args_text}"
         VERBATIM)
@@ -88,10 +103,12 @@ function(shockgas_figure_runs figure)
           set(count ${per_part})
         endif()
         set(part "${out_dir}/${name}.part${first}.h5")
+        _shockgas_run_to("${part}" staged)
         add_custom_command(
           OUTPUT "${part}"
           COMMAND shockgas-sim ${args} --realizations ${count} --first-realization ${first} --quiet --resume
-                  --output "${part}"
+                  --output "${staged}"
+          COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${part}"
           DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
           COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}, realizations ${first}..+${count}"
           VERBATIM)
