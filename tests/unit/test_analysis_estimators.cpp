@@ -263,4 +263,19 @@ TEST(AnalysisShocks, IdealSawtooth) {
     EXPECT_EQ(profile.shock_position.size(), static_cast<std::size_t>(segments));
     ASSERT_EQ(profile.segments.size(), static_cast<std::size_t>(segments));
     for (const auto& segment : profile.segments) EXPECT_NEAR(segment.slope * time, 1.0, 1e-9);
+
+    // The same ring moved by `shift` (positions wrapped into [0, L), order
+    // kept): shockgas-sim lists clusters in ring order from the smallest slot,
+    // so once particle 0 has drifted across x = 0 the seam falls inside the
+    // list, not between its last and first entries (seen in the paper-size
+    // Fig. 5 run). Nothing may change but the positions.
+    for (const double shift : {-0.25, -500.0, 333.3, 1199.0}) {
+        sa::Snapshot moved = snapshot;
+        for (double& x : moved.position) x = std::fmod(std::fmod(x + shift, ring_length) + ring_length, ring_length);
+        const auto moved_profile = sa::find_shocks(moved);
+        EXPECT_EQ(moved_profile.shock_position.size(), static_cast<std::size_t>(segments)) << "shift " << shift;
+        ASSERT_EQ(moved_profile.segments.size(), static_cast<std::size_t>(segments)) << "shift " << shift;
+        for (const auto& segment : moved_profile.segments)
+            EXPECT_NEAR(segment.slope * time, 1.0, 1e-9) << "shift " << shift;
+    }
 }
