@@ -5,8 +5,18 @@
 # provenance), but a simulation is stale only when the code that computes it,
 # or the way it is compiled, changed. (Globbing here is deliberate: the stamp
 # must cover every file in these directories, including ones added later.)
+#
+# DIRECTORIES is separated by "|", not ";": a ";" inside a -D value reaches
+# this script escaped ("\;"), which makes the whole value one directory that
+# does not exist, and the stamp then hashed no file at all (so until this was
+# found, changing the simulator never reran a simulation). STAMP.files lists
+# what was hashed; ctest pipeline.stamp_covers_sim_sources checks it.
+string(REPLACE "|" ";" _directories "${DIRECTORIES}")
 set(_content "${COMPILER_INFO}\n")
-foreach(dir IN LISTS DIRECTORIES)
+foreach(dir IN LISTS _directories)
+  if(NOT IS_DIRECTORY "${dir}")
+    message(FATAL_ERROR "SourceStamp: no directory '${dir}'")
+  endif()
   file(GLOB_RECURSE _files LIST_DIRECTORIES false "${dir}/*")
   list(SORT _files)
   foreach(f IN LISTS _files)
@@ -22,4 +32,7 @@ if(EXISTS "${STAMP}")
 endif()
 if(NOT _old STREQUAL "${_stamp}")
   file(WRITE "${STAMP}" "${_stamp}")
+endif()
+if(NOT _old STREQUAL "${_stamp}" OR NOT EXISTS "${STAMP}.files")
+  file(WRITE "${STAMP}.files" "${_content}")
 endif()

@@ -15,11 +15,11 @@ string(TOUPPER "${CMAKE_BUILD_TYPE}" _pipeline_build_type)
 add_custom_target(shockgas_sim_stamp
   COMMAND ${CMAKE_COMMAND}
           -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
-          "-DDIRECTORIES=${PROJECT_SOURCE_DIR}/sim/src\;${PROJECT_SOURCE_DIR}/sim/include\;${PROJECT_SOURCE_DIR}/sim/app"
+          "-DDIRECTORIES=${PROJECT_SOURCE_DIR}/sim/src|${PROJECT_SOURCE_DIR}/sim/include|${PROJECT_SOURCE_DIR}/sim/app"
           "-DCOMPILER_INFO=${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_pipeline_build_type}}"
           -DSTAMP=${SHOCKGAS_SIM_STAMP}
           -P ${PROJECT_SOURCE_DIR}/cmake/SourceStamp.cmake
-  BYPRODUCTS ${SHOCKGAS_SIM_STAMP}
+  BYPRODUCTS ${SHOCKGAS_SIM_STAMP} ${SHOCKGAS_SIM_STAMP}.files
   COMMENT "Hashing the simulator's sources (simulations rerun only when they change)"
   VERBATIM)
 add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge)

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# stamp_coverage_test.sh BUILD_DIR SOURCE_DIR
+# Simulations are stale when the simulator's sources change: they depend on
+# BUILD_DIR/shockgas-sim.stamp, a hash over every file in sim/src, sim/include
+# and sim/app (cmake/SourceStamp.cmake). Builds the stamp as the figure build
+# does and checks that its record of hashed files (shockgas-sim.stamp.files)
+# holds every file git tracks there, each with its current SHA-256. Until this
+# test existed the stamp hashed no file at all, and no change to the simulator
+# ever reran a simulation.
+set -u
+build=$1 source=$2
+cmake --build "$build" --target shockgas_sim_stamp >/dev/null || { echo "FAIL: building shockgas_sim_stamp"; exit 1; }
+record="$build/shockgas-sim.stamp.files"
+[ -s "$record" ] || { echo "FAIL: no $record"; exit 1; }
+cd "$source" || exit 1
+tracked=$(git ls-files sim/src sim/include sim/app)
+[ -n "$tracked" ] || { echo "FAIL: git lists no simulator sources in $source"; exit 1; }
+missing=0
+count=0
+for f in $tracked; do
+  count=$((count + 1))
+  line="$(sha256sum "$f" | cut -d' ' -f1)  $f"
+  grep -qxF "$line" "$record" || { echo "FAIL: $f (with its current content) is not in the stamp"; missing=1; }
+done
+[ "$missing" -eq 0 ] || exit 1
+echo "ok: the stamp covers all $count simulator sources"
