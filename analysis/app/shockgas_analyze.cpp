@@ -226,9 +226,12 @@ void run_shocks(const std::string& input, const std::string& output, const std::
         set_estimate(group, "slope_times_t", summary.slope_times_t);
         set_estimate(group, "density_corrected_slope_times_t", summary.density_corrected_slope_times_t);
         group.set_attribute("segments", static_cast<std::int64_t>(summary.segments));
-        std::printf("t %g: %.2f +- %.2f shocks (N t^-2/3 = %.2f); segment slope x t = %.3f +- %.3f (%zu segments)\n",
+        group.set_attribute("dense_segments", static_cast<std::int64_t>(summary.dense_segments));
+        std::printf("t %g: %.2f +- %.2f shocks (N t^-2/3 = %.2f); segment slope x t = %.3f +- %.3f (%zu sparse "
+                    "segments; %zu dense runs left out)\n",
                     summary.time, summary.shocks.value, summary.shocks.sigma, summary.expected_shocks,
-                    summary.slope_times_t.value, summary.slope_times_t.sigma, summary.segments);
+                    summary.slope_times_t.value, summary.slope_times_t.sigma, summary.segments,
+                    summary.dense_segments);
     }
     results.commit();
     if (!data.empty()) {

@@ -79,7 +79,8 @@ ShockProfile find_shocks(const Snapshot& snapshot, const ShockRule& rule = {});
 // against N t^(-2/3), and the segment slope times t (Eq. 6 predicts 1 for a
 // sparse segment; (1 - rho)/t with rho the segment's number density, since
 // x - q = v t for particles that have not collided). slope_times_t: mean
-// over segments, SE from their scatter.
+// over the sparse segments (rho < 1/2; denser runs are clusters, counted in
+// dense_segments and left out), SE from their scatter.
 struct ShockSummary {
     double time = 0.0;
     std::size_t snapshots = 0;
@@ -89,7 +90,8 @@ struct ShockSummary {
     // Eq. (6) for particles: x - q = v t along a segment, so dv/dx = (1 - dq/dx)/t
     // = (1 - rho)/t; slope t / (1 - rho) should be 1 (segments with rho < 1/2).
     Estimate density_corrected_slope_times_t;
-    std::size_t segments = 0;
+    std::size_t segments = 0;        // sparse segments, behind both slope estimates
+    std::size_t dense_segments = 0;  // runs with rho >= 1/2 (clusters), left out
 };
 ShockSummary summarize_shocks(const std::vector<Snapshot>& snapshots, const ShockRule& rule = {});
 
