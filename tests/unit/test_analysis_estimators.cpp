@@ -238,49 +238,11 @@ TEST(AnalysisTail, GammaRecoveredWithCalibratedSigma) {
     EXPECT_NEAR(static_cast<double>(inside) / trials, one_sigma_coverage, coverage_tolerance(trials));
 }
 
-// A cluster that is not (yet) a shock: ten particles within 0.09 of a
-// spacing with velocities rising across it, between two segments. It fits as
-// a "segment" of slope ~0.4 (x t = 444), which is no rarefaction; averaged in,
-// such runs swamped the paper-size Fig. 5's raw slope. The summary must leave
-// it out of both slope estimates and count it as dense.
-TEST(AnalysisShocks, DenseRunIsNotASegment) {
-    constexpr double time = 1000.0, ring_length = 1200.0;
-    constexpr int segments = 6;
-    sa::Snapshot snapshot;
-    snapshot.time = time;
-    snapshot.ring_length = ring_length;
-    const double length = ring_length / segments;
-    for (int s = 0; s < segments; ++s) {
-        const double q = s * length + length / 2.0;
-        for (int i = 0; i < 20; ++i) {
-            const double x = s * length + 1.0 + i * (length - 2.0) / 20.0;
-            snapshot.position.push_back(x);
-            snapshot.velocity.push_back((x - q) / time);
-            snapshot.mass.push_back(1.0);
-        }
-        if (s == 2) {
-            for (int i = 0; i < 10; ++i) {  // the dense run, in place of this segment's shock
-                snapshot.position.push_back((s + 1) * length - 0.5 + 0.01 * i);
-                snapshot.velocity.push_back(-0.02 + 0.004 * i);
-                snapshot.mass.push_back(1.0);
-            }
-        } else {
-            snapshot.position.push_back((s + 1) * length - 0.5);
-            snapshot.velocity.push_back(0.0);
-            snapshot.mass.push_back(50.0);
-        }
-    }
-    const auto summary = sa::summarize_shocks({snapshot});
-    EXPECT_EQ(summary.dense_segments, 1u);
-    EXPECT_EQ(summary.segments, static_cast<std::size_t>(segments));
-    EXPECT_NEAR(summary.slope_times_t.value, 1.0, 1e-9);
-}
-
-TEST(AnalysisShocks, IdealSawtooth) {
-    // Eq. (6): segments v = (x - q_s)/t of sparse particles, and between them
-    // heavy clusters (the shocks) at the segment ends.
-    constexpr double time = 1000.0, ring_length = 1200.0;
-    constexpr int segments = 6;
+// Eq. (6): segments v = (x - q_s)/t of 20 sparse particles each, and between
+// them heavy clusters (the shocks) at the segment ends. With dense_run = s the
+// shock after segment s is replaced by a cluster that is not (yet) a shock:
+// ten particles within 0.09 of a spacing whose velocities rise across it.
+sa::Snapshot ideal_sawtooth(double time, double ring_length, int segments, int dense_run = -1) {
     sa::Snapshot snapshot;
     snapshot.time = time;
     snapshot.ring_length = ring_length;
@@ -293,10 +255,37 @@ TEST(AnalysisShocks, IdealSawtooth) {
             snapshot.velocity.push_back((x - q) / time);
             snapshot.mass.push_back(1.0);
         }
-        snapshot.position.push_back((s + 1) * length - 0.5);  // the shock cluster
-        snapshot.velocity.push_back(0.0);
-        snapshot.mass.push_back(50.0);
+        if (s == dense_run) {
+            for (int i = 0; i < 10; ++i) {
+                snapshot.position.push_back((s + 1) * length - 0.5 + 0.01 * i);
+                snapshot.velocity.push_back(-0.02 + 0.004 * i);
+                snapshot.mass.push_back(1.0);
+            }
+        } else {
+            snapshot.position.push_back((s + 1) * length - 0.5);  // the shock cluster
+            snapshot.velocity.push_back(0.0);
+            snapshot.mass.push_back(50.0);
+        }
     }
+    return snapshot;
+}
+
+// The dense run fits as a "segment" of slope ~0.4 (x t = 444), which is no
+// rarefaction; averaged in, such runs swamped the paper-size Fig. 5's raw
+// slope. The summary must leave it out of both slope estimates and count it.
+TEST(AnalysisShocks, DenseRunIsNotASegment) {
+    constexpr double time = 1000.0;
+    constexpr int segments = 6;
+    const auto summary = sa::summarize_shocks({ideal_sawtooth(time, 1200.0, segments, 2)});
+    EXPECT_EQ(summary.dense_segments, 1u);
+    EXPECT_EQ(summary.segments, static_cast<std::size_t>(segments));
+    EXPECT_NEAR(summary.slope_times_t.value, 1.0, 1e-9);
+}
+
+TEST(AnalysisShocks, IdealSawtooth) {
+    constexpr double time = 1000.0, ring_length = 1200.0;
+    constexpr int segments = 6;
+    const sa::Snapshot snapshot = ideal_sawtooth(time, ring_length, segments);
     const auto profile = sa::find_shocks(snapshot);
     EXPECT_EQ(profile.shock_position.size(), static_cast<std::size_t>(segments));
     ASSERT_EQ(profile.segments.size(), static_cast<std::size_t>(segments));
