@@ -55,6 +55,7 @@
 #include "shockgas/h5.hpp"
 #include "shockgas/parameters.hpp"
 #include "shockgas/provenance.hpp"
+#include "shockgas/ring_kinematics.hpp"
 #include "shockgas/state.hpp"
 
 namespace {
@@ -120,22 +121,13 @@ Snapshot inspect(const shockgas::ClusterState& state, double ring_length) {
         s.max_speed = std::max(s.max_speed, std::fabs(state.velocity[k]));
     }
     // Gaps in ring order from consecutive differences of positions wrapped
-    // into [0, L): the ring closes at the most negative difference (+L there);
-    // any other negative difference is a pair out of order. Not "d < -L/2":
-    // a cooled gas clusters and leaves voids longer than L/2.
+    // into [0, L), +L where the ring closes; any other negative difference is
+    // a pair out of order.
     if (n == 1) {
         s.min_gap = ring_length;
         return s;
     }
-    std::size_t closing = 0;
-    double most_negative = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < n; ++k) {
-        const double d = state.position[(k + 1) % n] - state.position[k];
-        if (d < most_negative) {
-            most_negative = d;
-            closing = k;
-        }
-    }
+    const std::size_t closing = shockgas::closing_pair(state.position);
     s.min_gap = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < n; ++k) {
         const double d = state.position[(k + 1) % n] - state.position[k];
@@ -149,15 +141,11 @@ Snapshot inspect(const shockgas::ClusterState& state, double ring_length) {
 void print_disorder(const shockgas::ClusterState& state, double ring_length, double resolution,
                     std::uint64_t collisions) {
     const std::size_t n = state.size();
-    std::size_t closing_pair = 0;  // where the ring closes: the most negative difference (as in inspect)
-    for (std::size_t k = 1; k < n; ++k)
-        if (state.position[(k + 1) % n] - state.position[k] <
-            state.position[(closing_pair + 1) % n] - state.position[closing_pair])
-            closing_pair = k;
+    const std::size_t seam = shockgas::closing_pair(state.position);
     for (std::size_t k = 0; k < n; ++k) {
         const std::size_t j = (k + 1) % n;
         double d = state.position[j] - state.position[k];
-        if (k == closing_pair) d += ring_length;
+        if (k == seam) d += ring_length;
         if (!(d < -resolution)) continue;
         const double closing = state.velocity[k] - state.velocity[j];
         fmt::print("# disorder at t = {:.17g} after {} collisions: clusters {} (slot {}, x = {:.17g}, v = {:.17g}) and "

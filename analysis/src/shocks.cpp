@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "shockgas/output.hpp"
+#include "shockgas/ring_kinematics.hpp"
 
 namespace shockgas::analysis {
 
@@ -69,18 +70,11 @@ ShockProfile find_shocks(const Snapshot& input, const ShockRule& rule) {
         temperature += snapshot.mass[i] * std::pow(snapshot.velocity[i] - mean_velocity, 2);
     const double v_rms = std::sqrt(temperature / total);
     const double spacing = snapshot.ring_length / total;  // initial spacing per unit mass
-    // Pair i joins point i and i+1 (cyclically). Points come in ring order
-    // with positions wrapped into [0, L), so going once round the ring the
-    // differences fall by L exactly once, at the seam x = L -> 0. The seam is
-    // wherever the list crosses it (shockgas-sim lists from the smallest slot,
-    // and particle 0 drifts), not necessarily between the last point and the
-    // first: it is the pair with the most negative difference, unwrapped by
-    // +L. Any other negative difference is an overlap at the rounding level.
-    std::size_t seam = n - 1;
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t j = (i + 1) % n, s = (seam + 1) % n;
-        if (snapshot.position[j] - snapshot.position[i] < snapshot.position[s] - snapshot.position[seam]) seam = i;
-    }
+    // Pair i joins point i and i+1 (cyclically), unwrapped by +L where the
+    // ring closes. That is wherever the list crosses x = L -> 0, not
+    // necessarily between its last point and its first: shockgas-sim lists
+    // from the smallest slot, and particle 0 drifts.
+    const std::size_t seam = closing_pair(snapshot.position);
     auto gap = [&](std::size_t i) {
         const std::size_t j = (i + 1) % n;
         return snapshot.position[j] - snapshot.position[i] + (i == seam ? snapshot.ring_length : 0.0);

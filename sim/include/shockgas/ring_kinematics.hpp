@@ -28,6 +28,27 @@ inline double contact_time(double gap, double closing_speed, double left_clock, 
     return t >= now ? t : now;
 }
 
+// Where the ring closes in a list of positions in ring order, each wrapped
+// into [0, L) (walk_ring's output): going once round, the differences
+// x[k+1] - x[k] fall by L exactly once, at the pair k that crosses x = L -> 0.
+// That is the most negative difference (the first, on a tie); any other
+// negative one is an overlap. Not "difference < -L/2": a cooled gas clusters
+// and leaves voids longer than L/2. The gap after k is the difference, plus L
+// at the closing pair. Needs at least one position.
+inline std::size_t closing_pair(const std::vector<double>& position) {
+    const std::size_t n = position.size();
+    std::size_t closing = 0;
+    double most_negative = position[1 % n] - position[0];
+    for (std::size_t k = 1; k < n; ++k) {
+        const double d = position[(k + 1) % n] - position[k];
+        if (d < most_negative) {
+            most_negative = d;
+            closing = k;
+        }
+    }
+    return closing;
+}
+
 // Positions from gaps: the anchor's absolute position moved to `now`, then the
 // gaps summed around the ring. Output in ring order from the smallest slot,
 // positions wrapped into [0, L). Records are any per-slot struct with
