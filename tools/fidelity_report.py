@@ -6,8 +6,8 @@ Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper]
 Reads the runs (build/paper_targets/<fidelity>/<fig>/*.h5 written by shockgas-sim:
 particles, realizations, cpu_seconds, peak_memory_bytes, total_collisions) and the
 analysis results next to them (decay exponents, crossover and scaling fits,
-shocks, the speed/accuracy comparison), and prints what the README's fidelity
-tables show. Reads only; computes nothing but sums and ratios.
+shocks, the speed/accuracy comparison), and prints what the README's results and
+cost tables and docs/figures-and-fidelity.md show. Reads only; computes nothing but sums and ratios.
 """
 import glob
 import os

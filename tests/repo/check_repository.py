@@ -4,8 +4,8 @@
     check_repository.py SOURCE_DIR machine-paths | hdf5-readers | doc-links
 
 machine-paths  no tracked file points outside the repository: at the folder it was cloned into,
-               at a sibling checkout's shared folder, or at a user's or this machine's folders
-               (/home/..., /root/..., ...). A user's clone has none of them.
+               at a sibling checkout's shared folder, or at a user's home or this machine's own
+               folders. A user's clone has none of them.
 hdf5-readers   Python opens shockgas's HDF5 files for reading in one place, python/shockgas (as
                C++ does in sim/include/shockgas/h5.hpp): any other h5py.File( must name a writing
                mode ("w", "r+", "a", "x", "w-"): tests that make or damage files on purpose.
