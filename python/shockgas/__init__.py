@@ -18,13 +18,13 @@ UnsupportedSchemaVersion, never read on a guess. Layouts: docs/cli-and-output.md
 docs/python.md. It needs numpy and h5py (Debian: python3-numpy, python3-h5py).
 """
 from ._h5 import Group, decode, open_file, walk
-from .files import (FILE_KINDS, Checkpoint, Drift, Results, Run, attributes, file_kind, kind_of, read,
+from .files import (FILE_KINDS, Checkpoint, Drift, File, Results, Run, attributes, file_kind, kind_of, read,
                     read_checkpoint, read_drift, read_results, read_run, write_initial_condition)
 from .schema import SCHEMA_VERSIONS, SchemaError, UnsupportedSchemaVersion, check_schema_version
 
 __all__ = [
     "read", "read_run", "read_checkpoint", "read_results", "read_drift", "attributes", "kind_of",
     "write_initial_condition", "walk", "open_file", "decode",
-    "Run", "Checkpoint", "Results", "Drift", "Group",
+    "Run", "Checkpoint", "Results", "Drift", "File", "Group",
     "SCHEMA_VERSIONS", "SchemaError", "UnsupportedSchemaVersion", "check_schema_version", "FILE_KINDS", "file_kind",
 ]

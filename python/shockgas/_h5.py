@@ -95,7 +95,8 @@ def read_group(obj, path="/"):
         child = obj[name]
         if isinstance(child, h5py.Dataset):
             value = child[()]
-            data[name] = np.array([decode(v) for v in value]) if value.dtype.kind in "SO" else value
+            text = isinstance(value, bytes) or (isinstance(value, np.ndarray) and value.dtype.kind in "SO")
+            data[name] = decode(value) if text else value  # text as str (lists of str); numbers as numpy
         else:
             groups[name] = read_group(child, path.rstrip("/") + "/" + name)
     return Group(decode_attributes(obj), data, groups, path)

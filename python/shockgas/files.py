@@ -6,10 +6,10 @@
     drift       shockgas-drift record                            read_drift      -> Drift
     read(path) recognises the kind itself.
 
-A new kind of file: a class (usually a Group subclass), a builder registered with @file_kind that
+A new kind of file: a class (usually a File subclass), a builder registered with @file_kind that
 says how to recognise the file from its root attributes and top-level names, and a public reader:
 
-    class Tail(Group): ...
+    class Tail(File): ...
     @file_kind("tail", lambda attrs, names: attrs.get("program") == "shockgas-tail", "read_tail")
     def _tail(path, handle, attrs, version):
         return Tail(read_group(handle), path, version)
@@ -71,8 +71,16 @@ def attributes(path):
         return decode_attributes(handle)
 
 
+class File(Group):
+    """A whole file read into memory: the root Group, plus `file` (its path) and `schema_version`."""
+
+    def __init__(self, group, path, version):
+        super().__init__(group.attrs, group.data, group.groups, "/")
+        self.file, self.schema_version = path, version
+
+
 # ------------------------------------------------------------------------------------------- runs
-class Run(Group):
+class Run(File):
     """A shockgas-sim output (or a merged one): attrs (parameters, status, provenance), the time
     series (R realizations x K sample times), snapshots, histograms and collapses.
 
@@ -83,10 +91,6 @@ class Run(Group):
         run.histograms                 list of Group: .time .edges (bins+1) .counts (R x (bins+2): under, bins, over)
         run.collapse                   Group (.time .realization .cluster_mass ... .states) or None
     """
-
-    def __init__(self, group, path, version):
-        super().__init__(group.attrs, group.data, group.groups, "/")
-        self.file, self.schema_version = path, version
 
     @property
     def timeseries(self):
@@ -174,14 +178,10 @@ def read_checkpoint(path):
 
 
 # ---------------------------------------------------------------------------------- analysis results
-class Results(Group):
+class Results(File):
     """A shockgas-analyze results file: attrs (the analysis program's provenance, and every root
     attribute of its inputs copied as input_<name>, or input<k>_<name> for several inputs, with
     input_path / input<k>_path), and one group per result (results["decay"].attrs["exponent"])."""
-
-    def __init__(self, group, path, version):
-        super().__init__(group.attrs, group.data, group.groups, "/")
-        self.file, self.schema_version = path, version
 
     @property
     def sections(self):
@@ -215,13 +215,9 @@ def read_results(path):
 
 
 # ------------------------------------------------------------------------------------------- drift
-class Drift(Group):
+class Drift(File):
     """A shockgas-drift record: attrs (parameters, provenance) and one column per recorded quantity
     (drift.columns: collisions, time, momentum drift, its rounding bound, ...)."""
-
-    def __init__(self, group, path, version):
-        super().__init__(group.attrs, group.data, group.groups, "/")
-        self.file, self.schema_version = path, version
 
     @property
     def columns(self):
