@@ -34,7 +34,7 @@
 // the ctests `drift.check` (10^6 collisions) and `drift.ring_length` (10^7,
 // --reference) run it.
 //
-// Example (the README's long run, ~20 min of one core):
+// Example (the long run of docs/testing-and-drift.md, ~20 min of one core):
 //   build/bench/shockgas-drift -N 1000 -r 0.5 -d 1e-2 --collisions 1e10 -o drift.h5
 #include <algorithm>
 #include <chrono>

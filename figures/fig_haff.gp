@@ -1,5 +1,5 @@
 # Early cooling of the pure inelastic gas against Haff's law derived for this
-# collision rule (README, "Haff's law"): T/T0 = 1/(1 + A eps(1-eps) sqrt(T0) t)^2,
+# collision rule (docs/haff-and-collapse.md): T/T0 = 1/(1 + A eps(1-eps) sqrt(T0) t)^2,
 # A = 6 sqrt(3)/5, T0 = 1/3. In the variable eps(1-eps) t all eps fall on one
 # curve until the gas clusters (t ~ t_stick) and the pure inelastic gas
 # collapses (the curves end).

@@ -10,19 +10,26 @@
 # default, every 300 s) and is started with --resume, so a killed build loses
 # at most one checkpoint interval of the run it was in.
 
-set(SHOCKGAS_SIM_STAMP "${CMAKE_BINARY_DIR}/shockgas-sim.stamp")
-string(TOUPPER "${CMAKE_BUILD_TYPE}" _pipeline_build_type)
-add_custom_target(shockgas_sim_stamp
-  COMMAND ${CMAKE_COMMAND}
-          -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
-          "-DDIRECTORIES=${PROJECT_SOURCE_DIR}/sim/src|${PROJECT_SOURCE_DIR}/sim/include|${PROJECT_SOURCE_DIR}/sim/app"
-          "-DCOMPILER_INFO=${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_pipeline_build_type}}"
-          -DSTAMP=${SHOCKGAS_SIM_STAMP}
-          -P ${PROJECT_SOURCE_DIR}/cmake/SourceStamp.cmake
-  BYPRODUCTS ${SHOCKGAS_SIM_STAMP} ${SHOCKGAS_SIM_STAMP}.files
-  COMMENT "Hashing the simulator's sources (simulations rerun only when they change)"
-  VERBATIM)
-add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge)
+if(SHOCKGAS_PIPELINE_FROM_INSTALL)
+  # An installed copy (cmake/installed-pipeline): no sources to hash; the runs
+  # depend on the installed shockgas-sim itself, so a new installation reruns them.
+  set(SHOCKGAS_SIM_STAMP "$<TARGET_FILE:shockgas-sim>")
+  add_custom_target(shockgas_sim_stamp)
+else()
+  set(SHOCKGAS_SIM_STAMP "${CMAKE_BINARY_DIR}/shockgas-sim.stamp")
+  string(TOUPPER "${CMAKE_BUILD_TYPE}" _pipeline_build_type)
+  add_custom_target(shockgas_sim_stamp
+    COMMAND ${CMAKE_COMMAND}
+            -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+            "-DDIRECTORIES=${PROJECT_SOURCE_DIR}/sim/src|${PROJECT_SOURCE_DIR}/sim/include|${PROJECT_SOURCE_DIR}/sim/app"
+            "-DCOMPILER_INFO=${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_pipeline_build_type}}"
+            -DSTAMP=${SHOCKGAS_SIM_STAMP}
+            -P ${PROJECT_SOURCE_DIR}/cmake/SourceStamp.cmake
+    BYPRODUCTS ${SHOCKGAS_SIM_STAMP} ${SHOCKGAS_SIM_STAMP}.files
+    COMMENT "Hashing the simulator's sources (simulations rerun only when they change)"
+    VERBATIM)
+  add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge)
+endif()
 
 # Where a run writes before its output is final: <dir>/<name>.running.h5 for
 # <dir>/<name>.h5. An interrupted shockgas-sim (Ctrl-C, SIGTERM, a killed

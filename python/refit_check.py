@@ -23,21 +23,13 @@ import sys
 
 SKIP = 77
 try:
-    import h5py
     import numpy as np
     from scipy import optimize
+
+    import shockgas  # python/shockgas: this script's folder in the source tree, else the installed module
 except ImportError as error:  # pragma: no cover - depends on the machine
     print("SKIP: refit_check.py needs numpy, scipy and h5py (%s); run with Debian's /usr/bin/python3" % error)
     sys.exit(SKIP)
-
-
-def _attr(obj, name):
-    value = obj.attrs[name]
-    if isinstance(value, bytes):
-        return value.decode()
-    if isinstance(value, np.ndarray) and value.shape == ():
-        return value.item()
-    return value.decode() if hasattr(value, "decode") else value
 
 
 def weighted_slope(x, y, sigma):
@@ -50,9 +42,8 @@ def weighted_slope(x, y, sigma):
 
 
 def refit(run_path, t_lo, t_hi):
-    with h5py.File(run_path, "r") as f:
-        time = f["timeseries/time"][:]
-        temperature = f["timeseries/temperature"][:]          # R x K
+    run = shockgas.read_run(run_path)
+    time, temperature = run.time, run.temperature           # K; R x K
     every = np.all(np.isfinite(temperature) & (temperature > 0), axis=0)
     inside = every & (time >= t_lo * (1 - 1e-12)) & (time <= t_hi * (1 + 1e-12))
     t = time[inside]
@@ -79,10 +70,10 @@ def main(argv=None):
     ap.add_argument("--run", help="simulation output (default: the results file's input_path)")
     ap.add_argument("--tolerance", type=float, default=1e-6, help="relative agreement required")
     args = ap.parse_args(argv)
-    with h5py.File(args.results, "r") as f:
-        run = args.run or _attr(f, "input_path")
-        g = f["decay"]
-        cpp = {k: float(_attr(g, k)) for k in ("exponent", "exponent_sigma", "chi2_per_dof", "t_lo", "t_hi")}
+    results = shockgas.read_results(args.results)
+    run = args.run or results.attrs["input_path"]
+    decay = results["decay"].attrs
+    cpp = {k: float(decay[k]) for k in ("exponent", "exponent_sigma", "chi2_per_dof", "t_lo", "t_hi")}
     if not os.path.exists(run):  # input_path is as given to shockgas-analyze: maybe relative to it
         run = os.path.join(os.path.dirname(os.path.abspath(args.results)), run)
     py = refit(run, cpp["t_lo"], cpp["t_hi"])

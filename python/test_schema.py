@@ -1,13 +1,16 @@
 #!/usr/bin/python3
-"""Schema drift check: a shockgas-sim output against README.md's "Output files" section.
+"""Schema drift check: a shockgas-sim output against the "Output files" section of
+docs/cli-and-output.md, and the Python module shockgas against both.
 
-    /usr/bin/python3 python/test_schema.py RUN.h5 [--readme README.md]
+    /usr/bin/python3 python/test_schema.py RUN.h5 [--doc docs/cli-and-output.md]
 
-The names come from the README itself (every `backticked` name in the "Root attributes" list and
-every row of the datasets table), so the test fails when the C++ writer, the README, or the Python
-readers (which use these names) drift apart. Shapes are checked against the table (R realizations,
-K sample times, `clusters` per snapshot, bins + 1 / R x (bins + 2) for histograms); dtypes against
-the kinds below. Exit status 0 ok, 1 drift, 77 (SKIP) without h5py/numpy.
+The names come from the documentation itself (every `backticked` name in the "Root attributes" list
+and every row of the datasets table), so the test fails when the C++ writer, the documentation, or
+the Python reader drift apart. In the file (raw HDF5, through shockgas.open_file): shapes against
+the table (R realizations, K sample times, `clusters` per snapshot, bins + 1 / R x (bins + 2) for
+histograms), dtypes against the kinds below. Through shockgas.read_run: every documented dataset is
+there, and every documented attribute comes back as str, int or float as its kind says.
+Exit status 0 ok, 1 drift, 77 (SKIP) without h5py/numpy.
 """
 import argparse
 import os
@@ -16,8 +19,9 @@ import sys
 
 SKIP = 77
 try:
-    import h5py
     import numpy as np
+
+    import shockgas  # python/shockgas: this script's folder
 except ImportError as error:  # pragma: no cover
     print("SKIP: test_schema.py needs h5py and numpy (%s); run with Debian's /usr/bin/python3" % error)
     sys.exit(SKIP)
@@ -31,7 +35,7 @@ INTEGER_ATTRIBUTES = {"particles", "samples_per_decade", "histogram_bins", "real
 INTEGER_DATASETS = {"realization_status", "first_particle", "realization", "collisions"}
 
 
-def readme_schema(path):
+def documented_schema(path):
     text = open(path, encoding="utf-8").read()
     section = text.split("## Output files", 1)[1].split("\n## ", 1)[0]
     root_part, table_part = section.split("\nDatasets (", 1)
@@ -50,11 +54,18 @@ def expand(path):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("run")
-    ap.add_argument("--readme", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "README.md"))
+    ap.add_argument("--doc", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs",
+                                                  "cli-and-output.md"))
     args = ap.parse_args(argv)
-    attributes, rows = readme_schema(args.readme)
+    attributes, rows = documented_schema(args.doc)
     problems = []
-    with h5py.File(args.run, "r") as f:
+    run = shockgas.read_run(args.run)
+    for name in sorted(attributes & set(run.attrs)):
+        want = str if name in STRING_ATTRIBUTES else (int if name in INTEGER_ATTRIBUTES else float)
+        if type(run.attrs[name]) is not want:
+            problems.append("shockgas.read_run gives attribute %s as %s, expected %s"
+                            % (name, type(run.attrs[name]).__name__, want.__name__))
+    with shockgas.open_file(args.run) as f:
         for name in sorted(attributes):
             if name not in f.attrs:
                 problems.append("root attribute %s documented but missing" % name)
@@ -89,6 +100,8 @@ def main(argv=None):
                     if full not in f:
                         problems.append("dataset %s documented but missing" % full)
                         continue
+                    if full not in run:
+                        problems.append("dataset %s is in the file but not in shockgas.read_run's Run" % full)
                     ds = f[full]
                     checked += 1
                     want = "i" if name in INTEGER_DATASETS else "f"
@@ -97,7 +110,7 @@ def main(argv=None):
                     expected = {"K": (K,), "R×K": (R, K), "R": (R,), "bins+1": (bins + 1,),
                                 "R×(bins+2)": (R, bins + 2)}.get(shape.replace(" ", ""))
                     if expected is not None and ds.shape != expected:
-                        problems.append("%s has shape %s, README says %s = %s" % (full, ds.shape, shape, expected))
+                        problems.append("%s has shape %s, the documentation says %s = %s" % (full, ds.shape, shape, expected))
                     if shape == "clusters":
                         sizes = {f[parent + n].shape for n in names if parent + n in f}
                         if len(sizes) != 1 or len(ds.shape) != 1:

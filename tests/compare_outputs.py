@@ -11,10 +11,13 @@ through the same arithmetic, so any difference at all is a bug (a realization
 run twice or with the wrong seed, a block joined in the wrong order, an
 engine state restored incompletely).
 """
+import os
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
+import shockgas  # noqa: E402  (python/shockgas of this source tree)
 
 # Root attributes that legitimately differ between two runs of the same
 # ensemble: when and how fast it ran, on how much memory.
@@ -28,43 +31,41 @@ def same_value(a, b):
     return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
 
 
-def objects(h5file):
-    names = [""]
-    h5file.visit(names.append)
-    return names
+def objects(path):
+    """{object path: (attributes as stored, dataset value or None)}, in the file's order."""
+    return {name: (attrs, value) for name, attrs, value in shockgas.walk(path, raw=True)}
 
 
 def compare(single_path, distributed_path, ranks):
     """single_path: the reference; distributed_path: the file under test."""
     problems = []
-    with h5py.File(single_path, "r") as single, h5py.File(distributed_path, "r") as distributed:
-        single_names, distributed_names = objects(single), objects(distributed)
-        if single_names != distributed_names:
-            problems.append(f"objects differ: {sorted(set(single_names) ^ set(distributed_names))}")
-        datasets = 0
-        for name in single_names:
-            if name not in distributed:
-                continue
-            a, b = single[name] if name else single, distributed[name] if name else distributed
-            if isinstance(a, h5py.Dataset):
-                datasets += 1
-                if not same_value(a[()], b[()]):
-                    problems.append(f"dataset /{name} differs")
-            skip = RUN_DEPENDENT if not name else set()
-            extra = DISTRIBUTED_ONLY if not name else set()
-            keys_a = set(a.attrs) - skip
-            keys_b = set(b.attrs) - skip - extra
-            if keys_a != keys_b:
-                problems.append(f"attributes of /{name} differ in names: {sorted(keys_a ^ keys_b)}")
-            for key in sorted(keys_a & keys_b):
-                if not same_value(a.attrs[key], b.attrs[key]):
-                    problems.append(f"attribute {key} of /{name} differs: {a.attrs[key]!r} vs {b.attrs[key]!r}")
-        if ranks is not None:
-            recorded = distributed.attrs.get("mpi_ranks")
-            if recorded != ranks:
-                problems.append(f"mpi_ranks is {recorded!r}, expected {ranks}")
-        if datasets == 0:
-            problems.append("no datasets compared")
+    single, distributed = objects(single_path), objects(distributed_path)
+    if list(single) != list(distributed):
+        problems.append(f"objects differ: {sorted(set(single) ^ set(distributed))}")
+    datasets = 0
+    for name, (attrs_a, value_a) in single.items():
+        if name not in distributed:
+            continue
+        attrs_b, value_b = distributed[name]
+        if value_a is not None:
+            datasets += 1
+            if not same_value(value_a, value_b):
+                problems.append(f"dataset {name} differs")
+        skip = RUN_DEPENDENT if name == "/" else set()
+        extra = DISTRIBUTED_ONLY if name == "/" else set()
+        keys_a = set(attrs_a) - skip
+        keys_b = set(attrs_b) - skip - extra
+        if keys_a != keys_b:
+            problems.append(f"attributes of {name} differ in names: {sorted(keys_a ^ keys_b)}")
+        for key in sorted(keys_a & keys_b):
+            if not same_value(attrs_a[key], attrs_b[key]):
+                problems.append(f"attribute {key} of {name} differs: {attrs_a[key]!r} vs {attrs_b[key]!r}")
+    if ranks is not None:
+        recorded = distributed["/"][0].get("mpi_ranks")
+        if recorded != ranks:
+            problems.append(f"mpi_ranks is {recorded!r}, expected {ranks}")
+    if datasets == 0:
+        problems.append("no datasets compared")
     return problems, datasets
 
 

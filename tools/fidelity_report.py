@@ -6,14 +6,15 @@ Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper]
 Reads the runs (build/paper_targets/<fidelity>/<fig>/*.h5 written by shockgas-sim:
 particles, realizations, cpu_seconds, peak_memory_bytes, total_collisions) and the
 analysis results next to them (decay exponents, crossover and scaling fits,
-shocks, the speed/accuracy comparison), and prints what the README's fidelity
-tables show. Reads only; computes nothing but sums and ratios.
+shocks, the speed/accuracy comparison), and prints what the README's results and
+cost tables and docs/figures-and-fidelity.md show. Reads only; computes nothing but sums and ratios.
 """
 import glob
 import os
 import sys
 
-import h5py
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
+import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
 
 build = sys.argv[1] if len(sys.argv) > 1 else "build"
 fidelity = sys.argv[2] if len(sys.argv) > 2 else "quick"
@@ -22,9 +23,8 @@ base = os.path.join(build, "paper_targets", fidelity)
 
 def runs(figure):
     for path in sorted(glob.glob(os.path.join(base, figure, "*.h5"))):
-        with h5py.File(path, "r") as f:
-            if "timeseries" in f and ".part" not in path:
-                yield os.path.basename(path)[:-3], dict(f.attrs)
+        if ".part" not in path and shockgas.kind_of(path) == "run":
+            yield os.path.basename(path)[:-3], shockgas.attributes(path)
 
 
 print(f"### Cost per figure ({fidelity} fidelity, {build})\n")
@@ -47,13 +47,8 @@ for figure in ["fig1", "fig2", "fig3", "fig4", "fig5", "fig_crossovers", "fig_ha
 print(f"| **all** | | | | | **{total_cpu:.0f}** | |\n")
 
 
-def text(value):
-    return value.decode() if isinstance(value, bytes) else str(value)
-
-
 def attrs(path, group):
-    with h5py.File(path, "r") as f:
-        return dict(f[group].attrs)
+    return shockgas.read_results(path)[group].attrs
 
 
 print("### Fitted numbers\n")
@@ -76,15 +71,15 @@ path = os.path.join(base, "fig4", "scaling.h5")
 if os.path.exists(path):
     d = attrs(path, "collapse")
     print(f"| Fig. 4 scaling exponent β | {d['beta']:.3f} ± {d['beta_sigma']:.3f} | 1/3 |")
-    with h5py.File(path, "r") as f:
-        for g in sorted(k for k in f if k.startswith("histogram")):
-            a = f[g].attrs
-            line = f"| Fig. 4 {text(a['label'])}: kurtosis"
-            value = f"{a['kurtosis']:.3f} ± {a['kurtosis_sigma']:.3f}"
-            if "tail_gamma" in a:
-                line += ", tail γ"
-                value += f"; γ = {a['tail_gamma']:.2f} ± {a['tail_gamma_sigma']:.2f}"
-            print(f"{line} | {value} | 3.041 (exact Φ); γ = 3 asymptotically |")
+    results = shockgas.read_results(path)
+    for g in sorted(k for k in results.sections if k.startswith("histogram")):
+        a = results[g].attrs
+        line = f"| Fig. 4 {a['label']}: kurtosis"
+        value = f"{a['kurtosis']:.3f} ± {a['kurtosis_sigma']:.3f}"
+        if "tail_gamma" in a:
+            line += ", tail γ"
+            value += f"; γ = {a['tail_gamma']:.2f} ± {a['tail_gamma_sigma']:.2f}"
+        print(f"{line} | {value} | 3.041 (exact Φ); γ = 3 asymptotically |")
 path = os.path.join(base, "fig5", "shocks.h5")
 if os.path.exists(path):
     d = attrs(path, "shocks0")
@@ -95,26 +90,24 @@ if os.path.exists(path):
 path = os.path.join(base, "fig_tradeoff", "tradeoff.h5")
 if os.path.exists(path):
     print("\n### Threshold and sub-threshold mechanism (r = 0.9; deviation from the reference run)\n")
-    with h5py.File(path, "r") as f:  # input0_*: the reference run's attributes, copied forward
-        a = {k[len("input0_"):]: v for k, v in f.attrs.items() if k.startswith("input0_")}
-        coll = a["total_collisions"] / a["particles"] / a["realizations"]
-        print(f"Reference: δ = {a['velocity_threshold']:g}, {text(a['subthreshold'])}, N = {a['particles']}, "
-              f"{a['realizations']} realizations, t = {a['t_max']:g}: {coll:.3g} collisions per particle, "
-              f"{a['cpu_seconds']:.1f} CPU s.\n")
+    tradeoff = shockgas.read_results(path)
+    a = tradeoff.inputs()[0]  # the reference run's attributes, copied forward
+    coll = a["total_collisions"] / a["particles"] / a["realizations"]
+    print(f"Reference: δ = {a['velocity_threshold']:g}, {a['subthreshold']}, N = {a['particles']}, "
+          f"{a['realizations']} realizations, t = {a['t_max']:g}: {coll:.3g} collisions per particle, "
+          f"{a['cpu_seconds']:.1f} CPU s.\n")
     print("| δ | sub-threshold | collisions/particle | CPU s | max \\|ΔT/T\\| | departs at t | δ^−3 |")
     print("|---|---|---|---|---|---|---|")
-    with h5py.File(path, "r") as f:
-        for g in sorted((k for k in f if k.startswith("compare")), key=lambda k: int(k[7:])):
-            a = f[g].attrs
-            sub = text(a["subthreshold"])
-            print(f"| {a['velocity_threshold']:g} | {sub} | {a['collisions_per_particle']:.3g} | {a['cpu_seconds']:.1f} | "
-                  f"{a['max_abs_deviation']:.2g} | {a['departure_time']:g} | {a['t_valid']:.0e} |")
+    for g in sorted((k for k in tradeoff.sections if k.startswith("compare")), key=lambda k: int(k[7:])):
+        a = tradeoff[g].attrs
+        print(f"| {a['velocity_threshold']:g} | {a['subthreshold']} | {a['collisions_per_particle']:.3g} | "
+              f"{a['cpu_seconds']:.1f} | {a['max_abs_deviation']:.2g} | {a['departure_time']:g} | {a['t_valid']:.0e} |")
     print("\n### Statistical error of the sticky-gas exponent against CPU (r = 0, t ≤ 10⁴)\n")
     print("| N | realizations | CPU s | α ± σ |")
     print("|---|---|---|---|")
     for path in sorted(glob.glob(os.path.join(base, "fig_tradeoff", "stat_*.decay.h5")),
                        key=lambda p: (int(p.split("_N")[1].split("_")[0]), int(p.split("_R")[1].split(".")[0]))):
-        with h5py.File(path, "r") as f:
-            a, d = f.attrs, f["decay"].attrs
-            print(f"| {int(a['input_particles']):.0e} | {int(a['input_realizations'])} | {a['input_cpu_seconds']:.2f} | "
-                  f"{d['exponent']:.4f} ± {d['exponent_sigma']:.4f} |")
+        results = shockgas.read_results(path)
+        a, d = results.inputs()[0], results["decay"].attrs
+        print(f"| {a['particles']:.0e} | {a['realizations']} | {a['cpu_seconds']:.2f} | "
+              f"{d['exponent']:.4f} ± {d['exponent_sigma']:.4f} |")

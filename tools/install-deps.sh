@@ -8,6 +8,9 @@ packages=(
   libhdf5-dev hdf5-tools libgsl-dev gnuplot-nox
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-scipy python3-h5py
+  # Man pages from --help at build time; dpkg-dev for `cpack -G DEB`
+  # (dpkg-shlibdeps computes the package's library dependencies).
+  help2man dpkg-dev
   # The MPI build is optional (cmake -DSHOCKGAS_MPI=ON), but the ci preset
   # builds it so that the mpirun -np 2 test really runs: install it always.
   libopenmpi-dev openmpi-bin

@@ -18,6 +18,7 @@
 #include "shockgas/analysis/velocity_distribution.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
+#include "shockgas/provenance.hpp"
 
 namespace {
 
@@ -358,6 +359,8 @@ void run_compare(const std::string& reference_path, const std::vector<std::strin
 
 int main(int argc, char** argv) {
     CLI::App app{"shockgas-analyze: estimators on shockgas-sim output (see analysis/README.md)"};
+    app.set_version_flag("--version", "shockgas-analyze " + build_info().version);
+    app.set_help_all_flag("--help-all", "print the options of every subcommand");
     app.require_subcommand(1);
 
     std::string input, output = "analysis.h5", data, scan;

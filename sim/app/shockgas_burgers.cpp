@@ -26,6 +26,7 @@
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/burgers.hpp"
 #include "shockgas/h5.hpp"
+#include "shockgas/provenance.hpp"
 #include "shockgas/state.hpp"
 
 namespace {
@@ -76,6 +77,7 @@ double l1_distance(const std::vector<double>& a, const std::vector<double>& b) {
 
 int main(int argc, char** argv) {
     CLI::App app{"shockgas-burgers: inviscid and viscous Burgers profiles from a particle run's initial condition"};
+    app.set_version_flag("--version", "shockgas-burgers " + shockgas::build_info().version);
     std::string run_path, init_path, output, summary, study;
     std::int64_t particles = 0, realization = 0, cells_per_particle = 4, points = 0;
     double ring_length = 0.0, time = 0.0, jump_fraction = 1.0;

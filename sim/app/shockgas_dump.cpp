@@ -12,6 +12,7 @@
 
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
+#include "shockgas/provenance.hpp"
 
 namespace {
 
@@ -76,6 +77,8 @@ void dump_gnuplot_vars(std::FILE* out, const std::string& path, const std::strin
 
 int main(int argc, char** argv) {
     CLI::App app{"shockgas-dump: HDF5 to plain text for gnuplot"};
+    app.set_version_flag("--version", "shockgas-dump " + shockgas::build_info().version);
+    app.set_help_all_flag("--help-all", "print the options of every subcommand");
     app.require_subcommand(1);
     app.fallthrough();  // --output may follow the subcommand
     std::string input, group_path, prefix = "fit", output;

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
     std::string output;
     std::vector<std::string> inputs;
     CLI::App app{"shockgas-merge: join ensemble parts made with --first-realization into one output file"};
+    app.set_version_flag("--version", "shockgas-merge " + shockgas::build_info().version);
     app.add_option("-o,--output", output, "merged HDF5 file (written atomically)")->required();
     app.add_option("inputs", inputs, "part files, in realization order")->required()->check(CLI::ExistingFile);
     try {

@@ -115,7 +115,8 @@ int main(int argc, char** argv) {
                  "continue from the checkpoint if there is one of this run (same parameters and code version); "
                  "the output is bit-identical to an uninterrupted run. Without a checkpoint, start from t = 0");
     app.add_flag("-q,--quiet", quiet, "do not print the T(t) table");
-    app.footer("Output schema: see README.md, 'Output files'. Ctrl-C writes what has been computed, marked "
+    app.set_version_flag("--version", "shockgas-sim " + shockgas::build_info().version);
+    app.footer("Output schema: docs/cli-and-output.md (installed in share/doc/shockgas). Ctrl-C writes what has been computed, marked "
                "interrupted, and a checkpoint that --resume continues. The checkpoint is removed once the output "
                "is written.");
 

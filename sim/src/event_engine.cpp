@@ -131,8 +131,8 @@ void EventEngine::collide_pair(std::int32_t i, double t) {
     // gap the arithmetic leaves, |g| ~ c ulp(t), rather than setting it to 0.
     // Zeroing dropped that residual at every collision, so the gaps summed to
     // L only up to a random walk of them (-7e-6 L after 1e9 collisions at
-    // N = 1000; README, "Long-run drift"); kept, they sum to L up to the
-    // rounding of the gap updates.
+    // N = 1000; docs/testing-and-drift.md, "Long-run drift"); kept, they sum
+    // to L up to the rounding of the gap updates.
     const double contact_gap = gap_at(i, t);
     a.gap = contact_gap;
     move_anchor_clock(i, t);

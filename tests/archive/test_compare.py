@@ -27,6 +27,7 @@ def results_file(name, exponent, sigma, compiler="GNU 12.2.0", date="2026-01-01T
     with h5py.File(path, "w") as f:
         for key, value in {"program": "shockgas-analyze", "version": "v1", "compiler": compiler,
                            "compiler_flags": "-O3 -DNDEBUG", "build_type": "Release", "hdf5_version": "1.10.8",
+                           "schema_version": 1,
                            "date": date, "host": host, "input_wall_seconds": 12.5 if host == "a" else 99.0,
                            "input_compiler": compiler,
                            "input_path": build + "/paper_targets/quick/fig1/r0.9.h5"}.items():

@@ -63,12 +63,12 @@ TEST(Figures, StickTimeScalesAsEpsToMinusThreeHalves) {
     EXPECT_NEAR(stick, -1.5, k_sigma * stick_sigma) << stick << " +- " << stick_sigma;
 }
 
-// Haff's law for this rule (README, "Haff's law"): T = T0 / (1 + A eps (1 - eps)
+// Haff's law for this rule (docs/haff-and-collapse.md): T = T0 / (1 + A eps (1 - eps)
 // sqrt(T0) t)^2 with A = 6 sqrt(3)/5, so T = T0/2 at
 //   t_dissip = (sqrt 2 - 1) / (A sqrt(T0) eps (1 - eps)) = 0.3452 / (eps (1 - eps)):
 // the paper's t_dissip ~ 1/eps, with its constant and the (1 - eps) of Eq. (1).
 // Tolerance: the lattice start delays the first collisions, so the effective A
-// at t ~ 8 is 1.99, 4.3% below A (README, Haff table); every t_dissip here is
+// at t ~ 8 is 1.99, 4.3% below A (docs/haff-and-collapse.md, Haff table); every t_dissip here is
 // >= 7.5, so it can be late by at most that much.
 constexpr double haff_dissipation_time_tolerance = 0.045;
 

@@ -90,8 +90,8 @@ interrupted)
   wait "$launcher" && fail "the interrupted job reported success"
   cat interrupted.stderr
   [ -s interrupted.h5 ] || fail "no output file after the interrupt"
-  read_status='import sys, h5py; s = h5py.File(sys.argv[1], "r").attrs["status"]; print(getattr(s, "decode", lambda: s)())'
-  status=$("$python" -c "$read_status" interrupted.h5)
+  status=$(PYTHONPATH="$here/../../python" "$python" -c \
+           'import shockgas, sys; print(shockgas.attributes(sys.argv[1])["status"])' interrupted.h5)
   [ "$status" = interrupted ] || fail "the file's status is '$status', not interrupted"
   ;;
 failing_run)

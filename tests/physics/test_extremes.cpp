@@ -69,7 +69,7 @@ constexpr double gap_ulps = 8.0;
 // largest coordinate (twice that for margin).
 constexpr double closure_ulps_per_gap = 2.0 * gap_ulps;
 
-// The default collapse speed (README, "Inelastic collapse"): collapse can
+// The default collapse speed (docs/haff-and-collapse.md, "Inelastic collapse"): collapse can
 // fire only when delta is below it.
 const double default_collapse_speed = CollapseCriterion{}.collapse_speed;
 

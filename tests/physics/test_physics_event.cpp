@@ -122,7 +122,7 @@ TEST(PhysicsEvent, PureInelasticGasStopsAtCollapseWithinSeconds) {
     EXPECT_TRUE(std::isnan(result.temperature.back()));
 }
 
-// Haff's law for this collision rule (derivation in README.md, "Haff's law").
+// Haff's law for this collision rule (derivation in docs/haff-and-collapse.md).
 // A collision of relative speed g removes eps (1 - eps) g^2 of kinetic energy
 // (Eq. 1); with molecular chaos at unit density, collisions of relative speed g
 // happen at rate |g|/2 per unit length, so per particle
@@ -132,7 +132,7 @@ TEST(PhysicsEvent, PureInelasticGasStopsAtCollapseWithinSeconds) {
 // C = (4/5) 3^(3/2) and A = 6 sqrt(3) / 5 = 2.0785 while eps t << 1 (the shape
 // of the distribution has not changed yet).
 constexpr double haff_constant_uniform = 6.0 * 1.7320508075688772 / 5.0;
-// Measured systematics at eps = 1e-3, t = 100 (README table): the lattice
+// Measured systematics at eps = 1e-3, t = 100 (docs/haff-and-collapse.md, table): the lattice
 // start delays collisions by about half a crossing per pair (-0.2%), and the
 // distribution's change of shape enters at O(eps t). 1% covers both, while the
 // Gaussian-shape constant 4/sqrt(pi) = 2.257 (+8.6%) would fail.

@@ -27,7 +27,7 @@ add_test(NAME python.refit_check COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR
 set_tests_properties(python.refit_check PROPERTIES FIXTURES_REQUIRED "python_run;python_decay" LABELS python
                      TIMEOUT 120 SKIP_RETURN_CODE 77)
 add_test(NAME python.schema COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/test_schema.py
-                 "${_py_work}/small.h5" --readme ${PROJECT_SOURCE_DIR}/README.md WORKING_DIRECTORY "${_py_work}")
+                 "${_py_work}/small.h5" --doc ${PROJECT_SOURCE_DIR}/docs/cli-and-output.md WORKING_DIRECTORY "${_py_work}")
 set_tests_properties(python.schema PROPERTIES FIXTURES_REQUIRED python_run LABELS python TIMEOUT 60
                      SKIP_RETURN_CODE 77)
 
@@ -42,3 +42,16 @@ add_test(NAME physics.exact_prefactor COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT
                  "${_py_work}/exact_1e6.h5" WORKING_DIRECTORY "${_py_work}")
 set_tests_properties(physics.exact_prefactor PROPERTIES FIXTURES_REQUIRED exact_prefactor LABELS physics TIMEOUT 60
                      SKIP_RETURN_CODE 77)
+
+# The Python module shockgas (python/shockgas) on every kind of file the programs write: runs,
+# merged runs, checkpoints, analysis results, drift records, initial conditions (~2 s of CPU).
+if(SHOCKGAS_BUILD_BENCH)
+  set(_drift_program $<TARGET_FILE:shockgas-drift>)
+else()
+  set(_drift_program none)
+endif()
+add_test(NAME python.module
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_shockgas_module.py
+                 $<TARGET_FILE:shockgas-sim> $<TARGET_FILE:shockgas-merge> $<TARGET_FILE:shockgas-analyze>
+                 ${_drift_program} "${_py_work}/module")
+set_tests_properties(python.module PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)

@@ -1,5 +1,5 @@
-// The fast event engine: exact time windows (see /work/shared/notes and
-// ARCHITECTURE.md, "The event engine").
+// The fast event engine: exact time windows (ARCHITECTURE.md, "The event
+// engine" and "The fast event engine (windows)"; its speed: docs/engines.md).
 //
 // It produces BIT-IDENTICAL results to EventEngine, the global-order reference
 // loop, for the runs it supports (FastEventEngine::supports), and is chosen by

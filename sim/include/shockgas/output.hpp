@@ -1,4 +1,4 @@
-// The simulation output schema (documented in README.md, "Output files").
+// The simulation output schema (documented in docs/cli-and-output.md, "Output files").
 // Writer and reader live together so that the schema is defined once.
 #pragma once
 

@@ -1,0 +1,50 @@
+"""Which file layouts this module reads: the root attribute `schema_version`.
+
+Every HDF5 file shockgas writes (runs, merged runs, checkpoints, analysis results, drift records)
+carries `schema_version` next to its provenance (sim/include/shockgas/provenance.hpp,
+`output_schema_version`). The layout of each version is documented in docs/cli-and-output.md.
+
+A new version: add it to SCHEMA_VERSIONS with one line on what changed, and teach the readers in
+files.py what differs (each reader is given the file's version). A file of any other version is
+refused with UnsupportedSchemaVersion, never read on a guess.
+"""
+
+# version -> what it is (one line each; the newest last).
+SCHEMA_VERSIONS = {
+    1: "the first published layout: fixed-length ASCII text attributes, samples from t > 0",
+}
+
+
+class SchemaError(ValueError):
+    """The file is not one shockgas wrote, or not the kind the caller asked for."""
+
+
+class UnsupportedSchemaVersion(SchemaError):
+    """The file's schema_version is not one this module reads."""
+
+    def __init__(self, path, version, writer):
+        self.path, self.version = path, version
+        supported = ", ".join(str(v) for v in sorted(SCHEMA_VERSIONS))
+        newest = max(SCHEMA_VERSIONS)
+        if isinstance(version, int) and version > newest:
+            advice = ("it is newer than this module: read it with the shockgas Python module of the code "
+                      "that wrote it (python/shockgas in that source tree), or install a newer shockgas")
+        else:
+            advice = "read it with the shockgas Python module of the code that wrote it"
+        super().__init__(f"{path}: schema_version {version!r} is not one this shockgas module reads "
+                         f"({supported}); written by {writer}; {advice}")
+
+
+def check_schema_version(path, attrs):
+    """The file's schema_version (an int), after checking that this module reads it."""
+    if "schema_version" not in attrs:
+        raise SchemaError(f"{path}: not a file written by shockgas (no schema_version attribute)")
+    version = attrs["schema_version"]
+    writer = " ".join(str(attrs.get(k, "?")) for k in ("program", "version"))
+    try:
+        version = int(version)
+    except (TypeError, ValueError):
+        raise UnsupportedSchemaVersion(path, version, writer) from None
+    if version not in SCHEMA_VERSIONS:
+        raise UnsupportedSchemaVersion(path, version, writer)
+    return version

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# install_test.sh BUILD_DIR SOURCE_DIR PYTHON (label install; docs/install.md)
+# Installs the build into a fresh prefix in a temporary folder outside the
+# source tree, then, from there, uses it as a user would:
+#   1. shockgas-sim --help and --version from the prefix's bin/, and a small run;
+#   2. a consumer project (tests/install/consumer, ~20 lines) finds the package
+#      with find_package(shockgas), links shockgas::sim, runs the event engine
+#      and prints T; that T must equal, to the last bit, the T the installed
+#      shockgas-sim wrote for the same parameters and seed;
+#   3. the Python module is imported from the prefix (not the source tree) and
+#      reads that run;
+#   4. the installed figure project (share/shockgas) builds Fig. 3 with the
+#      installed programs;
+#   5. the man pages are there and hold the programs' options.
+set -euo pipefail
+build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) python=$3
+fail() { echo "FAIL: $*"; exit 1; }
+
+outside=$(mktemp -d "${TMPDIR:-/tmp}/shockgas-install-test.XXXXXX")
+trap 'rm -rf "$outside"' EXIT
+case "$outside/" in "$source"/*) fail "the temporary folder $outside is inside the source tree" ;; esac
+prefix="$outside/prefix"
+cmake --install "$build" --prefix "$prefix" >"$outside/install.log" || { cat "$outside/install.log"; fail "cmake --install"; }
+cd "$outside"
+
+# 1. The programs, from the prefix.
+export PATH="$prefix/bin:$PATH"
+[ "$(command -v shockgas-sim)" = "$prefix/bin/shockgas-sim" ] || fail "shockgas-sim is not the installed one"
+shockgas-sim --help | grep -q -- "--restitution" || fail "shockgas-sim --help lacks --restitution"
+shockgas-sim --version | grep -q "^shockgas-sim " || fail "shockgas-sim --version: $(shockgas-sim --version)"
+for program in shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze; do
+  "$program" --help >/dev/null || fail "$program --help"
+done
+# The consumer's run: N = 1000, r = 0.9, delta = 1e-2, seed 1, realization 0, to t = 10.
+shockgas-sim -N 1000 -r 0.9 -d 1e-2 -s 1 -R 1 -t 10 -j 1 -q -o run.h5 || fail "the small run"
+[ -s run.h5 ] || fail "no run.h5"
+
+# 2. A project of the user's own, built against the installed package.
+cmake -S "$source/tests/install/consumer" -B consumer -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
+  >consumer.log 2>&1 || { cat consumer.log; fail "configuring the consumer project (find_package(shockgas))"; }
+cmake --build consumer >>consumer.log 2>&1 || { cat consumer.log; fail "building the consumer project"; }
+consumer_line=$(./consumer/consumer)
+echo "consumer: $consumer_line"
+consumer_T=${consumer_line##* T }
+
+# 3. The Python module, from the prefix's module folder only.
+module_dir=$(ls -d "$prefix"/lib/python3*/site-packages)
+python_T=$(cd "$outside" && PYTHONPATH="$module_dir" "$python" -s -c '
+import sys, numpy as np, shockgas
+assert shockgas.__file__.startswith(sys.argv[1]), shockgas.__file__
+run = shockgas.read_run("run.h5")
+assert run.attrs["status"] == "complete" and isinstance(run.attrs["version"], str)
+k = int(np.flatnonzero(run.time == 10.0)[0])
+print(repr(float(run.temperature[0, k])))' "$prefix") || fail "reading run.h5 with the installed module"
+echo "shockgas-sim, read by the installed module: T(10) = $python_T"
+"$python" -c 'import sys; a, b = map(float, sys.argv[1:]); sys.exit(0 if a == b and 0 < a < 1 / 3 else 1)' \
+  "$consumer_T" "$python_T" || fail "the library's T ($consumer_T) is not the program's ($python_T), or not in (0, 1/3)"
+
+# 4. The figures from the installed copy: Fig. 3 (a run of < 1 s and gnuplot).
+cmake -S "$prefix/share/shockgas" -B figures -DSHOCKGAS_PYTHON="$python" >figures.log 2>&1 \
+  || { cat figures.log; fail "configuring the installed figure project"; }
+cmake --build figures --target fig3 >>figures.log 2>&1 || { cat figures.log; fail "building fig3 from the installed copy"; }
+head -c 8 figures/figures/quick/fig3.png | grep -q PNG || fail "no fig3.png from the installed copy"
+grep -q "^%PDF" figures/figures/quick/fig3.pdf || fail "no fig3.pdf from the installed copy"
+
+# 5. Man pages.
+for program in shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze; do
+  page="$prefix/share/man/man1/$program.1.gz"
+  gzip -dc "$page" | grep -q "^\.TH \"\?${program^^}" || fail "$page is not a man page of $program"
+done
+gzip -dc "$prefix/share/man/man1/shockgas-sim.1.gz" | grep -q -- "restitution" || fail "shockgas-sim.1 lacks its options"
+gzip -dc "$prefix/share/man/man1/shockgas-analyze.1.gz" | grep -q -- "decay" || fail "shockgas-analyze.1 lacks its subcommands"
+echo "ok: installed into $prefix and used from outside the source tree"
