@@ -67,7 +67,7 @@ public:
         : parameters_(parameters), initial_override_(initial_override), stop_(stop), checkpoint_(checkpoint) {
         result_.times = sample_grid(parameters);
         result_.realizations = parameters.realizations;
-        result_.engine = resolve_engine_name(parameters);
+        result_.engine = resolve_engine_name(parameters, initial_override);
         histogram_times_ = parameters.histogram_times;
         std::sort(histogram_times_.begin(), histogram_times_.end());
         histogram_times_.erase(std::unique(histogram_times_.begin(), histogram_times_.end()), histogram_times_.end());

@@ -73,10 +73,13 @@ public:
     virtual void restore(const EngineSnapshot& snapshot);
 };
 
-// The engine selected by parameters.engine ("auto" resolved here).
+// The engine selected by parameters.engine ("auto" resolved here; see
+// engine.cpp for the rule). `initial`, when known, is the run's start (an init
+// file's masses decide whether the pass-through engine applies); without it
+// the generated start (unit masses) is assumed.
 std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, const InitialCondition& initial,
                                     LiveStatus* live);
-std::string resolve_engine_name(const SimulationParameters& parameters);
+std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial = nullptr);
 // The engine that can restore `snapshot` (snapshot.kind), built from the
 // realization's initial condition and then restored.
 std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const SimulationParameters& parameters,

@@ -5,20 +5,43 @@
 #include "shockgas/event_engine.hpp"
 #include "shockgas/exact_engine.hpp"
 #include "shockgas/fast_engine.hpp"
+#include "shockgas/passthrough_engine.hpp"
 
 namespace shockgas {
 
+namespace {
+// The masses the run will start from: the init file's, or unit masses.
+InitialCondition masses_of(const SimulationParameters& parameters, const InitialCondition* initial) {
+    if (initial != nullptr) return *initial;
+    InitialCondition unit;
+    unit.mass.assign(2, 1.0);
+    (void)parameters;
+    return unit;
+}
+}  // namespace
+
 // auto: the exact engine whenever it applies (r = 0: every collision merges,
 // whatever the threshold), since it gives every observable the event engine
-// gives there; the event engine otherwise. Called on the main thread before
-// any realization starts, so an impossible choice is one InputError.
-std::string resolve_engine_name(const SimulationParameters& parameters) {
+// gives there; the pass-through engine wherever it is exact (equal masses,
+// elastic sub-threshold, delta > 0: PassThroughEngine::supports), since it
+// skips the elastic collisions; the event engine otherwise. Called on the
+// main thread before any realization starts, so an impossible choice is one
+// InputError.
+std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial) {
     const bool sticky_gas = parameters.collision.restitution == 0.0;
-    if (parameters.engine == "auto") return sticky_gas ? "exact" : "event";
+    const InitialCondition start = masses_of(parameters, initial);
+    const std::string passthrough_refusal =
+        PassThroughEngine::unsupported_reason(start, parameters.collision, parameters.collapse);
+    if (parameters.engine == "auto") {
+        if (sticky_gas) return "exact";
+        return passthrough_refusal.empty() ? "passthrough" : "event";
+    }
     if (parameters.engine == "exact" && !sticky_gas)
         throw InputError(fmt::format("--engine exact solves only the sticky gas r = 0, got r = {}; use --engine "
                                      "event or auto",
                                      parameters.collision.restitution));
+    if (parameters.engine == "passthrough" && !passthrough_refusal.empty())
+        throw InputError("--engine passthrough cannot run this: " + passthrough_refusal);
     return parameters.engine;
 }
 
@@ -37,6 +60,8 @@ std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const Sim
         engine = std::make_unique<FastEventEngine>(initial, parameters.collision, parameters.collapse, live);
     else if (snapshot.kind == EventEngine::snapshot_kind)
         engine = std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
+    else if (snapshot.kind == PassThroughEngine::snapshot_kind)
+        engine = std::make_unique<PassThroughEngine>(initial, parameters.collision, live);
     else
         throw InputError(fmt::format("checkpoint: unknown engine state kind '{}'", snapshot.kind));
     engine->restore(snapshot);
@@ -45,7 +70,7 @@ std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const Sim
 
 std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, const InitialCondition& initial,
                                     LiveStatus* live) {
-    const std::string name = resolve_engine_name(parameters);
+    const std::string name = resolve_engine_name(parameters, &initial);
     if (name == "event") {
         // The windowed engine gives bit-identical results, faster, wherever it
         // can be exact (FastEventEngine::supports); the global loop otherwise.
@@ -54,6 +79,7 @@ std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, cons
         return std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
     }
     if (name == "exact") return std::make_unique<ExactEngine>(initial, live);
+    if (name == "passthrough") return std::make_unique<PassThroughEngine>(initial, parameters.collision, live);
     throw InputError("engine '" + name + "' is not available in this build");
 }
 
