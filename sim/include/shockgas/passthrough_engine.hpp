@@ -86,6 +86,7 @@ public:
     // Diagnostics for tests and the benchmark.
     std::uint64_t inelastic_collisions() const { return inelastic_; }
     std::uint64_t steps() const { return steps_; }
+    std::uint64_t windows() const { return windows_; }
     // Gaps between physical neighbours at the current time, in ring order from
     // particle 0; they sum to L up to rounding and are never negative beyond it.
     std::vector<double> gaps() const;
@@ -96,7 +97,10 @@ public:
     // Crossings per line per step the step length aims at: few enough that a
     // step's scan looks at few lines, many enough that its O(N) sweep is shared
     // by several crossings (docs/passthrough-engine.md, "Step length").
-    static constexpr double crossings_per_step_target = 2.0;
+    static constexpr double crossings_per_step_target = 1.0;
+    // Crossings per line per window, on average over the ring: a window costs
+    // an O(N) sweep to find its cuts, shared by this many crossings.
+    static constexpr double crossings_per_window_target = 8.0;
 
 private:
     struct Line {
@@ -106,12 +110,16 @@ private:
         std::uint32_t id;       // stable identity of the line, for the heap
         std::uint32_t version;  // bends so far, to recognize stale candidates
     };
+    // A line's earliest inelastic crossing in the step, as it was when the
+    // line (the owner) last looked. If the owner has bent since, a newer one
+    // replaced it; if only the other line has, the owner looks again.
     struct Candidate {
         double time;
         std::uint32_t behind;  // the catching line
         std::uint32_t ahead;
         std::uint32_t behind_version;
         std::uint32_t ahead_version;
+        bool owner_is_behind;
         // Earliest first; ties by line ids, so the order is a total order.
         bool operator>(const Candidate& o) const {
             if (time != o.time) return time > o.time;
@@ -132,10 +140,16 @@ private:
     // L for each time i wraps round the ring.
     double unwrapped_position(std::int64_t i, double t) const;
     std::int64_t wrap_index(std::int64_t i) const;
-    void run_step(double step_end);
+    void run_window(double window_end);
+    void run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end);
+    void run_step(double step_start, double step_end);
+    void adapt_window(double length, std::uint64_t crossings);
     void scan_step_candidates(double step_start, double step_end);
     void scan_line_candidates(std::int64_t index, double t, double step_end);
-    void push_candidate(const Line& behind, const Line& ahead, double gap, double t, double step_end);
+    // The meeting time of (behind, ahead), `gap` apart at t, if they cross
+    // inelastically by step_end; infinity otherwise.
+    double meeting_time(const Line& behind, const Line& ahead, double gap, double t, double step_end) const;
+    static void keep_earliest(Candidate& best, const Candidate& found);
     void bend(const Candidate& candidate, double step_end);
     Sorted load(std::int64_t i, double t) const;
     // Re-sorts logical indices [lo, hi] by position at t into buffer_ (stable,
@@ -148,23 +162,38 @@ private:
     std::uint64_t insertion_sort(std::vector<Sorted>& buffer, std::size_t begin) const;
     void write_back(const std::vector<Sorted>& buffer, std::int64_t lo);
     void update_velocity_bounds();
-    void adapt_step(double length, std::uint64_t crossings);
 
     std::vector<Line> line_;            // logical (physical ring) order
     std::vector<std::int32_t> where_;   // line id -> logical index
     std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> heap_;
     std::vector<Sorted> buffer_;
-    std::vector<double> keys_;  // positions at the step's start, by logical index
+    std::vector<double> keys_;  // positions at the step's start, on the block's axis
+    std::vector<Candidate> earliest_;  // per line of the block, during the step's scan
+    // Velocity bounds of the lines at logical indices [16 c, 16 c + 15]: set at
+    // each step's start, widened whenever a line is written into the chunk, so
+    // that a scan can pass over a chunk none of whose lines it could meet
+    // inelastically (a shock's core, all within delta of the line).
+    static constexpr int chunk_shift = 4;
+    std::vector<double> chunk_min_;
+    std::vector<double> chunk_max_;
+    void reset_chunk_bounds(std::int64_t lo, std::int64_t hi);
     double step_start_ = 0.0;
     double step_end_ = 0.0;
     double widest_gap_ = 0.0;        // at the step's start, and the index after it
     std::int64_t widest_gap_end_ = 0;
+    std::vector<std::int64_t> cuts_;  // the window's uncrossable gaps
+    // The block being run: logical indices [block_lo_, block_hi_] (hi may
+    // exceed N - 1: the block goes round the seam), or the whole ring.
+    std::int64_t block_lo_ = 0;
+    std::int64_t block_hi_ = 0;
+    bool ring_block_ = false;
+    std::uint64_t windows_ = 0;
     CollisionModel model_;
     LiveStatus* live_;
     double ring_length_;
     double mass_;
     double now_ = 0.0;
-    double step_ = 0.0;  // the next step's length (adapted)
+    double step_ = 0.0;  // the next window's length (adapted)
     double v_min_ = 0.0;
     double v_max_ = 0.0;
     std::uint64_t collisions_ = 0;
