@@ -55,6 +55,12 @@ add_test(NAME cli.small_run
 set_tests_properties(cli.small_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "complete \\(event engine")
 
+# The pass-through engine by name: the same table and a complete file.
+add_test(NAME cli.passthrough_run
+         COMMAND ${_sim} -N 1000 -r 0.9 -d 0.01 -t 100 -R 2 --engine passthrough -o "${_cli_dir}/passthrough.h5")
+set_tests_properties(cli.passthrough_run PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "complete \\(passthrough engine")
+
 # Ctrl-C: SIGINT mid-run writes what was computed, marked interrupted.
 add_test(NAME cli.sigint_writes_interrupted
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/sigint_test.sh ${_sim} "${_cli_dir}/interrupted.h5")
@@ -73,6 +79,8 @@ shockgas_cli_error(config_bad_restitution "restitution" --config "${_cli_dir}/co
 shockgas_cli_error(config_missing_file "no_such_config" --config "${_cli_dir}/no_such_config.toml")
 shockgas_cli_error(engine_exact_inelastic "engine exact solves only the sticky gas" --engine exact -r 0.5 -N 10)
 shockgas_cli_error(engine_unknown "engine must be" --engine warp -N 10)
+shockgas_cli_error(engine_passthrough_sticky "engine passthrough cannot run this: sticky sub-threshold"
+                   --engine passthrough -r 0.5 -d 0.01 --subthreshold sticky -N 10)
 shockgas_cli_error(particles_not_a_number "particles|abc" -N abc)
 shockgas_cli_error(particles_too_many "below 2\\^31" -N 3000000000)
 shockgas_cli_error(unknown_option "frobnicate" -N 10 --frobnicate 3)

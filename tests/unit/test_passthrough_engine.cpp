@@ -5,6 +5,9 @@
 // the comparison runs until the time at which the reference loop itself
 // diverges from a copy started with one velocity changed by one ulp.
 #include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <string>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -15,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "shockgas/engine.hpp"
+#include "shockgas/ensemble.hpp"
 #include "shockgas/event_engine.hpp"
 #include "shockgas/observables.hpp"
 #include "shockgas/passthrough_engine.hpp"
@@ -220,6 +224,32 @@ TEST(PassThroughEngine, SnapshotResumesBitForBit) {
     EXPECT_EQ(a.position, b.position);
 }
 
+// Through the ensemble driver: a run paused for checkpoints every 20 ms (the
+// driver snapshots and restores the engines) gives bit for bit the result of
+// the run that never paused, and restore_engine knows the engine's kind.
+TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
+    shockgas::SimulationParameters p;
+    p.particles = 5000;
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    p.t_max = 2000.0;
+    p.realizations = 2;
+    p.threads = 2;
+    p.engine = "passthrough";
+    const auto reference = shockgas::run_ensemble(p, nullptr);
+    std::atomic<int> written{0};
+    shockgas::CheckpointOptions options;
+    options.path = "passthrough.checkpoint";
+    std::filesystem::remove(options.path);
+    options.interval_seconds = 0.02;
+    options.note = [&written](const std::string& text) { written += text.rfind("checkpoint:", 0) == 0 ? 1 : 0; };
+    const auto paused = shockgas::run_ensemble(p, nullptr, nullptr, {}, options);
+    EXPECT_GE(written.load(), 2) << "the run ended before checkpoints were taken: the test did not test";
+    EXPECT_EQ(reference.engine, "passthrough");
+    EXPECT_EQ(paused.temperature, reference.temperature);
+    EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
+    std::filesystem::remove(options.path);
+}
+
 TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
     const InitialCondition start = random_ring(10, 1);
     EXPECT_EQ(PassThroughEngine::unsupported_reason(start, {0.9, 0.01, Subthreshold::elastic}, {}), "");
@@ -232,6 +262,13 @@ TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
     CollapseCriterion slow_collapse;
     slow_collapse.collapse_speed = 0.1;
     EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.9, 0.01, Subthreshold::elastic}, slow_collapse), "");
+    shockgas::SimulationParameters p;
+    p.engine = "passthrough";
+    p.collision = {0.0, 0.01, Subthreshold::elastic};
+    EXPECT_THROW(shockgas::resolve_engine_name(p), shockgas::InputError);
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    EXPECT_EQ(shockgas::resolve_engine_name(p), "passthrough");
+    EXPECT_THROW(shockgas::resolve_engine_name(p, &heavy), shockgas::InputError);
 }
 
 }  // namespace

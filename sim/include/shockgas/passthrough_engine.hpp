@@ -97,7 +97,7 @@ public:
     // Crossings per line per step the step length aims at: few enough that a
     // step's scan looks at few lines, many enough that its O(N) sweep is shared
     // by several crossings (docs/passthrough-engine.md, "Step length").
-    static constexpr double crossings_per_step_target = 1.0;
+    static constexpr double crossings_per_step_target = 0.5;
     // Crossings per line per window, on average over the ring: a window costs
     // an O(N) sweep to find its cuts, shared by this many crossings.
     static constexpr double crossings_per_window_target = 8.0;

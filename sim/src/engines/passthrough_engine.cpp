@@ -295,7 +295,8 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
             const double horizon = std::min(earliest_[ms].time, step_end) - step_start;
             if (distance > (a.v - v_min_) * horizon + slack) break;
             const std::int64_t index = wrap_index(lo + j);
-            if (chunk_min_[static_cast<std::size_t>(index >> chunk_shift)] > a.v - model_.velocity_threshold) {
+            const double chunk_min = chunk_min_[static_cast<std::size_t>(index >> chunk_shift)];
+            if (chunk_min > a.v - model_.velocity_threshold || distance > (a.v - chunk_min) * horizon + slack) {
                 j += std::min<std::int64_t>(((index >> chunk_shift) + 1) << chunk_shift, n) - index;
                 continue;
             }
@@ -356,7 +357,10 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
             std::min<std::int64_t>(((index >> chunk_shift) + 1) << chunk_shift, n) - index;  // indices left in it
         const double distance = unwrapped_position(j, t) - here;
         if (distance > (line.v - v_min_) * horizon() + disorder + slack) break;
-        if (chunk_min_[chunk] > line.v - threshold) {  // none of it is slow enough to be caught inelastically
+        // Pass over the rest of the chunk if none of it is slow enough to be
+        // caught inelastically, or near enough to be caught at all.
+        if (chunk_min_[chunk] > line.v - threshold ||
+            distance > (line.v - chunk_min_[chunk]) * horizon() + 2.0 * disorder + slack) {
             j += chunk_rest;
             continue;
         }
@@ -371,7 +375,8 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         const std::int64_t chunk_rest = index - ((index >> chunk_shift) << chunk_shift) + 1;
         const double distance = here - unwrapped_position(j, t);
         if (distance > (v_max_ - line.v) * horizon() + disorder + slack) break;
-        if (chunk_max_[chunk] < line.v + threshold) {  // none of it is fast enough to catch it inelastically
+        if (chunk_max_[chunk] < line.v + threshold ||
+            distance > (chunk_max_[chunk] - line.v) * horizon() + 2.0 * disorder + slack) {
             j -= chunk_rest;
             continue;
         }
