@@ -12,6 +12,7 @@
 
 #include "shockgas/analysis/collapse.hpp"
 #include "shockgas/analysis/compare.hpp"
+#include "shockgas/analysis/far_tail.hpp"
 #include "shockgas/analysis/results.hpp"
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
@@ -355,6 +356,39 @@ void run_compare(const std::string& reference_path, const std::vector<std::strin
     results.commit();
 }
 
+// gamma of the far tail (Eq. (5)) from shockgas-tail output, and ln Phi for gnuplot.
+void run_far_tail(const std::string& input, const std::string& output, const std::string& data, double z_lo,
+                  double z_hi, double window_shift) {
+    const FarTail tail = read_far_tail(input);
+    const TailExponent gamma = estimate_tail_exponent(tail, z_lo, z_hi, window_shift);
+    ResultsFile results(output, "shockgas-analyze far-tail", {input});
+    auto group = results.section("far_tail");
+    set_estimate(group, "gamma", gamma.gamma);
+    group.set_attribute("gamma_window_systematic", gamma.window_systematic);
+    group.set_attribute("gamma_fit_sigma", gamma.fit.gamma_fit_sigma);
+    group.set_attribute("a", gamma.fit.a);
+    group.set_attribute("b", gamma.fit.b);
+    group.set_attribute("c", gamma.fit.c);
+    group.set_attribute("chi2_per_dof", gamma.fit.chi2_per_dof);
+    group.set_attribute("z_lo", gamma.fit.z_lo);
+    group.set_attribute("z_hi", gamma.fit.z_hi);
+    group.set_attribute("time", tail.time);
+    results.commit();
+    std::printf("%s: t = %g, gamma = %.3f +- %.3f (jackknife over chains) +- %.3f (window), fit over z in [%.2f, %.2f], "
+                "%zu bins, chi2/dof = %.2f; a = %.3f, b = %.3f\n",
+                input.c_str(), tail.time, gamma.gamma.value, gamma.gamma.sigma, gamma.window_systematic, gamma.fit.z_lo,
+                gamma.fit.z_hi, gamma.fit.points, gamma.fit.chi2_per_dof, gamma.fit.a, gamma.fit.b);
+    if (data.empty()) return;
+    DataFile table(data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (5) form",
+                   {"z", "log_phi", "log_phi_sigma", "fitted_log_phi"});
+    for (std::size_t i = 0; i < tail.z.size(); ++i) {
+        if (!std::isfinite(tail.log_phi[i])) continue;
+        const double z = tail.z[i];
+        const double fitted = gamma.fit.c - 2.0 * std::log(z) - gamma.fit.a * std::pow(z, gamma.fit.gamma) - gamma.fit.b * z;
+        table.row({z, tail.log_phi[i], tail.log_phi_sigma[i], z > 0.0 ? fitted : NAN});
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -432,6 +466,16 @@ int main(int argc, char** argv) {
     compare->add_option("--data", data, "table: delta, cost, deviation, departure time");
     compare->add_option("--curves", curves, "deviation against time, one block per input");
 
+    double z_lo = 2.0, z_hi = 6.0, window_shift = 0.25;
+    auto* far_tail = app.add_subcommand("far-tail", "tail exponent gamma of Phi from shockgas-tail output");
+    far_tail->add_option("input", input, "shockgas-tail output")->required()->check(CLI::ExistingFile);
+    far_tail->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
+    far_tail->add_option("--data", data, "ln Phi(z) and the fit for gnuplot");
+    far_tail->add_option("--z-lo", z_lo, "fit window start")->capture_default_str();
+    far_tail->add_option("--z-hi", z_hi, "fit window end")->capture_default_str();
+    far_tail->add_option("--window-shift", window_shift, "window systematic: both ends moved by +- this")
+        ->capture_default_str();
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (*decay) run_decay(input, output, data, scan, t_lo, t_hi, window_rule, scan_width, scan_step, data_only);
@@ -440,6 +484,7 @@ int main(int argc, char** argv) {
         if (*shocks) run_shocks(input, output, data, shock_rule);
         if (*collapse) run_collapse(inputs, output, data);
         if (*compare) run_compare(reference, inputs, output, data, curves);
+        if (*far_tail) run_far_tail(input, output, data, z_lo, z_hi, window_shift);
     } catch (const std::exception& error) {
         std::fprintf(stderr, "shockgas-analyze: %s\n", error.what());
         return 1;

@@ -6,6 +6,7 @@
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
+#include <gsl/gsl_multifit.h>
 
 namespace shockgas::analysis {
 
@@ -42,6 +43,47 @@ LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double>
         fit.slope_variance *= residual_variance;
         fit.covariance *= residual_variance;
     }
+    return fit;
+}
+
+MultilinearFit weighted_multilinear_fit(std::span<const double> design, std::size_t parameters,
+                                        std::span<const double> y, std::span<const double> sigma) {
+    const std::size_t points = y.size();
+    if (sigma.size() != points || design.size() != points * parameters)
+        throw std::invalid_argument("weighted_multilinear_fit: design, y and sigma differ in size");
+    if (points <= parameters)
+        throw InsufficientData("a fit of " + std::to_string(parameters) + " parameters needs more points, got " +
+                               std::to_string(points));
+    gsl_matrix* x = gsl_matrix_alloc(points, parameters);
+    gsl_vector* w = gsl_vector_alloc(points);
+    gsl_vector* yv = gsl_vector_alloc(points);
+    gsl_vector* c = gsl_vector_alloc(parameters);
+    gsl_matrix* cov = gsl_matrix_alloc(parameters, parameters);
+    gsl_multifit_linear_workspace* work = gsl_multifit_linear_alloc(points, parameters);
+    MultilinearFit fit;
+    fit.points = points;
+    bool valid = true;
+    for (std::size_t i = 0; i < points; ++i) {
+        valid = valid && sigma[i] > 0.0 && std::isfinite(sigma[i]) && std::isfinite(y[i]);
+        gsl_vector_set(w, i, 1.0 / (sigma[i] * sigma[i]));
+        gsl_vector_set(yv, i, y[i]);
+        for (std::size_t j = 0; j < parameters; ++j) gsl_matrix_set(x, i, j, design[i * parameters + j]);
+    }
+    const int status = valid ? gsl_multifit_wlinear(x, w, yv, c, cov, &fit.chi2, work) : GSL_EINVAL;
+    if (status == GSL_SUCCESS) {
+        for (std::size_t j = 0; j < parameters; ++j) fit.parameters.push_back(gsl_vector_get(c, j));
+        for (std::size_t j = 0; j < parameters; ++j)
+            for (std::size_t k = 0; k < parameters; ++k) fit.covariance.push_back(gsl_matrix_get(cov, j, k));
+    }
+    gsl_multifit_linear_free(work);
+    gsl_matrix_free(cov);
+    gsl_vector_free(c);
+    gsl_vector_free(yv);
+    gsl_vector_free(w);
+    gsl_matrix_free(x);
+    if (status != GSL_SUCCESS)
+        throw InsufficientData(std::string("gsl_multifit_wlinear failed: ") + gsl_strerror(status) +
+                               " (non-finite point or sigma <= 0?)");
     return fit;
 }
 
