@@ -68,7 +68,9 @@ struct Checkpoint {
     std::string version;                             // provenance of the writer
     std::string signature;                           // run_signature of the writer's parameters
 };
-void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+// Written atomically; with keep_previous_as, an existing checkpoint at path is
+// first renamed to that name (checkpoint.hpp keeps two generations).
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint, const std::string& keep_previous_as = "");
 Checkpoint read_checkpoint(const std::string& path);  // throws InputError / h5::Error naming the problem
 // <output>.checkpoint: where shockgas-sim keeps the checkpoint of <output>.
 std::string checkpoint_path_for(const std::string& output_path);
