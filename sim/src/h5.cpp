@@ -55,9 +55,9 @@ std::string failure_cause() {
 }
 
 [[noreturn]] void fail(const std::string& what) {
-    std::string cause = failure_cause();
+    const std::string cause = failure_cause();
     if (cause.empty()) throw Error(what);
-    throw Error(what + ": " + cause, std::move(cause));
+    throw Error(what + ": " + cause, cause);
 }
 
 hid_t check(hid_t id, const std::string& what) {
@@ -452,7 +452,12 @@ File File::open_read(const std::string& path) {
                     cause.empty() ? "unreadable" : "damaged");
     }
     File file(Handle(id, H5Fclose), path);
-    verify_every_dataset(file.root(), path);
+    try {
+        verify_every_dataset(file.root(), path);
+    } catch (const Error& error) {
+        if (error.cause == "damaged") throw;
+        throw Error(fmt::format("'{}' is damaged: {}", path, error.what()), "damaged");
+    }
     return file;
 }
 

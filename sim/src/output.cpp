@@ -367,6 +367,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     out.parameters = std::move(partial.parameters);
     out.result = std::move(partial.result);
     out.version = std::move(partial.version);
+    out.source = path;
     const auto group = root.open_group("checkpoint");
     out.signature = group.attribute_string("run_signature");
     out.samples_done = group.read_integers("samples_done");

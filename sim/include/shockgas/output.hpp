@@ -67,6 +67,7 @@ struct Checkpoint {
     std::map<std::int64_t, EngineSnapshot> engines;  // realization index -> state
     std::string version;                             // provenance of the writer
     std::string signature;                           // run_signature of the writer's parameters
+    std::string source;                              // the file it was read from
 };
 // Written atomically; with keep_previous_as, an existing checkpoint at path is
 // first renamed to that name (checkpoint.hpp keeps two generations).
