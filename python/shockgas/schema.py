@@ -12,6 +12,8 @@ refused with UnsupportedSchemaVersion, never read on a guess.
 # version -> what it is (one line each; the newest last).
 SCHEMA_VERSIONS = {
     1: "the first published layout: fixed-length ASCII text attributes, samples from t > 0",
+    2: "the same groups, datasets and attributes, checksummed: HDF5 1.10 file format (metadata "
+       "checksums), every non-empty dataset chunked with the Fletcher32 filter",
 }
 
 

@@ -108,5 +108,12 @@ if(SHOCKGAS_PYTHON)
                    ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/sigkill")
   set_tests_properties(cli.sigkill_resume_bit_identical PROPERTIES LABELS cli TIMEOUT 300)
 endif()
+# --- issue 19: faults that must not lose work or change results ---
+if(SHOCKGAS_PYTHON)
+  add_test(NAME cli.faults.damaged_checkpoint
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/damaged_checkpoint_test.sh ${_sim} ${SHOCKGAS_PYTHON}
+                   ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/damaged_checkpoint")
+  set_tests_properties(cli.faults.damaged_checkpoint PROPERTIES LABELS cli TIMEOUT 300)
+endif()
 shockgas_cli_error(checkpoint_interval_negative "checkpoint-interval" -N 10 --checkpoint-interval -1)
 shockgas_cli_error(checkpoint_unwritable "directory .* does not exist" -N 10 --checkpoint "${_cli_dir}/absent_dir/c.h5")

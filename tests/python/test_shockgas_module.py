@@ -73,7 +73,7 @@ class Runs(unittest.TestCase):
             self.assertIs(type(r.attrs[name]), str, name)
         self.assertEqual(r.attrs["status"], "complete")
         self.assertIs(type(r.attrs["particles"]), int)
-        self.assertEqual(r.schema_version, 1)
+        self.assertEqual(r.schema_version, 2)
 
     def test_snapshots_in_numeric_order_and_on_the_time_series(self):
         snapshots = self.whole.snapshots
@@ -170,7 +170,7 @@ class Refusals(unittest.TestCase):
         with self.assertRaises(shockgas.UnsupportedSchemaVersion) as raised:
             shockgas.read_run(newer)
         message = str(raised.exception)
-        for needed in ("newer.h5", "schema_version 99", "(1)", "newer than this module"):
+        for needed in ("newer.h5", "schema_version 99", "(1, 2)", "newer than this module"):
             self.assertIn(needed, message)
         with self.assertRaises(shockgas.UnsupportedSchemaVersion):
             shockgas.attributes(newer)

@@ -35,10 +35,12 @@ struct LiveStatus {
     std::atomic<double> time{0.0};
     std::atomic<std::uint64_t> collisions{0};
     const std::atomic<bool>* stop = nullptr;
+    const std::atomic<bool>* abort = nullptr;  // the driver gives up (a checkpoint could not be written)
     const std::atomic<bool>* pause = nullptr;
 
     bool halt_requested() const {
         return (stop != nullptr && stop->load(std::memory_order_relaxed)) ||
+               (abort != nullptr && abort->load(std::memory_order_relaxed)) ||
                (pause != nullptr && pause->load(std::memory_order_relaxed));
     }
 };

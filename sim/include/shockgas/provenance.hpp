@@ -22,7 +22,8 @@ struct BuildInfo {
 const BuildInfo& build_info();
 
 // Schema version of the simulation output; bump on any incompatible change.
-constexpr long long output_schema_version = 1;
+// 2: checksummed (HDF5 1.10 format, Fletcher32 on every non-empty dataset).
+constexpr long long output_schema_version = 2;
 
 // Writes program, version, compiler, flags, build type, HDF5 version, host and
 // the current UTC date as root attributes.
