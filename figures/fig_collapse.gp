@@ -6,9 +6,12 @@
 #     (ln 1/eps)^y; the paper's law alone; McNamara & Young's minimal cluster
 #     ln(1/2eps)/(2eps) (and t ~ its 3/2 power). Each legend gives dAIC.
 # (c) mean first-collapse time against N at one eps (bars: SE; open: the
-#     spread of single realizations), with its power law;
+#     spread of single realizations), with a power law and, where N/m >= 50,
+#     the Gumbel law of a minimum over many regions (mean a - tau ln N, spread
+#     pi tau / sqrt 6 at every N);
 # (d) the cumulative collapse hazard per particle H(t)/N for each N: one curve
-#     if the first collapse is the earliest of independent regions.
+#     if the first collapse is the earliest of independent regions (log y,
+#     linear t: straight where the hazard rises exponentially).
 load styledir.'/style.gp'
 load datadir.'/time_forms.gp'
 load datadir.'/mass_forms.gp'
@@ -66,18 +69,24 @@ set yrange [5:1000]
 set key bottom left
 set title sprintf('first collapse at ε = %g', eps_N) font ',9'
 tn(x) = fit_mean_time_prefactor * x**fit_mean_time_exponent
+tg(x) = fit_gumbel_intercept - fit_gumbel_tau * log(x)
 plot datadir.'/vs_N.dat' using 2:3:4 with yerrorbars lt 1 title '⟨t_{collapse}⟩ ± SE', \
      datadir.'/vs_N.dat' using 2:9 with points lt 6 pt 6 title 'spread (s.d.)', \
-     tn(x) lt 2 title sprintf('N^{%.3f ± %.3f}; hazard predicts N^{%.3f ± %.3f}', fit_mean_time_exponent, \
-         fit_mean_time_exponent_sigma, fit_predicted_mean_time_exponent, fit_predicted_mean_time_exponent_sigma)
+     tn(x) lt 2 title sprintf('N^{%.3f ± %.3f}  (χ^2/dof %.1f)', fit_mean_time_exponent, fit_mean_time_exponent_sigma, \
+         fit_mean_time_chi2_per_dof), \
+     tg(x) lt 3 title sprintf('Gumbel (N/m ≥ %.0f): a - τ ln N, τ = %.0f ± %.0f', fit_gumbel_min_regions, \
+         fit_gumbel_tau, fit_gumbel_tau_sigma), \
+     fit_gumbel_predicted_spread lt 3 dt 2 title sprintf('πτ/√6 = %.0f ± %.0f (measured %.0f ± %.0f)', \
+         fit_gumbel_predicted_spread, fit_gumbel_predicted_spread_sigma, fit_gumbel_measured_spread, \
+         fit_gumbel_measured_spread_sigma)
 
 set xlabel 't'
 set ylabel 'H(t) / N'
 set yrange [*:*]
+unset logscale x
 set format x '%g'
+set mxtics default
 set key bottom right
-h(x) = fit_hazard_prefactor * x**fit_hazard_exponent
 plot for [i = 0:blocks - 1] datadir.'/hazard.dat' index i using 1:2 with points lt (i % 7 + 1) pt 7 ps 0.35 \
-         title sprintf('N = %s', word(particles, i + 1)), \
-     h(x) lt 8 title sprintf('a t^{%.2f} (pooled)', fit_hazard_exponent)
+         title sprintf('N = %s', word(particles, i + 1))
 unset multiplot

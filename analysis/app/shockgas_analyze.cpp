@@ -339,6 +339,21 @@ void run_collapse(const std::vector<std::string>& inputs, const std::string& out
         group.set_attribute("hazard_exponent_sigma", scaling.hazard.slope_sigma());
         group.set_attribute("hazard_prefactor", std::exp(scaling.hazard.intercept));
         set_estimate(group, "predicted_mean_time_exponent", scaling.predicted_mean_time_exponent);
+        group.set_attribute("gumbel_min_regions", gumbel_min_regions);
+        group.set_attribute("gumbel_runs", static_cast<std::int64_t>(scaling.gumbel_runs));
+        if (scaling.gumbel_runs >= 2) {
+            group.set_attribute("gumbel_intercept", scaling.gumbel.intercept);
+            group.set_attribute("gumbel_chi2_per_dof", scaling.gumbel.chi2_per_dof());
+            set_estimate(group, "gumbel_tau", scaling.gumbel_tau);
+            set_estimate(group, "gumbel_predicted_spread", scaling.gumbel_predicted_spread);
+            set_estimate(group, "gumbel_measured_spread", scaling.gumbel_measured_spread);
+            std::printf("%zu runs with N/<m> >= %g: <t_collapse> = %.4g - (%.4g +- %.2g) ln N (chi2/dof %.2f); Gumbel "
+                        "spread pi tau/sqrt 6 = %.4g +- %.2g, measured %.4g +- %.2g\n",
+                        scaling.gumbel_runs, gumbel_min_regions, scaling.gumbel.intercept, scaling.gumbel_tau.value,
+                        scaling.gumbel_tau.sigma, scaling.gumbel.chi2_per_dof(), scaling.gumbel_predicted_spread.value,
+                        scaling.gumbel_predicted_spread.sigma, scaling.gumbel_measured_spread.value,
+                        scaling.gumbel_measured_spread.sigma);
+        }
         std::printf("<t_collapse> ~ N^(%.4f +- %.4f) (chi2/dof %.2f); hazard per particle ~ t^(%.3f +- %.3f), "
                     "which predicts N^(%.4f +- %.4f); <m> ~ N^(%.4f +- %.4f)\n",
                     scaling.mean_time.slope, scaling.mean_time.slope_sigma(), scaling.mean_time.chi2_per_dof(),

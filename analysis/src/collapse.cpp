@@ -139,8 +139,20 @@ CumulativeHazard cumulative_hazard_per_particle(const CollapseEvents& events) {
 FirstCollapseScaling fit_first_collapse_scaling(const std::vector<CollapseEvents>& runs) {
     std::vector<double> particles, mean_time, mean_time_sigma, mass, mass_sigma;
     std::vector<double> log_time, log_hazard, log_hazard_sigma;
+    std::vector<double> gumbel_log_n, gumbel_time, gumbel_sigma;
+    double spread_weight = 0.0, spread_sum = 0.0;
     for (const auto& run : runs) {
         const auto summary = summarize_collapse(run);
+        if (static_cast<double>(run.particles) / summary.cluster_mass.value >= gumbel_min_regions) {
+            gumbel_log_n.push_back(std::log(static_cast<double>(run.particles)));
+            gumbel_time.push_back(summary.time.value);
+            gumbel_sigma.push_back(summary.time.sigma);
+            // SE of a sample standard deviation of n Gaussian values: s / sqrt(2(n - 1)).
+            const double n = static_cast<double>(summary.collapsed);
+            const double spread_sigma = summary.time_spread / std::sqrt(2.0 * (n - 1.0));
+            spread_weight += 1.0 / (spread_sigma * spread_sigma);
+            spread_sum += summary.time_spread / (spread_sigma * spread_sigma);
+        }
         particles.push_back(static_cast<double>(run.particles));
         mean_time.push_back(summary.time.value);
         mean_time_sigma.push_back(summary.time.sigma);
@@ -160,6 +172,15 @@ FirstCollapseScaling fit_first_collapse_scaling(const std::vector<CollapseEvents
     const double k = scaling.hazard.slope;
     // d(-1/k)/dk = 1/k^2.
     scaling.predicted_mean_time_exponent = {-1.0 / k, scaling.hazard.slope_sigma() / (k * k)};
+    scaling.gumbel_runs = gumbel_log_n.size();
+    if (scaling.gumbel_runs >= 2) {
+        scaling.gumbel = weighted_linear_fit(gumbel_log_n, gumbel_time, gumbel_sigma);
+        scaling.gumbel_tau = {-scaling.gumbel.slope, scaling.gumbel.slope_sigma()};
+        const double pi_over_root6 = std::acos(-1.0) / std::sqrt(6.0);  // s.d. of the standard Gumbel law
+        scaling.gumbel_predicted_spread = {pi_over_root6 * scaling.gumbel_tau.value,
+                                           pi_over_root6 * scaling.gumbel_tau.sigma};
+        scaling.gumbel_measured_spread = {spread_sum / spread_weight, 1.0 / std::sqrt(spread_weight)};
+    }
     return scaling;
 }
 

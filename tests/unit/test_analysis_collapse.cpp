@@ -263,3 +263,40 @@ TEST(AnalysisCollapse, FirstCollapseOfIndependentRegionsIsWeibull) {
                 hazard_exponent_tolerance / (shape * shape));
     EXPECT_NEAR(scaling.cluster_mass.slope, 0.0, 3.0 * scaling.cluster_mass.slope_sigma());
 }
+
+TEST(AnalysisCollapse, FirstCollapseWithExponentialHazardIsGumbel) {
+    // Cumulative hazard a e^(t/tau) per particle: t = tau ln(E / (N a)), E ~ Exp(1),
+    // so <t> = const - tau ln N and s.d.(t) = pi tau / sqrt 6 at every N.
+    constexpr double tau = 100.0, rate = 1e-9;
+    std::mt19937_64 random(1518);
+    std::exponential_distribution<double> exponential(1.0);
+    std::vector<sa::CollapseEvents> runs;
+    for (std::int64_t particles : {1000, 10000, 100000, 1000000}) {
+        sa::CollapseEvents events;
+        events.particles = particles;
+        events.realizations = 200;
+        for (std::size_t r = 0; r < events.realizations; ++r) {
+            events.time.push_back(tau * std::log(exponential(random) / (static_cast<double>(particles) * rate)));
+            events.cluster_mass.push_back(10.0);  // N / m >= 100: every run has enough regions
+        }
+        runs.push_back(events);
+    }
+    const auto scaling = sa::fit_first_collapse_scaling(runs);
+    std::printf("tau %.2f +- %.2f; spread predicted %.2f +- %.2f, measured %.2f +- %.2f\n", scaling.gumbel_tau.value,
+                scaling.gumbel_tau.sigma, scaling.gumbel_predicted_spread.value, scaling.gumbel_predicted_spread.sigma,
+                scaling.gumbel_measured_spread.value, scaling.gumbel_measured_spread.sigma);
+    ASSERT_EQ(scaling.gumbel_runs, 4u);
+    // 3 sigma: the means' SEs from 200 realizations each, propagated by the fit.
+    EXPECT_NEAR(scaling.gumbel_tau.value, tau, 3.0 * scaling.gumbel_tau.sigma);
+    // The spread: s.d. of a Gumbel sample of 200; its SE s/sqrt(2(n-1)) is the
+    // Gaussian formula, and the Gumbel law's excess kurtosis (2.4) makes the
+    // true SE sqrt(1 + 2.4 (n-1)/(2n)) = 1.5 times larger: 3 sigma of that.
+    const double spread_sigma = 1.5 * std::hypot(scaling.gumbel_predicted_spread.sigma,
+                                                 scaling.gumbel_measured_spread.sigma);
+    EXPECT_NEAR(scaling.gumbel_measured_spread.value, scaling.gumbel_predicted_spread.value, 3.0 * spread_sigma);
+    EXPECT_NEAR(scaling.gumbel_measured_spread.value, std::acos(-1.0) / std::sqrt(6.0) * tau, 3.0 * spread_sigma);
+
+    // Too few regions (N / m < 50 everywhere): no Gumbel fit.
+    for (auto& run : runs) run.cluster_mass.assign(run.cluster_mass.size(), static_cast<double>(run.particles));
+    EXPECT_EQ(sa::fit_first_collapse_scaling(runs).gumbel_runs, 0u);
+}

@@ -98,7 +98,20 @@ struct FirstCollapseScaling {
     // Gamma(1 + 1/k) (N a)^(-1/k): <t> ~ N^(-1/k).
     LinearFit hazard;
     Estimate predicted_mean_time_exponent;  // -1/k from the hazard, sigma propagated
+    // Many regions (N/<m> >= gumbel_min_regions): if the cumulative hazard per
+    // particle rises exponentially, H/N = a e^(t/tau), the first collapse is
+    // Gumbel-distributed, t = tau ln(E/(N a)) with E ~ Exp(1): its mean falls as
+    // -tau ln N and its standard deviation is pi tau / sqrt 6 at every N
+    // (Gumbel, Statistics of Extremes (1958)). Fitted: <t> = a + slope ln N
+    // (slope = -tau); compared: the predicted and the measured spread.
+    std::size_t gumbel_runs = 0;                // runs with enough regions
+    LinearFit gumbel;                           // valid when gumbel_runs >= 2
+    Estimate gumbel_tau;                        // -slope
+    Estimate gumbel_predicted_spread;           // pi tau / sqrt 6
+    Estimate gumbel_measured_spread;            // weighted mean of their sample standard deviations
 };
+// A region is about one collapsing cluster; 50 of them make the minimum an extreme.
+constexpr double gumbel_min_regions = 50.0;
 FirstCollapseScaling fit_first_collapse_scaling(const std::vector<CollapseEvents>& runs);
 
 // Power law y = C eps^exponent over several eps (fit_power_law with the SEs as
