@@ -291,8 +291,8 @@ TEST(AnalysisCollapse, FirstCollapseWithExponentialHazardIsGumbel) {
     // The spread: s.d. of a Gumbel sample of 200; its SE s/sqrt(2(n-1)) is the
     // Gaussian formula, and the Gumbel law's excess kurtosis (2.4) makes the
     // true SE sqrt(1 + 2.4 (n-1)/(2n)) = 1.5 times larger: 3 sigma of that.
-    const double spread_sigma = 1.5 * std::hypot(scaling.gumbel_predicted_spread.sigma,
-                                                 scaling.gumbel_measured_spread.sigma);
+    const double spread_sigma =
+        std::hypot(scaling.gumbel_predicted_spread.sigma, 1.5 * scaling.gumbel_measured_spread.sigma);
     EXPECT_NEAR(scaling.gumbel_measured_spread.value, scaling.gumbel_predicted_spread.value, 3.0 * spread_sigma);
     EXPECT_NEAR(scaling.gumbel_measured_spread.value, std::acos(-1.0) / std::sqrt(6.0) * tau, 3.0 * spread_sigma);
 
