@@ -43,10 +43,19 @@ struct LinearFit {
     double covariance = 0.0;  // cov(intercept, slope)
     double chi2 = 0.0;        // sum of (y - intercept - slope x)^2 / sigma^2
     std::size_t points = 0;
+    std::size_t parameters = 2;  // fitted parameters: 2, or 1 when the slope is fixed
 
     double slope_sigma() const;
     double intercept_sigma() const;
-    double chi2_per_dof() const;  // chi2 / (points - 2); NaN for two points
+    double chi2_per_dof() const;  // chi2 / (points - parameters); NaN when no degree of freedom is left
+    // Information criteria for comparing models fitted to the same points with
+    // the same known sigmas (-2 ln L = chi2 + a constant common to all models):
+    // AIC = chi2 + 2k (Akaike 1974), BIC = chi2 + k ln n (Schwarz 1978), k the
+    // fitted parameters, n the points. The model with the lower value is
+    // preferred; a difference of 2 is weak evidence, above 6 strong, above 10
+    // decisive (Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995), for BIC).
+    double aic() const;
+    double bic() const;
 };
 
 // Weighted least squares for y = intercept + slope x: minimises
@@ -54,6 +63,13 @@ struct LinearFit {
 // Throws InsufficientData for fewer than two points or a non-positive sigma.
 LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
                               ErrorModel model = ErrorModel::known_sigmas);
+
+// The same least squares with the slope fixed (a one-parameter model):
+// intercept = sum w (y - slope x) / sum w, variance 1 / sum w, w = 1/sigma^2;
+// chi2 as above, parameters = 1, slope_variance = 0. Throws InsufficientData
+// for no points or a non-positive sigma.
+LinearFit fixed_slope_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
+                          double slope);
 
 // Power law y = prefactor x^exponent, fitted as ln y = ln prefactor +
 // exponent ln x with sigma_{ln y} = sigma_y / y (first-order error
