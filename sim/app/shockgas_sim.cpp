@@ -93,9 +93,19 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     app.add_option("-j,--threads", p.threads, "threads for realizations; 0 means every core")->capture_default_str();
+    std::string positions = "lattice", velocity_distribution = "uniform";
+    app.add_option("--positions", positions,
+                   "initial positions: lattice (x_i = i L/N, the paper's) or uniform (N i.i.d. uniform points on "
+                   "the ring, sorted); drawn per realization from the seed")
+        ->capture_default_str();
+    app.add_option("--velocity-distribution", velocity_distribution,
+                   "initial velocities, i.i.d.: uniform (on [-1, 1], the paper's) or gaussian (mean 0, the same "
+                   "variance 1/3)")
+        ->capture_default_str();
     app.add_option("--init", p.init_file,
                    "initial condition FILE.h5: datasets position, velocity, optional mass; root attribute "
-                   "ring_length");
+                   "ring_length. It pins one exact start, so it needs -R 1 (every realization would be the same "
+                   "run); for an ensemble use --positions / --velocity-distribution");
     app.add_option("--engine", p.engine,
                    "engine: event (event-driven, any r), exact (the sticky gas r = 0: clusters from the variational "
                    "principle, no event loop) or auto (exact when r = 0, else event)")
@@ -141,6 +151,8 @@ int main(int argc, char** argv) {
 
     try {
         p.collision.subthreshold = shockgas::subthreshold_from_string(subthreshold);
+        p.initial_law = {shockgas::position_law_from_string(positions),
+                         shockgas::velocity_law_from_string(velocity_distribution)};
         if (app.count("--snapshot-interval") > 0) {
             const auto every = shockgas::evenly_spaced_times(snapshot_interval, p.t_max);
             p.snapshot_times.insert(p.snapshot_times.end(), every.begin(), every.end());

@@ -176,7 +176,8 @@ private:
         const InitialCondition initial =
             initial_override_ ? *initial_override_
                               : generate_initial_condition(parameters_.particles, parameters_.effective_ring_length(),
-                                                           parameters_.seed, parameters_.first_realization + k);
+                                                           parameters_.seed, parameters_.first_realization + k,
+                                                           parameters_.initial_law);
         try {
             if (resume_[index]) {
                 const EngineSnapshot snapshot = std::move(*resume_[index]);
@@ -525,7 +526,12 @@ EnsembleResult run_ensemble(const SimulationParameters& parameters, const Initia
     if (initial_override) {
         validate(*initial_override);
         if (parameters.realizations != 1)
-            throw InputError("--init gives one initial condition: realizations must be 1");
+            throw InputError(fmt::format(
+                "--init gives one fixed initial condition, so {} realizations would all be the same run: use -R 1, "
+                "or draw an ensemble from an initial law (--positions, --velocity-distribution)",
+                parameters.realizations));
+        if (!parameters.initial_law.is_paper())
+            throw InputError("--init gives the initial condition: --positions and --velocity-distribution do not apply");
     }
     EnsembleRunner runner(parameters, initial_override, stop, checkpoint);
     return runner.run(progress);

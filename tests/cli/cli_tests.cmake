@@ -21,6 +21,8 @@ shockgas_cli_error(t_max_zero "t_max" -N 10 -t 0)
 shockgas_cli_error(t_max_negative "t_max" -N 10 -t -5)
 shockgas_cli_error(bad_subthreshold "sub-threshold" -N 10 --subthreshold gooey)
 shockgas_cli_error(sample_beyond_t_max "beyond t_max" -N 10 -t 10 --snapshot-times 20)
+shockgas_cli_error(bad_positions "positions must be 'lattice' or 'uniform'" -N 10 --positions random)
+shockgas_cli_error(bad_velocity_law "velocity distribution must be" -N 10 --velocity-distribution normal)
 shockgas_cli_error(init_missing_file "does not exist" --init "${_cli_dir}/no_such_file.h5")
 add_test(NAME cli.error.unwritable_output
          COMMAND ${_expect} "directory .* does not exist" "${_cli_dir}/absent_dir/out.h5" --
@@ -47,6 +49,10 @@ if(SHOCKGAS_PYTHON)
   add_test(NAME cli.init_file_run
            COMMAND ${_sim} --init "${_cli_dir}/good.h5" -t 20 -q -o "${_cli_dir}/good_run.h5")
   set_tests_properties(cli.init_file_run PROPERTIES FIXTURES_REQUIRED bad_init LABELS cli)
+  # An init file is one start: an ensemble of it is refused with the way out.
+  shockgas_cli_error(init_ensemble "one fixed initial condition.*--velocity-distribution"
+                     --init "${_cli_dir}/good.h5" -R 4)
+  set_tests_properties(cli.error.init_ensemble PROPERTIES FIXTURES_REQUIRED bad_init)
 endif()
 
 # A good run prints the T(t) table and writes a complete file.
@@ -54,6 +60,12 @@ add_test(NAME cli.small_run
          COMMAND ${_sim} -N 1000 -r 0.9 -d 0.01 -t 100 -R 2 -o "${_cli_dir}/small.h5")
 set_tests_properties(cli.small_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "complete \\(event engine")
+
+# An ensemble from the other initial laws.
+add_test(NAME cli.initial_law_run
+         COMMAND ${_sim} -N 1000 --positions uniform --velocity-distribution gaussian -t 20 -R 3 -q
+                 -o "${_cli_dir}/initial_law.h5")
+set_tests_properties(cli.initial_law_run PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "complete \\(event engine")
 
 # Ctrl-C: SIGINT mid-run writes what was computed, marked interrupted.
 add_test(NAME cli.sigint_writes_interrupted
