@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/cli.hpp"
 #include "shockgas/distributed.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/h5.hpp"
@@ -134,20 +135,10 @@ int main(int argc, char** argv) {
     // (`restitutoin = 0.5`) would otherwise run with the default.
     app.allow_config_extras(CLI::config_extras_mode::error);
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::Success& help) {  // --help: print it, exit 0
-        return app.exit(help);
-    } catch (const CLI::ParseError& error) {
-        // Every parse problem (bad value, unknown option or config key,
-        // missing config file) is one line naming it and exit status 2, like
-        // the validation errors below; CLI11's own report adds a second line.
-        std::string message = error.what();
-        for (char& c : message)
-            if (c == '\n' || c == '\r') c = ' ';
-        fmt::print(stderr, "shockgas-sim: error: {}\n", message);
-        return 2;
-    }
+    // Every parse problem (bad value, unknown option or config key, missing
+    // config file) is one line naming it, with the nearest option for a typo,
+    // and exit status 2, like the validation errors below.
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-sim"); status >= 0) return status;
 
     try {
         p.collision.subthreshold = shockgas::subthreshold_from_string(subthreshold);

@@ -136,8 +136,12 @@ void write_numeric_attribute(hid_t object, const std::string& where, const std::
 
 }  // namespace
 
-std::string Group::where(const std::string& name) const {
+std::string Group::child_path(const std::string& name) const {
     return path_ + (path_.empty() || path_.back() == '/' ? "" : "/") + name;
+}
+
+std::string Group::where(const std::string& name) const {
+    return file_.empty() ? child_path(name) : fmt::format("{} in '{}'", child_path(name), file_);
 }
 
 bool Group::has(const std::string& name) const { return H5Lexists(id(), name.c_str(), H5P_DEFAULT) > 0; }
@@ -147,14 +151,14 @@ Group Group::create_group(const std::string& name) {
     return Group(Handle(check(H5Gcreate2(id(), name.c_str(), H5P_DEFAULT, plist.id(), H5P_DEFAULT),
                               "cannot create group " + where(name)),
                         H5Gclose),
-                 where(name));
+                 child_path(name), file_);
 }
 
 Group Group::open_group(const std::string& name) const {
     if (!has(name)) throw Error(fmt::format("missing group {}", where(name)));
     return Group(Handle(check(H5Gopen2(id(), name.c_str(), H5P_DEFAULT), "cannot open group " + where(name)),
                         H5Gclose),
-                 where(name));
+                 child_path(name), file_);
 }
 
 bool Group::is_group(const std::string& name) const {
@@ -295,30 +299,32 @@ void Group::copy_attributes_from(const Group& other, const std::string& prefix) 
     }
 }
 
-File File::create(const std::string& path) {
+File File::create(const std::string& path, const std::string& display) {
     Handle plist(check(H5Pcreate(H5P_FILE_CREATE), "cannot create HDF5 property list"), H5Pclose);
     // Timestamps off for the root group as well (see untimed_dataset_properties).
     H5Pset_obj_track_times(plist.id(), false);
     const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, plist.id(), H5P_DEFAULT);
-    if (id < 0) throw Error(fmt::format("cannot create HDF5 file '{}'", path));
-    return File(Handle(id, H5Fclose), path);
+    if (id < 0) throw Error(fmt::format("cannot create HDF5 file '{}'", display.empty() ? path : display));
+    return File(Handle(id, H5Fclose), path, display.empty() ? path : display);
 }
 
 File File::open_read(const std::string& path) {
     if (!std::filesystem::exists(path)) throw Error(fmt::format("file '{}' does not exist", path));
     const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     if (id < 0) throw Error(fmt::format("'{}' is not a readable HDF5 file", path));
-    return File(Handle(id, H5Fclose), path);
+    return File(Handle(id, H5Fclose), path, path);
 }
 
 Group File::root() const {
-    return Group(Handle(check(H5Gopen2(handle_.id(), "/", H5P_DEFAULT), "cannot open root of " + path_), H5Gclose),
-                 "/");
+    return Group(Handle(check(H5Gopen2(handle_.id(), "/", H5P_DEFAULT), "cannot open root of " + display_), H5Gclose),
+                 "/", display_);
 }
 
 AtomicFile::AtomicFile(std::string target_path)
     : target_(std::move(target_path)), temporary_(target_ + ".tmp." + std::to_string(::getpid())) {
-    file_ = std::make_unique<File>(File::create(temporary_));
+    // Errors name the output the user asked for, not the temporary file.
+    check_writable(target_);
+    file_ = std::make_unique<File>(File::create(temporary_, target_));
 }
 
 AtomicFile::~AtomicFile() {

@@ -29,6 +29,49 @@ add_test(NAME cli.error.unwritable_output
                  ${_sim} -N 10 -o "${_cli_dir}/absent_dir/out.h5")
 set_tests_properties(cli.error.unwritable_output PROPERTIES LABELS cli)
 
+# Typos: the nearest option or config key is named.
+shockgas_cli_error(option_typo "unknown option '--restituion' \\(did you mean --restitution\\?\\)"
+                   -N 10 --restituion 0.5)
+shockgas_cli_error(config_typo "unknown option 'threshhold' in .*typo.toml \\(did you mean threshold\\?\\)"
+                   --config "${CMAKE_CURRENT_SOURCE_DIR}/cli/typo.toml")
+
+# shockgas-analyze and shockgas-merge: the same one-line form and exit status 2.
+set(_analyze $<TARGET_FILE:shockgas-analyze>)
+function(shockgas_tool_error name regex)
+  add_test(NAME cli.error.${name}
+           COMMAND ${_expect} "${regex}" "${_cli_dir}/${name}.out.h5" -- ${ARGN}
+           WORKING_DIRECTORY "${_cli_dir}")
+  set_tests_properties(cli.error.${name} PROPERTIES LABELS cli)
+endfunction()
+add_test(NAME cli.setup.one_realization COMMAND ${_sim} -N 1000 -t 1000 -R 1 -q -o "${_cli_dir}/one_realization.h5")
+add_test(NAME cli.setup.collapsed COMMAND ${_sim} -N 2000 -r 0.5 -d 0 -t 10000 -R 2 -q -o "${_cli_dir}/collapsed.h5")
+add_test(NAME cli.setup.other_restitution
+         COMMAND ${_sim} -N 1000 -t 1000 -R 1 -r 0.5 --first-realization 1 -q -o "${_cli_dir}/other_restitution.h5")
+set_tests_properties(cli.setup.one_realization cli.setup.collapsed cli.setup.other_restitution PROPERTIES
+                     FIXTURES_SETUP analyze_inputs LABELS cli)
+shockgas_tool_error(analyze_missing_file "^shockgas-analyze: error: .*does not exist.*no_such.h5"
+                    ${_analyze} decay "${_cli_dir}/no_such.h5" -o "${_cli_dir}/analyze_missing_file.out.h5")
+shockgas_tool_error(analyze_unwritable "^shockgas-analyze: error: cannot write output '.*absent_dir/a.h5'"
+                    ${_analyze} decay "${_cli_dir}/one_realization.h5" -o "${_cli_dir}/absent_dir/a.h5")
+shockgas_tool_error(analyze_collapsed "inelastic collapse.*--data-only.*, in '.*collapsed.h5'"
+                    ${_analyze} decay "${_cli_dir}/collapsed.h5" -o "${_cli_dir}/analyze_collapsed.out.h5")
+shockgas_tool_error(analyze_no_snapshots "^shockgas-analyze: error: no /snapshots .*, in '.*one_realization.h5'"
+                    ${_analyze} shocks "${_cli_dir}/one_realization.h5" -o "${_cli_dir}/analyze_no_snapshots.out.h5")
+shockgas_tool_error(analyze_option_typo "did you mean --t-lo"
+                    ${_analyze} decay "${_cli_dir}/one_realization.h5" --t-low 20)
+shockgas_tool_error(merge_names_parameter "different parameters .*: restitution 0.5 vs 0.9$"
+                    $<TARGET_FILE:shockgas-merge> -o "${_cli_dir}/merge_names_parameter.out.h5"
+                    "${_cli_dir}/one_realization.h5" "${_cli_dir}/other_restitution.h5")
+set_tests_properties(cli.error.analyze_unwritable cli.error.analyze_collapsed cli.error.analyze_no_snapshots
+                     cli.error.merge_names_parameter PROPERTIES FIXTURES_REQUIRED analyze_inputs)
+# One realization: sigma is n/a, with the reason, never nan.
+add_test(NAME cli.analyze_one_realization
+         COMMAND ${_analyze} decay "${_cli_dir}/one_realization.h5" --t-lo 20 --t-hi 1000
+                 -o "${_cli_dir}/one_realization_decay.h5")
+set_tests_properties(cli.analyze_one_realization PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_inputs
+                     PASS_REGULAR_EXPRESSION "\\+- n/a \\(jackknife: one realization"
+                     FAIL_REGULAR_EXPRESSION "nan")
+
 if(SHOCKGAS_PYTHON)
   add_test(NAME cli.setup.bad_init_files
            COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/make_bad_init.py "${_cli_dir}")

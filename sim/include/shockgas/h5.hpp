@@ -52,7 +52,9 @@ private:
 // no object timestamps, so equal data give byte-identical datasets.
 class Group {
 public:
-    Group(Handle handle, std::string path) : handle_(std::move(handle)), path_(std::move(path)) {}
+    // file: the file's name as a user knows it, added to every error message.
+    Group(Handle handle, std::string path, std::string file = "")
+        : handle_(std::move(handle)), path_(std::move(path)), file_(std::move(file)) {}
 
     const std::string& path() const { return path_; }
     hid_t id() const { return handle_.id(); }
@@ -85,22 +87,27 @@ public:
     void copy_attributes_from(const Group& other, const std::string& prefix = "");
 
 private:
-    std::string where(const std::string& name) const;
+    std::string child_path(const std::string& name) const;
+    std::string where(const std::string& name) const;  // child_path + " in 'file'", for messages
     Handle handle_;
     std::string path_;
+    std::string file_;
 };
 
 class File {
 public:
-    static File create(const std::string& path);     // truncates
+    // Truncates. display: the name errors give (AtomicFile: the target, not its temporary).
+    static File create(const std::string& path, const std::string& display = "");
     static File open_read(const std::string& path);  // throws Error naming the path if unreadable
     Group root() const;
     const std::string& path() const { return path_; }
 
 private:
-    File(Handle handle, std::string path) : handle_(std::move(handle)), path_(std::move(path)) {}
+    File(Handle handle, std::string path, std::string display)
+        : handle_(std::move(handle)), path_(std::move(path)), display_(std::move(display)) {}
     Handle handle_;
     std::string path_;
+    std::string display_;
 };
 
 // Writes to a temporary file beside the target and renames it into place on
