@@ -125,6 +125,12 @@ int main(int argc, char** argv) {
     app.add_flag("--resume", checkpoint.resume,
                  "continue from the checkpoint if there is one of this run (same parameters and code version); "
                  "the output is bit-identical to an uninterrupted run. Without a checkpoint, start from t = 0");
+    double progress_interval = 60.0;
+    app.add_option("--progress-interval", progress_interval,
+                   "when stderr is not a terminal (a batch job's log), write a progress line every this many "
+                   "seconds of wall time, and at each tenth of the run; 0: only at each tenth")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "do not print the T(t) table");
     app.set_version_flag("--version", "shockgas-sim " + shockgas::build_info().version);
     app.footer("Output schema: docs/cli-and-output.md (installed in share/doc/shockgas). Ctrl-C writes what has been computed, marked "
@@ -185,9 +191,18 @@ int main(int argc, char** argv) {
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
         shockgas::ProgressCallback progress;
-        if (isatty(STDERR_FILENO) && !quiet && session.is_root())
+        if (terminal && !quiet && session.is_root())
             progress = [](const shockgas::Progress& status) {
                 fmt::print(stderr, "\r{:<110}", shockgas::format_progress(status));
+                std::fflush(stderr);
+            };
+        // A log file gets whole lines, now and then (ProgressLog), even with
+        // --quiet, which silences only the T(t) table on stdout.
+        shockgas::ProgressLog log(progress_interval);
+        if (!terminal && session.is_root())
+            progress = [&log](const shockgas::Progress& status) {
+                if (!log.due(status)) return;
+                fmt::print(stderr, "shockgas-sim: progress: {}\n", shockgas::format_progress(status));
                 std::fflush(stderr);
             };
         auto mine_result = mine.realizations == 0
@@ -201,7 +216,7 @@ int main(int argc, char** argv) {
             return 0;
         }  // not rank 0: rank 0 writes the file and reports
         const auto& result = *joined;
-        if (progress) fmt::print(stderr, "\n");
+        if (progress && terminal) fmt::print(stderr, "\n");
         shockgas::write_output(output, p, result);
         session.record_provenance(output);
         // The output is safely in place: the checkpoint has served its purpose.

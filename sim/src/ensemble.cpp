@@ -537,6 +537,15 @@ EnsembleResult run_ensemble(const SimulationParameters& parameters, const Initia
     return runner.run(progress);
 }
 
+bool ProgressLog::due(const Progress& p) {
+    const int tenth = static_cast<int>(std::floor(10.0 * p.fraction_done));
+    const bool time_for_a_line = interval_seconds_ > 0.0 && p.elapsed_seconds - last_line_seconds_ >= interval_seconds_;
+    if (!time_for_a_line && tenth <= last_tenth_) return false;
+    last_line_seconds_ = p.elapsed_seconds;
+    last_tenth_ = std::max(last_tenth_, tenth);
+    return true;
+}
+
 std::string format_progress(const Progress& p) {
     const std::string eta = p.eta_seconds < 0 ? "--" : fmt::format("{:.0f} s", p.eta_seconds);
     return fmt::format("t = {:.4g}  realizations {}/{}  {:.1f}%  {:.3g} collisions/s  elapsed {:.0f} s  ETA {}",

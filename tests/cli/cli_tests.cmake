@@ -104,6 +104,12 @@ add_test(NAME cli.small_run
 set_tests_properties(cli.small_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "complete \\(event engine")
 
+# A batch log (stderr not a terminal, as under ctest) gets whole progress lines, at least the last.
+add_test(NAME cli.progress_in_logs
+         COMMAND ${_sim} -N 1000 -t 100 -R 2 -q --progress-interval 30 -o "${_cli_dir}/progress.h5")
+set_tests_properties(cli.progress_in_logs PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "shockgas-sim: progress: t = 100 +realizations 2/2 +100.0%")
+
 # An ensemble from the other initial laws.
 add_test(NAME cli.initial_law_run
          COMMAND ${_sim} -N 1000 --positions uniform --velocity-distribution gaussian -t 20 -R 3 -q
