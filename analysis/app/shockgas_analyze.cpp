@@ -10,6 +10,8 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "shockgas/analysis/collapse.hpp"
 #include "shockgas/analysis/compare.hpp"
@@ -18,6 +20,7 @@
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
 #include "shockgas/analysis/velocity_distribution.hpp"
+#include "shockgas/cli.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/provenance.hpp"
@@ -51,16 +54,21 @@ void write_temperature_data(const std::string& data, const std::string& input, c
 
 void run_decay(const std::string& input, const std::string& output, const std::string& data, const std::string& scan,
                double t_lo, double t_hi, const WindowRule& rule, double scan_width, double scan_step, bool data_only) {
-    const auto history = TemperatureHistory::from(read_timeseries(input));
-    if (history.time.empty()) throw InsufficientData(input + ": no sample time reached by every realization");
+    const auto series = read_timeseries(input);
+    const auto history = TemperatureHistory::from(series);
+    if (history.time.empty()) throw InsufficientData("no sample time reached by every realization");
     if (data_only) {
         // Runs stopped by collapse (delta = 0) are drawn, not fitted.
         write_temperature_data(data, input, history);
         return;
     }
     const auto run = run_parameters(input);
-    DecayWindow window = automatic_decay_window(run.restitution, run.velocity_threshold, run.particles,
-                                                history.time.back(), rule);
+    // A window given in full needs no rule; a fully automatic one explains itself when empty.
+    DecayWindow window = t_lo > 0.0 || t_hi > 0.0
+                             ? decay_window_bounds(run.restitution, run.velocity_threshold, run.particles,
+                                                   history.time.back(), rule)
+                             : automatic_decay_window(run.restitution, run.velocity_threshold, run.particles,
+                                                      history.time.back(), rule, series.status);
     if (t_lo > 0.0) window.t_lo = t_lo;
     if (t_hi > 0.0) window.t_hi = t_hi;
     const DecayFit fit = fit_temperature_decay(history, window.t_lo, window.t_hi);
@@ -69,7 +77,9 @@ void run_decay(const std::string& input, const std::string& output, const std::s
     ResultsFile results(output, "shockgas-analyze decay", {input});
     auto group = results.section("decay");
     group.set_attribute("exponent", fit.exponent);
-    group.set_attribute("exponent_sigma", fit.exponent_sigma);
+    group.set_attribute("exponent_sigma", fit.exponent_sigma);  // NaN for one realization
+    if (!std::isfinite(fit.exponent_sigma))
+        group.set_attribute("exponent_sigma_note", "one realization: the jackknife has nothing to leave out");
     group.set_attribute("exponent_fit_sigma", fit.fit_sigma);
     group.set_attribute("exponent_window_systematic", systematic);
     group.set_attribute("chi2_per_dof", fit.chi2_per_dof);
@@ -98,8 +108,13 @@ void run_decay(const std::string& input, const std::string& output, const std::s
             file.row({std::sqrt(w.t_lo * w.t_hi), w.t_lo, w.t_hi, w.exponent, w.exponent_sigma, w.chi2_per_dof,
                       static_cast<double>(w.points)});
     }
-    std::printf("decay exponent %.4f +- %.4f (jackknife) +- %.4f (window), chi2/dof %.2f, window [%g, %g], %zu points\n",
-                fit.exponent, fit.exponent_sigma, systematic, fit.chi2_per_dof, fit.t_lo, fit.t_hi, fit.points);
+    // One realization: nothing to leave out, so no jackknife sigma; say so
+    // rather than print nan.
+    const std::string jackknife = std::isfinite(fit.exponent_sigma)
+                                      ? fmt::format("+- {:.4f} (jackknife)", fit.exponent_sigma)
+                                      : "+- n/a (jackknife: one realization, nothing to leave out; run -R 2 or more)";
+    fmt::print("decay exponent {:.4f} {} +- {:.4f} (window), chi2/dof {:.2f}, window [{:g}, {:g}], {} points\n",
+               fit.exponent, jackknife, systematic, fit.chi2_per_dof, fit.t_lo, fit.t_hi, fit.points);
 }
 
 void run_crossover(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
@@ -211,7 +226,7 @@ void run_scaling(const std::vector<std::string>& inputs, const std::string& outp
 void run_shocks(const std::string& input, const std::string& output, const std::string& data,
                 const ShockRule& rule) {
     const auto snapshots = read_snapshots(input);
-    if (snapshots.empty()) throw InsufficientData(input + ": no /snapshots (run with --snapshot-times)");
+    if (snapshots.empty()) throw InsufficientData("no /snapshots (run with --snapshot-times)");
     ResultsFile results(output, "shockgas-analyze shocks", {input});
     // Group snapshots by time.
     std::vector<double> times;
@@ -493,7 +508,8 @@ int main(int argc, char** argv) {
     decay->add_flag("--data-only", data_only, "write the T(t) data file only, no fit (for runs stopped by collapse)");
     decay->add_option("--t-lo", t_lo, "override the window start");
     decay->add_option("--t-hi", t_hi, "override the window end");
-    decay->add_option("--start-factor", window_rule.start_factor, "t_lo = factor * max(1, eps^-3/2)")
+    decay->add_option("--start-factor", window_rule.start_factor,
+                      fmt::format("t_lo = factor * max({:g}, eps^-3/2), eps = (1 - r)/2", window_rule.scaling_onset))
         ->capture_default_str();
     decay->add_option("--end-factor", window_rule.end_factor, "t_hi <= factor * N^3/2")->capture_default_str();
     decay->add_option("--scan-width", scan_width, "scan window width, decades")->capture_default_str();
@@ -569,8 +585,10 @@ int main(int argc, char** argv) {
     far_tail->add_option("--window-shift", window_shift, "window systematic: both ends moved by +- this")
         ->capture_default_str();
 
-    CLI11_PARSE(app, argc, argv);
+    if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
     try {
+        // Refuse an unwritable output before the work, naming it (not a temporary file).
+        h5::check_writable(output);
         if (*decay) run_decay(input, output, data, scan, t_lo, t_hi, window_rule, scan_width, scan_step, data_only);
         if (*crossover) run_crossover(inputs, output, data, crossover_rule);
         if (*scaling) run_scaling(inputs, output, data, tail_rule);
@@ -578,8 +596,21 @@ int main(int argc, char** argv) {
         if (*collapse) run_collapse(inputs, output, data, versus, hazard);
         if (*compare) run_compare(reference, inputs, output, data, curves);
         if (*far_tail) run_far_tail(input, output, data, z_lo, z_hi, window_shift);
+    } catch (const InputError& error) {  // every error a user's input causes: one form, exit 2
+        fmt::print(stderr, "shockgas-analyze: error: {}\n", error.what());
+        return cli::bad_input;
+    } catch (const h5::Error& error) {
+        fmt::print(stderr, "shockgas-analyze: error: {}\n", error.what());
+        return cli::bad_input;
+    } catch (const InsufficientData& error) {
+        // Estimator messages say what is missing; add which file it is missing from.
+        std::vector<std::string> files = inputs;
+        if (!input.empty()) files.insert(files.begin(), input);
+        if (!reference.empty()) files.insert(files.begin(), reference);
+        fmt::print(stderr, "shockgas-analyze: error: {}, in '{}'\n", error.what(), fmt::join(files, "', '"));
+        return cli::bad_input;
     } catch (const std::exception& error) {
-        std::fprintf(stderr, "shockgas-analyze: %s\n", error.what());
+        fmt::print(stderr, "shockgas-analyze: internal error: {}\n", error.what());
         return 1;
     }
     return 0;

@@ -1,9 +1,14 @@
 #include "shockgas/analysis/results.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <iomanip>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
+#include "shockgas/parameters.hpp"
 #include "shockgas/provenance.hpp"
 
 namespace shockgas::analysis {
@@ -40,7 +45,7 @@ void set_power_law(h5::Group& group, const std::string& name, const LinearFit& f
 
 DataFile::DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& columns)
     : out_(path), path_(path) {
-    if (!out_) throw std::runtime_error("cannot write data file " + path);
+    if (!out_) throw InputError(fmt::format("cannot write data file '{}': {}", path, std::strerror(errno)));
     out_ << "# " << description << "\n#";
     for (const auto& column : columns) out_ << ' ' << column;
     out_ << '\n' << std::setprecision(10);

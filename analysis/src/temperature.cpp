@@ -5,6 +5,8 @@
 #include <limits>
 #include <string>
 
+#include <fmt/format.h>
+
 namespace shockgas::analysis {
 
 namespace {
@@ -72,8 +74,8 @@ TemperatureHistory TemperatureHistory::from(const EnsembleResult& result) {
     return from(result.times, result.realizations, result.temperature);
 }
 
-DecayWindow automatic_decay_window(double restitution, double velocity_threshold, double particles,
-                                   double last_time, const WindowRule& rule) {
+DecayWindow decay_window_bounds(double restitution, double velocity_threshold, double particles, double last_time,
+                                const WindowRule& rule) {
     const double inelasticity = (1.0 - restitution) / 2.0;  // r = 1 - 2 eps
     // Eq. (3): the sticky regime starts at t_stick ~ eps^(-3/2). Even the
     // sticky gas itself (r = 0) reaches its scaling state only after t ~ 10:
@@ -87,10 +89,27 @@ DecayWindow automatic_decay_window(double restitution, double velocity_threshold
     // harmless while v ~ t^(-1/3) >> delta, i.e. t << delta^(-3).
     window.t_hi = std::min(last_time, rule.end_factor * std::pow(particles, 1.5));
     if (velocity_threshold > 0.0) window.t_hi = std::min(window.t_hi, std::pow(velocity_threshold, -3.0));
-    if (!(window.t_hi > window.t_lo))
-        throw InsufficientData("the automatic window is empty: t_lo = " + std::to_string(window.t_lo) +
-                               " (10 max(10, eps^-3/2)) but t_hi = " + std::to_string(window.t_hi) +
-                               " (min of t_max, 0.01 N^3/2, delta^-3); run longer or with more particles");
+    return window;
+}
+
+DecayWindow automatic_decay_window(double restitution, double velocity_threshold, double particles,
+                                   double last_time, const WindowRule& rule, const std::string& run_status) {
+    const DecayWindow window = decay_window_bounds(restitution, velocity_threshold, particles, last_time, rule);
+    if (!(window.t_hi > window.t_lo)) {
+        const std::string start = fmt::format("the automatic window is empty: t_lo = {:g} ({:g} max({:g}, eps^-3/2))",
+                                              window.t_lo, rule.start_factor, rule.scaling_onset);
+        // A run stopped by collapse (delta = 0) or by Ctrl-C: more time or
+        // particles would not help; the data end before the scaling regime.
+        if ((run_status == "collapsed" || run_status == "interrupted") && last_time <= window.t_lo)
+            throw InsufficientData(fmt::format(
+                "{}, but the run {} at t = {:g}, before it{}: draw T(t) without a fit with --data-only, or choose "
+                "a window with --t-lo/--t-hi",
+                start, run_status == "collapsed" ? "stopped at inelastic collapse" : "was interrupted", last_time,
+                run_status == "collapsed" ? " (delta = 0 runs stop there)" : ""));
+        throw InsufficientData(fmt::format("{}, but t_hi = {:g} (min of t_max, {:g} N^3/2, delta^-3); run longer or "
+                                           "with more particles",
+                                           start, window.t_hi, rule.end_factor));
+    }
     return window;
 }
 

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/cli.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/provenance.hpp"
@@ -14,11 +15,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "shockgas-merge " + shockgas::build_info().version);
     app.add_option("-o,--output", output, "merged HDF5 file (written atomically)")->required();
     app.add_option("inputs", inputs, "part files, in realization order")->required()->check(CLI::ExistingFile);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& error) {
-        return app.exit(error);
-    }
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-merge"); status >= 0) return status;
     try {
         shockgas::h5::check_writable(output);
         std::vector<shockgas::OutputFile> parts;

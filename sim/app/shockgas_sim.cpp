@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "shockgas/checkpoint.hpp"
+#include "shockgas/cli.hpp"
 #include "shockgas/distributed.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/h5.hpp"
@@ -95,9 +96,19 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     app.add_option("-j,--threads", p.threads, "threads for realizations; 0 means every core")->capture_default_str();
+    std::string positions = "lattice", velocity_distribution = "uniform";
+    app.add_option("--positions", positions,
+                   "initial positions: lattice (x_i = i L/N, the paper's) or uniform (N i.i.d. uniform points on "
+                   "the ring, sorted); drawn per realization from the seed")
+        ->capture_default_str();
+    app.add_option("--velocity-distribution", velocity_distribution,
+                   "initial velocities, i.i.d.: uniform (on [-1, 1], the paper's) or gaussian (mean 0, the same "
+                   "variance 1/3)")
+        ->capture_default_str();
     app.add_option("--init", p.init_file,
                    "initial condition FILE.h5: datasets position, velocity, optional mass; root attribute "
-                   "ring_length");
+                   "ring_length. It pins one exact start, so it needs -R 1 (every realization would be the same "
+                   "run); for an ensemble use --positions / --velocity-distribution");
     app.add_option("--engine", p.engine,
                    "engine: event (event-driven, any r), exact (the sticky gas r = 0: clusters from the variational "
                    "principle, no event loop), passthrough (equal masses, delta > 0, elastic sub-threshold: "
@@ -118,6 +129,12 @@ int main(int argc, char** argv) {
     app.add_flag("--resume", checkpoint.resume,
                  "continue from the checkpoint if there is one of this run (same parameters and code version); "
                  "the output is bit-identical to an uninterrupted run. Without a checkpoint, start from t = 0");
+    double progress_interval = 60.0;
+    app.add_option("--progress-interval", progress_interval,
+                   "when stderr is not a terminal (a batch job's log), write a progress line every this many "
+                   "seconds of wall time, and at each tenth of the run; 0: only at each tenth")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "do not print the T(t) table");
     app.set_version_flag("--version", "shockgas-sim " + shockgas::build_info().version);
     app.footer("Output schema: docs/cli-and-output.md (installed in share/doc/shockgas). Ctrl-C writes what has been computed, marked "
@@ -128,23 +145,15 @@ int main(int argc, char** argv) {
     // (`restitutoin = 0.5`) would otherwise run with the default.
     app.allow_config_extras(CLI::config_extras_mode::error);
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::Success& help) {  // --help: print it, exit 0
-        return app.exit(help);
-    } catch (const CLI::ParseError& error) {
-        // Every parse problem (bad value, unknown option or config key,
-        // missing config file) is one line naming it and exit status 2, like
-        // the validation errors below; CLI11's own report adds a second line.
-        std::string message = error.what();
-        for (char& c : message)
-            if (c == '\n' || c == '\r') c = ' ';
-        fmt::print(stderr, "shockgas-sim: error: {}\n", message);
-        return 2;
-    }
+    // Every parse problem (bad value, unknown option or config key, missing
+    // config file) is one line naming it, with the nearest option for a typo,
+    // and exit status 2, like the validation errors below.
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-sim"); status >= 0) return status;
 
     try {
         p.collision.subthreshold = shockgas::subthreshold_from_string(subthreshold);
+        p.initial_law = {shockgas::position_law_from_string(positions),
+                         shockgas::velocity_law_from_string(velocity_distribution)};
         if (app.count("--snapshot-interval") > 0) {
             const auto every = shockgas::evenly_spaced_times(snapshot_interval, p.t_max);
             p.snapshot_times.insert(p.snapshot_times.end(), every.begin(), every.end());
@@ -197,9 +206,18 @@ int main(int argc, char** argv) {
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
         shockgas::ProgressCallback progress;
-        if (isatty(STDERR_FILENO) && !quiet && session.is_root())
+        if (terminal && !quiet && session.is_root())
             progress = [](const shockgas::Progress& status) {
                 fmt::print(stderr, "\r{:<110}", shockgas::format_progress(status));
+                std::fflush(stderr);
+            };
+        // A log file gets whole lines, now and then (ProgressLog), even with
+        // --quiet, which silences only the T(t) table on stdout.
+        shockgas::ProgressLog log(progress_interval);
+        if (!terminal && session.is_root())
+            progress = [&log](const shockgas::Progress& status) {
+                if (!log.due(status)) return;
+                fmt::print(stderr, "shockgas-sim: progress: {}\n", shockgas::format_progress(status));
                 std::fflush(stderr);
             };
         auto mine_result = mine.realizations == 0
@@ -213,7 +231,7 @@ int main(int argc, char** argv) {
             return 0;
         }  // not rank 0: rank 0 writes the file and reports
         const auto& result = *joined;
-        if (progress) fmt::print(stderr, "\n");
+        if (progress && terminal) fmt::print(stderr, "\n");
         shockgas::write_output(output, p, result);
         session.record_provenance(output);
         // The output is safely in place: the checkpoint has served its purpose.

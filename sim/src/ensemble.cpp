@@ -189,7 +189,8 @@ private:
         const InitialCondition initial =
             initial_override_ ? *initial_override_
                               : generate_initial_condition(parameters_.particles, parameters_.effective_ring_length(),
-                                                           parameters_.seed, parameters_.first_realization + k);
+                                                           parameters_.seed, parameters_.first_realization + k,
+                                                           parameters_.initial_law);
         try {
             if (resume_[index]) {
                 const EngineSnapshot snapshot = std::move(*resume_[index]);
@@ -524,10 +525,24 @@ EnsembleResult run_ensemble(const SimulationParameters& parameters, const Initia
     if (initial_override) {
         validate(*initial_override);
         if (parameters.realizations != 1)
-            throw InputError("--init gives one initial condition: realizations must be 1");
+            throw InputError(fmt::format(
+                "--init gives one fixed initial condition, so {} realizations would all be the same run: use -R 1, "
+                "or draw an ensemble from an initial law (--positions, --velocity-distribution)",
+                parameters.realizations));
+        if (!parameters.initial_law.is_paper())
+            throw InputError("--init gives the initial condition: --positions and --velocity-distribution do not apply");
     }
     EnsembleRunner runner(parameters, initial_override, stop, checkpoint);
     return runner.run(progress);
+}
+
+bool ProgressLog::due(const Progress& p) {
+    const int tenth = static_cast<int>(std::floor(10.0 * p.fraction_done));
+    const bool time_for_a_line = interval_seconds_ > 0.0 && p.elapsed_seconds - last_line_seconds_ >= interval_seconds_;
+    if (!time_for_a_line && tenth <= last_tenth_) return false;
+    last_line_seconds_ = p.elapsed_seconds;
+    last_tenth_ = std::max(last_tenth_, tenth);
+    return true;
 }
 
 std::string format_progress(const Progress& p) {

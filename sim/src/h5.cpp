@@ -210,8 +210,12 @@ void write_numeric_attribute(hid_t object, const std::string& where, const std::
 
 }  // namespace
 
-std::string Group::where(const std::string& name) const {
+std::string Group::child_path(const std::string& name) const {
     return path_ + (path_.empty() || path_.back() == '/' ? "" : "/") + name;
+}
+
+std::string Group::where(const std::string& name) const {
+    return file_.empty() ? child_path(name) : fmt::format("{} in '{}'", child_path(name), file_);
 }
 
 bool Group::has(const std::string& name) const { return H5Lexists(id(), name.c_str(), H5P_DEFAULT) > 0; }
@@ -221,14 +225,14 @@ Group Group::create_group(const std::string& name) {
     return Group(Handle(check(H5Gcreate2(id(), name.c_str(), H5P_DEFAULT, plist.id(), H5P_DEFAULT),
                               "cannot create group " + where(name)),
                         H5Gclose),
-                 where(name));
+                 child_path(name), file_);
 }
 
 Group Group::open_group(const std::string& name) const {
     if (!has(name)) throw Error(fmt::format("missing group {}", where(name)));
     return Group(Handle(check(H5Gopen2(id(), name.c_str(), H5P_DEFAULT), "cannot open group " + where(name)),
                         H5Gclose),
-                 where(name));
+                 child_path(name), file_);
 }
 
 bool Group::is_group(const std::string& name) const {
@@ -369,7 +373,7 @@ void Group::copy_attributes_from(const Group& other, const std::string& prefix) 
     }
 }
 
-File File::create(const std::string& path) {
+File File::create(const std::string& path, const std::string& display) {
     Handle plist(check(H5Pcreate(H5P_FILE_CREATE), "cannot create HDF5 property list"), H5Pclose);
     // Timestamps off for the root group as well (see untimed_dataset_properties).
     H5Pset_obj_track_times(plist.id(), false);
@@ -378,8 +382,8 @@ File File::create(const std::string& path) {
     Handle access(check(H5Pcreate(H5P_FILE_ACCESS), "cannot create HDF5 property list"), H5Pclose);
     check_status(H5Pset_libver_bounds(access.id(), H5F_LIBVER_V110, H5F_LIBVER_V110), "cannot select file format");
     const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, plist.id(), access.id());
-    if (id < 0) fail(fmt::format("cannot create HDF5 file '{}'", path));
-    return File(Handle(id, H5Fclose), path);
+    if (id < 0) fail(fmt::format("cannot create HDF5 file '{}'", display.empty() ? path : display));
+    return File(Handle(id, H5Fclose), path, display.empty() ? path : display);
 }
 
 namespace {
@@ -451,7 +455,7 @@ File File::open_read(const std::string& path) {
                                   : fmt::format("'{}' is not a readable HDF5 file: {}", path, cause),
                     cause.empty() ? "unreadable" : "damaged");
     }
-    File file(Handle(id, H5Fclose), path);
+    File file(Handle(id, H5Fclose), path, path);
     try {
         verify_every_dataset(file.root(), path);
     } catch (const Error& error) {
@@ -462,8 +466,8 @@ File File::open_read(const std::string& path) {
 }
 
 Group File::root() const {
-    return Group(Handle(check(H5Gopen2(handle_.id(), "/", H5P_DEFAULT), "cannot open root of " + path_), H5Gclose),
-                 "/");
+    return Group(Handle(check(H5Gopen2(handle_.id(), "/", H5P_DEFAULT), "cannot open root of " + display_), H5Gclose),
+                 "/", display_);
 }
 
 AtomicFile::AtomicFile(std::string target_path)
@@ -475,7 +479,9 @@ AtomicFile::AtomicFile(std::string target_path)
         return true;
     }();
     (void)file_size_signal_ignored;
-    file_ = std::make_unique<File>(File::create(temporary_));
+    // Errors name the output the user asked for, not the temporary file.
+    check_writable(target_);
+    file_ = std::make_unique<File>(File::create(temporary_, target_));
 }
 
 AtomicFile::~AtomicFile() {

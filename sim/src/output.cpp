@@ -20,6 +20,13 @@ void write_state(h5::Group& group, const ClusterState& state) {
 
 std::string join(const std::vector<double>& values) { return fmt::format("{}", fmt::join(values, ",")); }
 
+std::string initial_law_description(const InitialLaw& law) {
+    return fmt::format("{}, velocities {}, unit masses",
+                       law.positions == PositionLaw::lattice ? "equally spaced" : "positions i.i.d. uniform on [0, L)",
+                       law.velocities == VelocityLaw::uniform ? "uniform on [-1, 1]"
+                                                              : "Gaussian with mean 0 and variance 1/3");
+}
+
 }  // namespace
 
 void write_parameter_attributes(h5::Group& root, const SimulationParameters& p) {
@@ -43,9 +50,11 @@ void write_parameter_attributes(h5::Group& root, const SimulationParameters& p) 
     root.set_attribute("first_realization", p.first_realization);
     root.set_attribute("seed", static_cast<std::int64_t>(p.seed));
     root.set_attribute("init_file", p.init_file);
-    root.set_attribute("initial_condition",
-                       p.init_file.empty() ? "equally spaced, velocities uniform on [-1, 1], unit masses"
-                                           : "from init_file");
+    root.set_attribute("positions", p.init_file.empty() ? to_string(p.initial_law.positions) : "init_file");
+    root.set_attribute("velocity_distribution",
+                       p.init_file.empty() ? to_string(p.initial_law.velocities) : "init_file");
+    root.set_attribute("initial_condition", p.init_file.empty() ? initial_law_description(p.initial_law)
+                                                                : "from init_file");
 }
 
 namespace {
@@ -194,6 +203,10 @@ OutputFile read_result(const h5::Group& root) {
     p.first_realization = root.has_attribute("first_realization") ? root.attribute_integer("first_realization") : 0;
     p.seed = static_cast<std::uint64_t>(root.attribute_integer("seed"));
     p.init_file = root.attribute_string("init_file");
+    // Files written before the initial laws existed hold the paper's law.
+    if (p.init_file.empty() && root.has_attribute("positions"))
+        p.initial_law = {position_law_from_string(root.attribute_string("positions")),
+                         velocity_law_from_string(root.attribute_string("velocity_distribution"))};
     p.engine = root.attribute_string("engine");
     out.version = root.attribute_string("version");
 
@@ -255,15 +268,45 @@ OutputFile read_output(const std::string& path) {
 
 namespace {
 
-// Every parameter that changes the physics or the sampling must agree.
+// Every parameter that changes the physics or the sampling, by name (the
+// long option's name), as text: parts of one ensemble must agree on all.
+std::vector<std::pair<std::string, std::string>> physics_parameters(const SimulationParameters& p) {
+    return {{"particles", fmt::format("{}", p.particles)},
+            {"ring-length", fmt::format("{}", p.effective_ring_length())},
+            {"restitution", fmt::format("{}", p.collision.restitution)},
+            {"threshold", fmt::format("{}", p.collision.velocity_threshold)},
+            {"subthreshold", to_string(p.collision.subthreshold)},
+            {"t-max", fmt::format("{}", p.t_max)},
+            {"samples-per-decade", fmt::format("{}", p.samples_per_decade)},
+            {"sample-times", join(p.sample_times)},
+            {"snapshot-times", join(p.snapshot_times)},
+            {"histogram-times", join(p.histogram_times)},
+            {"histogram-bins", fmt::format("{}", p.histogram_bins)},
+            {"histogram-range", fmt::format("{}", p.histogram_range)},
+            {"seed", fmt::format("{}", p.seed)},
+            {"init", p.init_file},
+            {"positions", to_string(p.initial_law.positions)},
+            {"velocity-distribution", to_string(p.initial_law.velocities)},
+            {"collapse-speed", fmt::format("{}", p.collapse.collapse_speed)},
+            {"stall_time_fraction", fmt::format("{}", p.collapse.stall_time_fraction)},
+            {"stall_events_min", fmt::format("{}", p.collapse.stall_events_min)}};
+}
+
 std::string physics_signature(const SimulationParameters& p) {
-    return fmt::format("N={} L={} r={} delta={} sub={} tmax={} K={} samples=[{}] snapshots=[{}] histograms=[{}] "
-                       "bins={} range={} seed={} init={} collapse={},{},{}",
-                       p.particles, p.effective_ring_length(), p.collision.restitution, p.collision.velocity_threshold,
-                       to_string(p.collision.subthreshold), p.t_max, p.samples_per_decade, join(p.sample_times),
-                       join(p.snapshot_times), join(p.histogram_times), p.histogram_bins, p.histogram_range, p.seed,
-                       p.init_file, p.collapse.collapse_speed, p.collapse.stall_time_fraction,
-                       p.collapse.stall_events_min);
+    std::string signature;
+    for (const auto& [name, value] : physics_parameters(p)) signature += fmt::format("{}=[{}] ", name, value);
+    return signature;
+}
+
+// "restitution 0.5 vs 0.9, seed 2 vs 1": every parameter in which b differs from a.
+std::string parameter_differences(const SimulationParameters& a, const SimulationParameters& b) {
+    const auto first = physics_parameters(a), second = physics_parameters(b);
+    std::vector<std::string> differences;
+    for (std::size_t i = 0; i < first.size(); ++i)
+        if (first[i].second != second[i].second)
+            differences.push_back(fmt::format("{} {} vs {}", first[i].first, second[i].second.empty() ? "(none)" : second[i].second,
+                                              first[i].second.empty() ? "(none)" : first[i].second));
+    return fmt::format("{}", fmt::join(differences, ", "));
 }
 
 }  // namespace
@@ -279,7 +322,8 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
         const OutputFile& part = parts[i];
         const std::string& name = names[i];
         if (physics_signature(part.parameters) != signature)
-            throw InputError(fmt::format("merge: '{}' was run with different parameters than '{}'", name, names[0]));
+            throw InputError(fmt::format("merge: '{}' was run with different parameters than '{}': {}", name, names[0],
+                                         parameter_differences(parts.front().parameters, part.parameters)));
         if (part.result.engine != r.engine)
             throw InputError(fmt::format("merge: '{}' used engine {}, '{}' used {}", name, part.result.engine, names[0],
                                          r.engine));

@@ -18,6 +18,21 @@ Subthreshold subthreshold_from_string(const std::string& name) {
     throw InputError(fmt::format("sub-threshold mechanism must be 'elastic' or 'sticky', got '{}'", name));
 }
 
+std::string to_string(PositionLaw law) { return law == PositionLaw::lattice ? "lattice" : "uniform"; }
+std::string to_string(VelocityLaw law) { return law == VelocityLaw::uniform ? "uniform" : "gaussian"; }
+
+PositionLaw position_law_from_string(const std::string& name) {
+    if (name == "lattice") return PositionLaw::lattice;
+    if (name == "uniform") return PositionLaw::uniform;
+    throw InputError(fmt::format("positions must be 'lattice' or 'uniform', got '{}'", name));
+}
+
+VelocityLaw velocity_law_from_string(const std::string& name) {
+    if (name == "uniform") return VelocityLaw::uniform;
+    if (name == "gaussian") return VelocityLaw::gaussian;
+    throw InputError(fmt::format("velocity distribution must be 'uniform' or 'gaussian', got '{}'", name));
+}
+
 namespace {
 void check_times(const std::vector<double>& times, double t_max, const char* what) {
     for (double t : times) {

@@ -21,11 +21,56 @@ shockgas_cli_error(t_max_zero "t_max" -N 10 -t 0)
 shockgas_cli_error(t_max_negative "t_max" -N 10 -t -5)
 shockgas_cli_error(bad_subthreshold "sub-threshold" -N 10 --subthreshold gooey)
 shockgas_cli_error(sample_beyond_t_max "beyond t_max" -N 10 -t 10 --snapshot-times 20)
+shockgas_cli_error(bad_positions "positions must be 'lattice' or 'uniform'" -N 10 --positions random)
+shockgas_cli_error(bad_velocity_law "velocity distribution must be" -N 10 --velocity-distribution normal)
 shockgas_cli_error(init_missing_file "does not exist" --init "${_cli_dir}/no_such_file.h5")
 add_test(NAME cli.error.unwritable_output
          COMMAND ${_expect} "directory .* does not exist" "${_cli_dir}/absent_dir/out.h5" --
                  ${_sim} -N 10 -o "${_cli_dir}/absent_dir/out.h5")
 set_tests_properties(cli.error.unwritable_output PROPERTIES LABELS cli)
+
+# Typos: the nearest option or config key is named.
+shockgas_cli_error(option_typo "unknown option '--restituion' \\(did you mean --restitution\\?\\)"
+                   -N 10 --restituion 0.5)
+shockgas_cli_error(config_typo "unknown option 'threshhold' in .*typo.toml \\(did you mean threshold\\?\\)"
+                   --config "${CMAKE_CURRENT_SOURCE_DIR}/cli/typo.toml")
+
+# shockgas-analyze and shockgas-merge: the same one-line form and exit status 2.
+set(_analyze $<TARGET_FILE:shockgas-analyze>)
+function(shockgas_tool_error name regex)
+  add_test(NAME cli.error.${name}
+           COMMAND ${_expect} "${regex}" "${_cli_dir}/${name}.out.h5" -- ${ARGN}
+           WORKING_DIRECTORY "${_cli_dir}")
+  set_tests_properties(cli.error.${name} PROPERTIES LABELS cli)
+endfunction()
+add_test(NAME cli.setup.one_realization COMMAND ${_sim} -N 1000 -t 1000 -R 1 -q -o "${_cli_dir}/one_realization.h5")
+add_test(NAME cli.setup.collapsed COMMAND ${_sim} -N 2000 -r 0.5 -d 0 -t 10000 -R 2 -q -o "${_cli_dir}/collapsed.h5")
+add_test(NAME cli.setup.other_restitution
+         COMMAND ${_sim} -N 1000 -t 1000 -R 1 -r 0.5 --first-realization 1 -q -o "${_cli_dir}/other_restitution.h5")
+set_tests_properties(cli.setup.one_realization cli.setup.collapsed cli.setup.other_restitution PROPERTIES
+                     FIXTURES_SETUP analyze_inputs LABELS cli)
+shockgas_tool_error(analyze_missing_file "^shockgas-analyze: error: .*does not exist.*no_such.h5"
+                    ${_analyze} decay "${_cli_dir}/no_such.h5" -o "${_cli_dir}/analyze_missing_file.out.h5")
+shockgas_tool_error(analyze_unwritable "^shockgas-analyze: error: cannot write output '.*absent_dir/a.h5'"
+                    ${_analyze} decay "${_cli_dir}/one_realization.h5" -o "${_cli_dir}/absent_dir/a.h5")
+shockgas_tool_error(analyze_collapsed "inelastic collapse.*--data-only.*, in '.*collapsed.h5'"
+                    ${_analyze} decay "${_cli_dir}/collapsed.h5" -o "${_cli_dir}/analyze_collapsed.out.h5")
+shockgas_tool_error(analyze_no_snapshots "^shockgas-analyze: error: no /snapshots .*, in '.*one_realization.h5'"
+                    ${_analyze} shocks "${_cli_dir}/one_realization.h5" -o "${_cli_dir}/analyze_no_snapshots.out.h5")
+shockgas_tool_error(analyze_option_typo "did you mean --t-lo"
+                    ${_analyze} decay "${_cli_dir}/one_realization.h5" --t-low 20)
+shockgas_tool_error(merge_names_parameter "different parameters .*: restitution 0.5 vs 0.9$"
+                    $<TARGET_FILE:shockgas-merge> -o "${_cli_dir}/merge_names_parameter.out.h5"
+                    "${_cli_dir}/one_realization.h5" "${_cli_dir}/other_restitution.h5")
+set_tests_properties(cli.error.analyze_unwritable cli.error.analyze_collapsed cli.error.analyze_no_snapshots
+                     cli.error.merge_names_parameter PROPERTIES FIXTURES_REQUIRED analyze_inputs)
+# One realization: sigma is n/a, with the reason, never nan.
+add_test(NAME cli.analyze_one_realization
+         COMMAND ${_analyze} decay "${_cli_dir}/one_realization.h5" --t-lo 20 --t-hi 1000
+                 -o "${_cli_dir}/one_realization_decay.h5")
+set_tests_properties(cli.analyze_one_realization PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_inputs
+                     PASS_REGULAR_EXPRESSION "\\+- n/a \\(jackknife: one realization"
+                     FAIL_REGULAR_EXPRESSION "nan")
 
 if(SHOCKGAS_PYTHON)
   add_test(NAME cli.setup.bad_init_files
@@ -47,6 +92,10 @@ if(SHOCKGAS_PYTHON)
   add_test(NAME cli.init_file_run
            COMMAND ${_sim} --init "${_cli_dir}/good.h5" -t 20 -q -o "${_cli_dir}/good_run.h5")
   set_tests_properties(cli.init_file_run PROPERTIES FIXTURES_REQUIRED bad_init LABELS cli)
+  # An init file is one start: an ensemble of it is refused with the way out.
+  shockgas_cli_error(init_ensemble "one fixed initial condition.*--velocity-distribution"
+                     --init "${_cli_dir}/good.h5" -R 4)
+  set_tests_properties(cli.error.init_ensemble PROPERTIES FIXTURES_REQUIRED bad_init)
 endif()
 
 # A good run prints the T(t) table and writes a complete file.
@@ -60,6 +109,18 @@ add_test(NAME cli.passthrough_run
          COMMAND ${_sim} -N 1000 -r 0.9 -d 0.01 -t 100 -R 2 --engine passthrough -o "${_cli_dir}/passthrough.h5")
 set_tests_properties(cli.passthrough_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "complete \\(passthrough engine")
+
+# A batch log (stderr not a terminal, as under ctest) gets whole progress lines, at least the last.
+add_test(NAME cli.progress_in_logs
+         COMMAND ${_sim} -N 1000 -t 100 -R 2 -q --progress-interval 30 -o "${_cli_dir}/progress.h5")
+set_tests_properties(cli.progress_in_logs PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "shockgas-sim: progress: t = 100 +realizations 2/2 +100.0%")
+
+# An ensemble from the other initial laws.
+add_test(NAME cli.initial_law_run
+         COMMAND ${_sim} -N 1000 --positions uniform --velocity-distribution gaussian -t 20 -R 3 -q
+                 -o "${_cli_dir}/initial_law.h5")
+set_tests_properties(cli.initial_law_run PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "complete \\(event engine")
 
 # Ctrl-C: SIGINT mid-run writes what was computed, marked interrupted.
 add_test(NAME cli.sigint_writes_interrupted

@@ -102,4 +102,19 @@ EnsembleResult run_ensemble(const SimulationParameters& parameters, const Initia
 // One line of progress for a terminal: time, rate, ETA.
 std::string format_progress(const Progress& progress);
 
+// When a log (stderr not a terminal: a batch job's log file) gets a progress
+// line: every interval_seconds of wall time, at each tenth of the work done,
+// and once at the end, so a log shows a live job without filling up. The
+// driver reports about once a second; due() picks the reports to print.
+class ProgressLog {
+public:
+    explicit ProgressLog(double interval_seconds) : interval_seconds_(interval_seconds) {}
+    bool due(const Progress& progress);
+
+private:
+    double interval_seconds_;
+    double last_line_seconds_ = 0.0;
+    int last_tenth_ = 0;
+};
+
 }  // namespace shockgas

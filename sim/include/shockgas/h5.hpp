@@ -67,7 +67,9 @@ private:
 // metadata too, so damaged bytes anywhere are detected rather than read.
 class Group {
 public:
-    Group(Handle handle, std::string path) : handle_(std::move(handle)), path_(std::move(path)) {}
+    // file: the file's name as a user knows it, added to every error message.
+    Group(Handle handle, std::string path, std::string file = "")
+        : handle_(std::move(handle)), path_(std::move(path)), file_(std::move(file)) {}
 
     const std::string& path() const { return path_; }
     hid_t id() const { return handle_.id(); }
@@ -100,14 +102,17 @@ public:
     void copy_attributes_from(const Group& other, const std::string& prefix = "");
 
 private:
-    std::string where(const std::string& name) const;
+    std::string child_path(const std::string& name) const;
+    std::string where(const std::string& name) const;  // child_path + " in 'file'", for messages
     Handle handle_;
     std::string path_;
+    std::string file_;
 };
 
 class File {
 public:
-    static File create(const std::string& path);     // truncates
+    // Truncates. display: the name errors give (AtomicFile: the target, not its temporary).
+    static File create(const std::string& path, const std::string& display = "");
     // Throws Error naming the path if unreadable, truncated or damaged: every
     // dataset is read once to check its checksum before the file is trusted.
     static File open_read(const std::string& path);
@@ -116,9 +121,11 @@ public:
     Handle release() { return std::move(handle_); }  // the caller closes it (and checks the close)
 
 private:
-    File(Handle handle, std::string path) : handle_(std::move(handle)), path_(std::move(path)) {}
+    File(Handle handle, std::string path, std::string display)
+        : handle_(std::move(handle)), path_(std::move(path)), display_(std::move(display)) {}
     Handle handle_;
     std::string path_;
+    std::string display_;
 };
 
 // Writes to a temporary file TARGET.tmp.<pid> beside the target and renames

@@ -17,6 +17,22 @@ enum class Subthreshold { elastic, sticky };
 std::string to_string(Subthreshold mechanism);
 Subthreshold subthreshold_from_string(const std::string& name);  // throws InputError
 
+// The initial law of a generated start (docs/model.md, "Initial conditions").
+// Positions: lattice x_i = i L / N (the paper's), or uniform: N i.i.d.
+// uniform points on [0, L), sorted. Velocities: uniform on [-1, 1) (the
+// paper's), or Gaussian with the same variance 1/3, so T(0) is the same.
+enum class PositionLaw { lattice, uniform };
+enum class VelocityLaw { uniform, gaussian };
+struct InitialLaw {
+    PositionLaw positions = PositionLaw::lattice;
+    VelocityLaw velocities = VelocityLaw::uniform;
+    bool is_paper() const { return positions == PositionLaw::lattice && velocities == VelocityLaw::uniform; }
+};
+std::string to_string(PositionLaw law);
+std::string to_string(VelocityLaw law);
+PositionLaw position_law_from_string(const std::string& name);  // throws InputError
+VelocityLaw velocity_law_from_string(const std::string& name);  // throws InputError
+
 // The collision model of the paper: restitution r = 1 - 2 eps above the
 // threshold, the sub-threshold mechanism below it. r = 0 is the sticky gas:
 // every collision merges, whatever the threshold.
@@ -56,6 +72,7 @@ struct SimulationParameters {
     std::int64_t first_realization = 0;
     std::uint64_t seed = 1;
     int threads = 0;                  // 0: every hardware thread
+    InitialLaw initial_law;           // for generated starts; an --init file replaces it
     std::string init_file;            // optional --init FILE.h5
     std::string engine = "event";     // event | exact | auto (auto resolved before run)
 

@@ -3,8 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
+
+#include "shockgas/parameters.hpp"
 
 namespace shockgas {
 
@@ -19,14 +22,34 @@ struct InitialCondition {
     std::int64_t size() const { return static_cast<std::int64_t>(position.size()); }
 };
 
-// The paper's initial condition: N particles equally spaced on a ring of
-// length L (x_i = i L / N), velocities i.i.d. uniform on [-1, 1], unit masses.
+// A generated initial condition: N particles on a ring of length L, unit
+// masses, positions and velocities from `law` (default: the paper's, equally
+// spaced x_i = i L / N with velocities i.i.d. uniform on [-1, 1)).
 // Realization k of seed s draws from std::mt19937_64 seeded with
-// splitmix64(s, k); the uniform variate is built from the top 53 bits by hand
-// (not std::uniform_real_distribution, whose algorithm differs between
-// standard libraries), so a seed means the same velocities on every platform.
+// splitmix64(s, k): first the N velocities, then (uniform positions only) the
+// N positions, so a seed gives the same velocities whatever the position law.
+// Every variate is built from the generator's 64-bit outputs by our own code
+// (not std::uniform_real_distribution or std::normal_distribution, whose
+// algorithms differ between standard libraries, nor std::log), so a seed means
+// the same start on every platform with IEEE double arithmetic.
 InitialCondition generate_initial_condition(std::int64_t particles, double ring_length, std::uint64_t seed,
-                                            std::int64_t realization);
+                                            std::int64_t realization, const InitialLaw& law = {});
+
+// Standard deviation of both velocity laws: uniform on [-1, 1) has variance
+// 1/3, and the Gaussian law is given the same, so T(0) = 1/3 either way.
+inline constexpr double initial_velocity_sigma = 0.57735026918962576451;  // 1/sqrt(3)
+
+// Uniform variate on [0, 1) from the top 53 bits of one 64-bit output.
+double unit_uniform(std::mt19937_64& engine);
+// Standard normal variates, two at a time: Marsaglia's polar method (Marsaglia
+// & Bray, SIAM Review 6, 260 (1964)) with portable_log, so the values are
+// identical on every platform. Consumes an even, seed-determined number of
+// outputs (the rejection loop); the second variate is returned through second.
+double standard_normal_pair(std::mt19937_64& engine, double& second);
+// log x for finite x > 0 from +, -, *, / and frexp only (IEEE-exact
+// operations, hence the same bits everywhere), accurate to a few ulp:
+// log x = e ln 2 + 2 atanh(z), z = (m - 1)/(m + 1), m in [1/sqrt 2, sqrt 2).
+double portable_log(double x);
 
 // The seed stream: a well-mixed 64-bit seed for realization k of run seed s.
 std::uint64_t realization_seed(std::uint64_t seed, std::int64_t realization);

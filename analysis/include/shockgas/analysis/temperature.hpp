@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "shockgas/analysis/fit.hpp"
@@ -47,8 +48,15 @@ struct DecayWindow {
     double t_lo = 0.0;
     double t_hi = 0.0;
 };
+// The bounds of the rule, whether or not they leave a window.
+DecayWindow decay_window_bounds(double restitution, double velocity_threshold, double particles, double last_time,
+                                const WindowRule& rule = {});
+// The same, throwing InsufficientData that explains an empty window.
+// run_status: the run's status attribute; when it is "collapsed" or
+// "interrupted", last_time is where the run stopped, and an empty window says so.
 DecayWindow automatic_decay_window(double restitution, double velocity_threshold, double particles,
-                                   double last_time, const WindowRule& rule = {});
+                                   double last_time, const WindowRule& rule = {},
+                                   const std::string& run_status = "complete");
 
 // The decay exponent alpha of T ~ t^(-alpha) over a window.
 struct DecayFit {
@@ -63,8 +71,9 @@ struct DecayFit {
 
 // Fits ln <T>(t_k) = ln C - alpha ln t_k over t_lo <= t_k <= t_hi, weights
 // 1/sigma_k^2 with sigma_k = SE(T_k)/<T_k>; alpha's sigma is the jackknife
-// over realizations (the same weights in every leave-one-out fit). Throws
-// InsufficientData for fewer than 3 points in the window or R < 2.
+// over realizations (the same weights in every leave-one-out fit), NaN for
+// R = 1 (nothing to leave out). Throws InsufficientData for fewer than 3
+// points in the window.
 DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, double t_hi);
 
 // The exponent in windows of fixed width (width_decades of ln t / ln 10),

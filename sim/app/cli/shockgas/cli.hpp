@@ -1,0 +1,92 @@
+// Argument parsing with the messages every shockgas program gives: one line
+// "<program>: error: <what>" and exit status 2 for any bad input, and for a
+// misspelt option or config-file key the nearest real one. Header-only, for
+// the executables (the libraries do not depend on CLI11).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "shockgas/suggest.hpp"
+
+namespace shockgas::cli {
+
+// Exit status of every shockgas program for input a user can get wrong.
+inline constexpr int bad_input = 2;
+
+namespace detail {
+
+inline void collect_names(const CLI::App& app, std::vector<std::string>& long_names,
+                          std::vector<std::string>& short_names) {
+    for (const CLI::Option* option : app.get_options()) {
+        for (const auto& name : option->get_lnames()) long_names.push_back(name);
+        for (const auto& name : option->get_snames()) short_names.push_back(name);
+    }
+    for (const CLI::App* sub : app.get_subcommands({})) collect_names(*sub, long_names, short_names);
+}
+
+// The first command-line word that looks like an option but is none, with the
+// nearest real option: "unknown option '--restituion' (did you mean --restitution?)".
+inline std::string unknown_option_message(const CLI::App& app, int argc, const char* const* argv) {
+    std::vector<std::string> long_names, short_names;
+    collect_names(app, long_names, short_names);
+    for (int i = 1; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (word == "--") break;
+        if (word.rfind("--", 0) == 0) {
+            const std::string name = word.substr(2, word.find('=') - 2);
+            if (std::find(long_names.begin(), long_names.end(), name) != long_names.end()) continue;
+            const std::string nearest = closest_name(name, long_names);
+            return nearest.empty() ? fmt::format("unknown option '--{}' (see --help)", name)
+                                   : fmt::format("unknown option '--{}' (did you mean --{}?)", name, nearest);
+        }
+        if (word.size() >= 2 && word[0] == '-' && std::isalpha(static_cast<unsigned char>(word[1])) &&
+            std::find(short_names.begin(), short_names.end(), word.substr(1, 1)) == short_names.end())
+            return fmt::format("unknown option '{}' (see --help)", word);
+    }
+    return "";
+}
+
+// CLI11's "INI was not able to parse KEY": an unknown key in the config file.
+inline std::string unknown_key_message(const CLI::App& app, const std::string& cli11_message) {
+    const std::string prefix = "INI was not able to parse ";
+    if (cli11_message.rfind(prefix, 0) != 0) return "";
+    const std::string key = cli11_message.substr(prefix.size());
+    std::vector<std::string> long_names, short_names;
+    collect_names(app, long_names, short_names);
+    const CLI::Option* config = app.get_config_ptr();
+    const std::string file = config != nullptr && config->count() > 0 ? config->as<std::string>() : "the config file";
+    const std::string nearest = closest_name(key, long_names);
+    return nearest.empty() ? fmt::format("unknown option '{}' in {}", key, file)
+                           : fmt::format("unknown option '{}' in {} (did you mean {}?)", key, file, nearest);
+}
+
+}  // namespace detail
+
+// Parses; returns -1 to go on, or the exit status: 0 after --help or
+// --version, bad_input after a parse error (printed as one line).
+inline int parse(CLI::App& app, int argc, char** argv, const std::string& program) {
+    try {
+        app.parse(argc, argv);
+        return -1;
+    } catch (const CLI::Success& done) {
+        return app.exit(done);
+    } catch (const CLI::ParseError& error) {
+        std::string message;
+        if (dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr)
+            message = detail::unknown_option_message(app, argc, argv);
+        else if (dynamic_cast<const CLI::ConfigError*>(&error) != nullptr)
+            message = detail::unknown_key_message(app, error.what());
+        if (message.empty()) message = error.what();
+        // CLI11's messages can span lines; the house form is one line.
+        for (char& c : message)
+            if (c == '\n' || c == '\r') c = ' ';
+        fmt::print(stderr, "{}: error: {}\n", program, message);
+        return bad_input;
+    }
+}
+
+}  // namespace shockgas::cli
