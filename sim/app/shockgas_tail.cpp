@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
     app.add_option("--output,-o", output, "output HDF5 file")->required();
     CLI11_PARSE(app, argc, argv);
     try {
-        p.law = shockgas::parse_velocity_law(law);
+        p.law = shockgas::velocity_law_from_string(law);
         p.biases = biases.empty() ? shockgas::tail_bias_ladder(z_reach, z_step) : biases;
         p.sites = 2 * half_window + 1;
         const std::int64_t reach = focus > 0 ? std::min(focus, half_window) : half_window;

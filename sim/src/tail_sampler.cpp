@@ -115,12 +115,6 @@ ChainRecord run_chain(const TailSamplerParameters& p, const WindowObservable& ob
 
 }  // namespace
 
-VelocityLaw parse_velocity_law(const std::string& name) {
-    if (name == "gaussian") return VelocityLaw::gaussian;
-    if (name == "uniform") return VelocityLaw::uniform;
-    throw InputError(fmt::format("velocity law must be gaussian or uniform, got '{}'", name));
-}
-std::string velocity_law_name(VelocityLaw law) { return law == VelocityLaw::gaussian ? "gaussian" : "uniform"; }
 
 TaggedClusterVelocity::TaggedClusterVelocity(std::int64_t half_window, double time)
     : time_(time), scale_(std::cbrt(time)) {
@@ -331,7 +325,7 @@ void write_tail_estimate(const std::string& path, const std::string& program, co
     root.set_attribute("observable", observable_name);
     root.set_attribute("time", time);
     root.set_attribute("half_window", half_window);
-    root.set_attribute("velocity_law", velocity_law_name(p.law));
+    root.set_attribute("velocity_law", to_string(p.law));
     root.set_attribute("velocity_variance", velocity_variance);
     root.set_attribute("seed", static_cast<std::int64_t>(p.seed));
     root.set_attribute("chains", p.chains);

@@ -16,6 +16,8 @@
 // delete-one-chain jackknife), not from a model of the correlations.
 #pragma once
 
+#include "shockgas/parameters.hpp"
+
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -29,9 +31,8 @@ namespace shockgas {
 // The law of each initial velocity. Both have variance 1/3 (the project's
 // uniform law on [-1, 1]); the Gaussian is the white-noise setting of the
 // exact solution (python/exact_ballistic.py).
-enum class VelocityLaw { gaussian, uniform };
-VelocityLaw parse_velocity_law(const std::string& name);  // "gaussian" | "uniform"; throws InputError
-std::string velocity_law_name(VelocityLaw law);
+// The initial velocity law is the simulator's (parameters.hpp: VelocityLaw,
+// to_string, velocity_law_from_string), variance 1/3 either way.
 
 // z = V t^(1/3) of the cluster holding the tagged particle at time t: unit
 // masses at x = -W, ..., W (W = half_window) on an open line, the tagged
