@@ -16,10 +16,16 @@
 #include <optional>
 #include <vector>
 
+#include "shockgas/collision.hpp"
 #include "shockgas/engine.hpp"
 #include "shockgas/event_queue.hpp"
 
 namespace shockgas {
+
+namespace detail {
+template <class Engine>
+void collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind kind);
+}  // namespace detail
 
 class EventEngine final : public Engine {
 public:
@@ -64,6 +70,19 @@ private:
     double gap_at(std::int32_t slot, double t) const;
     void reschedule(std::int32_t slot);
     void collide_pair(std::int32_t left, double t);
+
+    // What detail::collide_neighbours (the collision step both event engines
+    // share) needs: the global loop has no blocks, hence no cuts and no logs.
+    template <class Engine>
+    friend void detail::collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind kind);
+    std::vector<Cluster>& records() { return cluster_; }
+    static constexpr bool left_is_cut(std::int32_t) { return false; }
+    static constexpr bool right_is_cut(std::int32_t) { return false; }
+    void unschedule(std::int32_t slot) { queue_.remove(slot); }
+    void reschedule_collided(std::int32_t slot) { reschedule(slot); }
+    static void log_left(double, std::int32_t, double) {}
+    static void log_right(double, std::int32_t, std::int32_t, double, double) {}
+    static void became_block_end(std::int32_t) {}
     void detect_collapse(std::int32_t left, double relative_speed, double t, const char* criterion);
     void move_anchor_clock(std::int32_t slot, double t);
 

@@ -44,10 +44,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "shockgas/collision.hpp"
 #include "shockgas/engine.hpp"
 #include "shockgas/fast_queue.hpp"
 
 namespace shockgas {
+
+namespace detail {
+template <class Engine>
+void collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind kind);
+}  // namespace detail
 
 // Thrown by FastEventEngine::advance_to when its per-window bound cannot rule
 // out the global stall detector firing: events crowd at one instant, as in an
@@ -147,6 +153,25 @@ private:
     Cut snapshot_cut(std::int32_t left) const;
     void check_stall_bound(double window_end, std::uint64_t run_events);
     void move_anchor_clock(std::int32_t slot, double t);
+
+    // What detail::collide_neighbours (the collision step both event engines
+    // share) needs: the block's ends are cuts, whose changes are logged for
+    // the replay instead of applied.
+    template <class Engine>
+    friend void detail::collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind kind);
+    std::vector<Node>& records() { return node_; }
+    bool left_is_cut(std::int32_t i) const { return i == block_first_; }
+    bool right_is_cut(std::int32_t j) const { return j == block_last_; }
+    void unschedule(std::int32_t slot) {
+        heap_.remove(slot);
+        node_[static_cast<std::size_t>(slot)].key = QuaternaryHeap::never;
+    }
+    void reschedule_collided(std::int32_t slot) { reschedule_top(slot); }  // i is the heap's top
+    void log_left(double t, std::int32_t i, double velocity) { left_changes_.push_back({t, i, i, velocity, 0.0}); }
+    void log_right(double t, std::int32_t i, std::int32_t end, double velocity, double contact_gap) {
+        right_changes_.push_back({t, i, end, velocity, contact_gap});
+    }
+    void became_block_end(std::int32_t i) { block_last_ = i; }
 
     std::vector<Node> node_;
     QuaternaryHeap heap_;

@@ -6,6 +6,7 @@
 #include "shockgas/collision.hpp"
 #include "shockgas/engine_snapshot.hpp"
 #include "shockgas/ring_kinematics.hpp"
+#include "neighbour_collision.hpp"
 
 namespace shockgas {
 
@@ -100,11 +101,8 @@ bool EventEngine::advance_to(double t) {
 
 void EventEngine::collide_pair(std::int32_t i, double t) {
     now_ = t;
-    Cluster& a = cluster_[static_cast<std::size_t>(i)];
-    const std::int32_t j = a.next;
-    const std::int32_t p = a.prev;
-    Cluster& b = cluster_[static_cast<std::size_t>(j)];
-    const double relative_speed = a.velocity - b.velocity;
+    const Cluster& a = cluster_[static_cast<std::size_t>(i)];
+    const double relative_speed = a.velocity - cluster_[static_cast<std::size_t>(a.next)].velocity;
     const CollisionKind kind = classify(model_, relative_speed);
 
     // Collapse: time no longer advances, or relative speeds have decayed
@@ -123,57 +121,7 @@ void EventEngine::collide_pair(std::int32_t i, double t) {
         return;
     }
 
-    // Bring the two neighbouring gaps to time t before the velocities change.
-    // On a ring of two clusters the left gap of i is the right gap of j.
-    cluster_[static_cast<std::size_t>(p)].gap = gap_at(p, t);
-    if (j != p) b.gap = gap_at(j, t);
-    // The pair is in contact at t, up to the rounding of t itself: keep the
-    // gap the arithmetic leaves, |g| ~ c ulp(t), rather than setting it to 0.
-    // Zeroing dropped that residual at every collision, so the gaps summed to
-    // L only up to a random walk of them (-7e-6 L after 1e9 collisions at
-    // N = 1000; docs/testing-and-drift.md, "Long-run drift"); kept, they sum
-    // to L up to the rounding of the gap updates.
-    const double contact_gap = gap_at(i, t);
-    a.gap = contact_gap;
-    move_anchor_clock(i, t);
-    move_anchor_clock(j, t);
-    ++collisions_;
-
-    if (kind == CollisionKind::merge) {
-        const MergedCluster merged = merge(a.mass, a.velocity, b.mass, b.velocity);
-        a.velocity = merged.velocity;
-        a.mass = merged.mass;
-        a.clock = t;
-        a.gap = contact_gap + b.gap;  // the merged cluster sits where i was
-        const std::int32_t k = b.next;
-        a.next = k;
-        cluster_[static_cast<std::size_t>(k)].prev = i;
-        queue_.remove(j);
-        --alive_;
-        if (anchor_ == j) {
-            anchor_ = i;
-            anchor_position_ -= contact_gap;  // i's position: j's, moved to t above, less the contact gap
-        }
-        if (alive_ == 1) {
-            a.next = a.prev = i;
-            a.gap = ring_length_;
-            queue_.remove(i);
-            return;
-        }
-        reschedule(p);
-        reschedule(i);
-        return;
-    }
-
-    const double restitution = kind == CollisionKind::elastic ? 1.0 : model_.restitution;
-    const PostCollision after = collide(a.mass, a.velocity, b.mass, b.velocity, restitution);
-    a.velocity = after.left_velocity;
-    b.velocity = after.right_velocity;
-    a.clock = t;
-    b.clock = t;
-    reschedule(p);
-    reschedule(i);
-    reschedule(j);
+    detail::collide_neighbours(*this, i, t, kind);
 }
 
 void EventEngine::detect_collapse(std::int32_t i, double relative_speed, double t, const char* criterion) {

@@ -8,6 +8,7 @@
 #include "shockgas/collision.hpp"
 #include "shockgas/engine_snapshot.hpp"
 #include "shockgas/ring_kinematics.hpp"
+#include "neighbour_collision.hpp"
 
 namespace shockgas {
 
@@ -318,75 +319,9 @@ void FastEventEngine::run_block(std::int32_t first, std::int32_t last) {
         densest_run_ = run_length_;
     }
 
-    Node& a = node_[static_cast<std::size_t>(i)];
-    const std::int32_t j = a.next;
-    const std::int32_t p = a.prev;
-    Node& b = node_[static_cast<std::size_t>(j)];
-    const double relative_speed = a.velocity - b.velocity;
-    const CollisionKind kind = classify(model_, relative_speed);
-    const bool left_is_cut = i == block_first_;   // pair (p, i) is a cut
-    const bool right_is_cut = j == block_last_;   // pair (j, next j) is a cut
-
-    if (!left_is_cut) node_[static_cast<std::size_t>(p)].gap = gap_at(p, t);
-    if (j != p && !right_is_cut) b.gap = gap_at(j, t);
-    const double contact_gap = gap_at(i, t);  // kept, as in EventEngine
-    a.gap = contact_gap;
-    move_anchor_clock(i, t);
-    move_anchor_clock(j, t);
-    ++collisions_;
-
-    if (kind == CollisionKind::merge) {
-        const MergedCluster merged = merge(a.mass, a.velocity, b.mass, b.velocity);
-        a.velocity = merged.velocity;
-        a.mass = merged.mass;
-        a.clock = t;
-        a.gap = contact_gap + b.gap;  // if (i, k) is the cut, replay_cut sets it
-        const std::int32_t k = b.next;
-        a.next = k;
-        if (right_is_cut) {
-            // i is now the left end of the cut; k's prev is set by the replay,
-            // which adds the contact gap to the cut's gap as the line above.
-            block_last_ = i;
-            right_changes_.push_back({t, i, i, a.velocity, contact_gap});
-        } else {
-            node_[static_cast<std::size_t>(k)].prev = i;
-        }
-        if (left_is_cut) left_changes_.push_back({t, i, i, a.velocity, 0.0});
-        heap_.remove(j);
-        b.key = never;
-        --alive_;
-        if (anchor_ == j) {
-            anchor_ = i;
-            anchor_position_ -= contact_gap;
-        }
-        if (alive_ == 1) {
-            a.next = a.prev = i;
-            a.gap = ring_length_;
-            heap_.remove(i);
-            a.key = never;
-            return;
-        }
-        if (!left_is_cut) reschedule(p);
-        if (right_is_cut)
-            heap_.remove(i);  // (i, k) is now the cut pair: its key comes from replay_cut
-        else
-            reschedule(i);
-        return;
-    }
-
-    const double restitution = kind == CollisionKind::elastic ? 1.0 : model_.restitution;
-    const PostCollision after = collide(a.mass, a.velocity, b.mass, b.velocity, restitution);
-    a.velocity = after.left_velocity;
-    b.velocity = after.right_velocity;
-    a.clock = t;
-    b.clock = t;
-    if (left_is_cut) left_changes_.push_back({t, i, i, a.velocity, 0.0});
-    if (right_is_cut) right_changes_.push_back({t, i, j, b.velocity, 0.0});
-    // i is still the heap's top (the order of the three updates does not
-    // matter: the heap orders by (time, slot), which is unique).
-    reschedule_top(i);
-    if (!left_is_cut) reschedule(p);
-    if (!right_is_cut) reschedule(j);
+    const Node& a = node_[static_cast<std::size_t>(i)];
+    detail::collide_neighbours(*this, i, t,
+                               classify(model_, a.velocity - node_[static_cast<std::size_t>(a.next)].velocity));
 }
 
 // Replays the cut pair's gap and key updates in global (time, slot) order:
