@@ -384,12 +384,13 @@ void run_far_tail(const std::string& input, const std::string& output, const std
                 free_linear ? "fitted" : "EB9");
     if (data.empty()) return;
     DataFile table(data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (5) form",
-                   {"z", "log_phi", "log_phi_sigma", "fitted_log_phi"});
+                   {"z", "log_phi", "log_phi_sigma", "fitted_log_phi", "local_exponent"});
     for (std::size_t i = 0; i < tail.z.size(); ++i) {
         if (!std::isfinite(tail.log_phi[i])) continue;
         const double z = tail.z[i];
         const double fitted = gamma.fit.c - 2.0 * std::log(z) - gamma.fit.a * std::pow(z, gamma.fit.gamma) - gamma.fit.b * z;
-        table.row({z, tail.log_phi[i], tail.log_phi_sigma[i], z > 0.0 ? fitted : NAN});
+        const double local = z >= 1.0 ? local_tail_exponent(tail.z, tail.log_phi, z) : NAN;
+        table.row({z, tail.log_phi[i], tail.log_phi_sigma[i], z > 0.0 ? fitted : NAN, local});
     }
 }
 

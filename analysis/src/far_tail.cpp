@@ -105,6 +105,21 @@ TailExponentFit fit_tail_exponent(const std::vector<double>& z, const std::vecto
     return fit;
 }
 
+double local_tail_exponent(const std::vector<double>& z, const std::vector<double>& log_phi, double z0,
+                           double half_width) {
+    std::vector<double> log_z, log_excess;
+    for (std::size_t i = 0; i < z.size(); ++i) {
+        if (std::abs(z[i] - z0) > half_width || !(z[i] > 0.0) || !std::isfinite(log_phi[i])) continue;
+        const double excess = -(log_phi[i] + 2.0 * std::log(z[i]) - std::log(exact_tail_prefactor));
+        if (!(excess > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+        log_z.push_back(std::log(z[i]));
+        log_excess.push_back(std::log(excess));
+    }
+    if (log_z.size() < 3) return std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double> unit(log_z.size(), 1.0);
+    return weighted_linear_fit(log_z, log_excess, unit, ErrorModel::scale_by_residuals).slope;
+}
+
 double TailExponent::total_sigma() const { return std::hypot(gamma.sigma, window_systematic); }
 
 TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_hi, double window_shift,

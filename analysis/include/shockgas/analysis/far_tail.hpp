@@ -46,6 +46,15 @@ TailExponentFit fit_tail_exponent(const std::vector<double>& z, const std::vecto
                                   const std::vector<double>& log_phi_sigma, double z_lo, double z_hi,
                                   std::optional<double> linear_coefficient = exact_tail_linear_coefficient);
 
+// Local exponent d ln(-ln(z^2 Phi / A)) / d ln z at z0 (A = EB9's prefactor
+// 2^(11/6) D^(1/3)/Ai'(a_1) = 3.5237 at D = 1/3): the slope of a straight line
+// through the bins within +-half_width of z0 (weighted_linear_fit); NaN where
+// fewer than 3 bins or -ln(z^2 Phi/A) <= 0. Tends to gamma for z -> infinity;
+// on the exact Phi 2.26, 2.50, 2.65 at z = 3, 4, 5.
+constexpr double exact_tail_prefactor = 3.523703;
+double local_tail_exponent(const std::vector<double>& z, const std::vector<double>& log_phi, double z0,
+                           double half_width = 0.25);
+
 // gamma over [z_lo, z_hi] with its statistical error from the delete-one-chain
 // jackknife (the chains are independent) and a window systematic: half the
 // spread (max - min)/2 of gamma when z_lo and z_hi move by +-window_shift.
