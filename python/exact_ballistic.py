@@ -411,6 +411,18 @@ def main(argv=None):
                  [z, ph, gauss, phi_tail_asymptote(z, D)],
                  ["z", "Phi", "gauss_same_var", "tail_asymptote"])
 
+    # far tail of Phi with its local exponent gamma_loc = d ln(-ln(z^2 Phi / A)) / d ln z (A the EB9
+    # prefactor), the curve the far-tail sampler is held against (docs/far-tail.md)
+    zt = np.arange(1.0, 7.0 + 1e-9, 0.05)
+    lpt = np.log(phi(zt, D))
+    A_tail = 2.0 ** (11.0 / 6.0) * D ** (1.0 / 3.0) / AIP1
+    local = np.gradient(np.log(-(lpt + 2.0 * np.log(zt) - np.log(A_tail))), np.log(zt))
+    _write_table(os.path.join(args.out_dir, "phi_tail.dat"),
+                 ["Far tail of the exact Phi (EB8) and its local exponent d ln(-ln(z^2 Phi/A))/d ln z,",
+                  "A = 2^(11/6) D^(1/3)/Ai'(a1) = %.6f (EB9); tends to 3. D = %.6g" % (A_tail, D)],
+                 [zt, lpt, local, np.log(phi_tail_asymptote(zt, D))],
+                 ["z", "log_phi", "local_exponent", "log_tail_asymptote"])
+
     # mass distribution
     m = np.concatenate([np.geomspace(1e-4, 0.1, 31)[:-1], np.linspace(0.1, 9.0, 179)])
     F = mass_density_from_grid(m)

@@ -456,9 +456,11 @@ void run_compare(const std::string& reference_path, const std::vector<std::strin
 
 // gamma of the far tail (Eq. (5)) from shockgas-tail output, and ln Phi for gnuplot.
 void run_far_tail(const std::string& input, const std::string& output, const std::string& data, double z_lo,
-                  double z_hi, double window_shift) {
+                  double z_hi, double window_shift, bool free_linear) {
     const FarTail tail = read_far_tail(input);
-    const TailExponent gamma = estimate_tail_exponent(tail, z_lo, z_hi, window_shift);
+    const std::optional<double> linear_coefficient =
+        free_linear ? std::nullopt : std::optional<double>(exact_tail_linear_coefficient);
+    const TailExponent gamma = estimate_tail_exponent(tail, z_lo, z_hi, window_shift, linear_coefficient);
     ResultsFile results(output, "shockgas-analyze far-tail", {input});
     auto group = results.section("far_tail");
     set_estimate(group, "gamma", gamma.gamma);
@@ -468,22 +470,25 @@ void run_far_tail(const std::string& input, const std::string& output, const std
     group.set_attribute("b", gamma.fit.b);
     group.set_attribute("c", gamma.fit.c);
     group.set_attribute("chi2_per_dof", gamma.fit.chi2_per_dof);
+    group.set_attribute("b_fitted", static_cast<std::int64_t>(free_linear));
     group.set_attribute("z_lo", gamma.fit.z_lo);
     group.set_attribute("z_hi", gamma.fit.z_hi);
     group.set_attribute("time", tail.time);
     results.commit();
     std::printf("%s: t = %g, gamma = %.3f +- %.3f (jackknife over chains) +- %.3f (window), fit over z in [%.2f, %.2f], "
-                "%zu bins, chi2/dof = %.2f; a = %.3f, b = %.3f\n",
+                "%zu bins, chi2/dof = %.2f; a = %.3f, b = %.3f (%s)\n",
                 input.c_str(), tail.time, gamma.gamma.value, gamma.gamma.sigma, gamma.window_systematic, gamma.fit.z_lo,
-                gamma.fit.z_hi, gamma.fit.points, gamma.fit.chi2_per_dof, gamma.fit.a, gamma.fit.b);
+                gamma.fit.z_hi, gamma.fit.points, gamma.fit.chi2_per_dof, gamma.fit.a, gamma.fit.b,
+                free_linear ? "fitted" : "EB9");
     if (data.empty()) return;
     DataFile table(data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (5) form",
-                   {"z", "log_phi", "log_phi_sigma", "fitted_log_phi"});
+                   {"z", "log_phi", "log_phi_sigma", "fitted_log_phi", "local_exponent"});
     for (std::size_t i = 0; i < tail.z.size(); ++i) {
         if (!std::isfinite(tail.log_phi[i])) continue;
         const double z = tail.z[i];
         const double fitted = gamma.fit.c - 2.0 * std::log(z) - gamma.fit.a * std::pow(z, gamma.fit.gamma) - gamma.fit.b * z;
-        table.row({z, tail.log_phi[i], tail.log_phi_sigma[i], z > 0.0 ? fitted : NAN});
+        const double local = z >= 1.0 ? local_tail_exponent(tail.z, tail.log_phi, z) : NAN;
+        table.row({z, tail.log_phi[i], tail.log_phi_sigma[i], z > 0.0 ? fitted : NAN, local});
     }
 }
 
@@ -575,7 +580,8 @@ int main(int argc, char** argv) {
     compare->add_option("--data", data, "table: delta, cost, deviation, departure time");
     compare->add_option("--curves", curves, "deviation against time, one block per input");
 
-    double z_lo = 2.0, z_hi = 6.0, window_shift = 0.25;
+    double z_lo = 2.0, z_hi = 5.5, window_shift = 0.25;
+    bool free_linear = false;
     auto* far_tail = app.add_subcommand("far-tail", "tail exponent gamma of Phi from shockgas-tail output");
     far_tail->add_option("input", input, "shockgas-tail output")->required()->check(CLI::ExistingFile);
     far_tail->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
@@ -584,6 +590,7 @@ int main(int argc, char** argv) {
     far_tail->add_option("--z-hi", z_hi, "fit window end")->capture_default_str();
     far_tail->add_option("--window-shift", window_shift, "window systematic: both ends moved by +- this")
         ->capture_default_str();
+    far_tail->add_flag("--free-linear", free_linear, "fit the linear term b too (default: b from EB9)");
 
     if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
     try {
@@ -595,7 +602,7 @@ int main(int argc, char** argv) {
         if (*shocks) run_shocks(input, output, data, shock_rule);
         if (*collapse) run_collapse(inputs, output, data, versus, hazard);
         if (*compare) run_compare(reference, inputs, output, data, curves);
-        if (*far_tail) run_far_tail(input, output, data, z_lo, z_hi, window_shift);
+        if (*far_tail) run_far_tail(input, output, data, z_lo, z_hi, window_shift, free_linear);
     } catch (const InputError& error) {  // every error a user's input causes: one form, exit 2
         fmt::print(stderr, "shockgas-analyze: error: {}\n", error.what());
         return cli::bad_input;

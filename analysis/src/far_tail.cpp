@@ -47,8 +47,22 @@ Selection select(const std::vector<double>& z, const std::vector<double>& log_ph
     return s;
 }
 
-// Eq. (5) + EB9 at fixed gamma: y = c - a z^gamma - b z, linear in (c, a, b).
-MultilinearFit fit_at(const Selection& s, double gamma) {
+struct FitAtGamma {
+    double c = 0.0, a = 0.0, b = 0.0, chi2 = 0.0;
+};
+
+// Eq. (5) + EB9 at fixed gamma: y = c - a z^gamma - b z, linear in (c, a, b),
+// or in (c, a) when b is given (a straight line in z^gamma).
+FitAtGamma fit_at(const Selection& s, double gamma, std::optional<double> linear_coefficient) {
+    if (linear_coefficient) {
+        std::vector<double> x(s.z.size()), y(s.z.size());
+        for (std::size_t i = 0; i < s.z.size(); ++i) {
+            x[i] = std::pow(s.z[i], gamma);
+            y[i] = s.y[i] + *linear_coefficient * s.z[i];
+        }
+        const LinearFit line = weighted_linear_fit(x, y, s.sigma);
+        return {line.intercept, -line.slope, *linear_coefficient, line.chi2};
+    }
     std::vector<double> design;
     design.reserve(3 * s.z.size());
     for (double z : s.z) {
@@ -56,7 +70,8 @@ MultilinearFit fit_at(const Selection& s, double gamma) {
         design.push_back(-std::pow(z, gamma));
         design.push_back(-z);
     }
-    return weighted_multilinear_fit(design, 3, s.y, s.sigma);
+    const MultilinearFit fit = weighted_multilinear_fit(design, 3, s.y, s.sigma);
+    return {fit.parameters[0], fit.parameters[1], fit.parameters[2], fit.chi2};
 }
 
 constexpr double gamma_min = 1.0, gamma_max = 6.0;  // brackets the Gaussian (2) and the exact (3) widely
@@ -64,39 +79,60 @@ constexpr double gamma_min = 1.0, gamma_max = 6.0;  // brackets the Gaussian (2)
 }  // namespace
 
 TailExponentFit fit_tail_exponent(const std::vector<double>& z, const std::vector<double>& log_phi,
-                                  const std::vector<double>& log_phi_sigma, double z_lo, double z_hi) {
+                                  const std::vector<double>& log_phi_sigma, double z_lo, double z_hi,
+                                  std::optional<double> linear_coefficient) {
     const Selection s = select(z, log_phi, log_phi_sigma, z_lo, z_hi);
     if (s.z.size() < 6) throw InsufficientData("tail-exponent fit: fewer than 6 usable bins in the window");
-    const double gamma = minimise([&](double g) { return fit_at(s, g).chi2; }, gamma_min, gamma_max, 100);
-    const MultilinearFit best = fit_at(s, gamma);
+    const double gamma =
+        minimise([&](double g) { return fit_at(s, g, linear_coefficient).chi2; }, gamma_min, gamma_max, 100);
+    const FitAtGamma best = fit_at(s, gamma, linear_coefficient);
     TailExponentFit fit;
     fit.gamma = gamma;
-    fit.c = best.parameters[0];
-    fit.a = best.parameters[1];
-    fit.b = best.parameters[2];
+    fit.c = best.c;
+    fit.a = best.a;
+    fit.b = best.b;
     fit.points = s.z.size();
-    fit.chi2_per_dof = best.chi2 / static_cast<double>(s.z.size() - 4);  // c, a, b and gamma
+    const std::size_t fitted = linear_coefficient ? 3 : 4;  // c, a, (b,) gamma
+    fit.chi2_per_dof = best.chi2 / static_cast<double>(s.z.size() - fitted);
     fit.z_lo = s.z.front();
     fit.z_hi = s.z.back();
     // Delta chi2 = 1 half-width from the curvature of the profiled chi2(gamma).
     const double h = 1e-3 * gamma;
     const double curvature =
-        (fit_at(s, gamma + h).chi2 - 2.0 * best.chi2 + fit_at(s, gamma - h).chi2) / (h * h);
+        (fit_at(s, gamma + h, linear_coefficient).chi2 - 2.0 * best.chi2 + fit_at(s, gamma - h, linear_coefficient).chi2) /
+        (h * h);
     fit.gamma_fit_sigma = curvature > 0.0 ? std::sqrt(2.0 / curvature) : std::numeric_limits<double>::quiet_NaN();
     return fit;
 }
 
+double local_tail_exponent(const std::vector<double>& z, const std::vector<double>& log_phi, double z0,
+                           double half_width) {
+    std::vector<double> log_z, log_excess;
+    for (std::size_t i = 0; i < z.size(); ++i) {
+        if (std::abs(z[i] - z0) > half_width || !(z[i] > 0.0) || !std::isfinite(log_phi[i])) continue;
+        const double excess = -(log_phi[i] + 2.0 * std::log(z[i]) - std::log(exact_tail_prefactor));
+        if (!(excess > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+        log_z.push_back(std::log(z[i]));
+        log_excess.push_back(std::log(excess));
+    }
+    if (log_z.size() < 3) return std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double> unit(log_z.size(), 1.0);
+    return weighted_linear_fit(log_z, log_excess, unit, ErrorModel::scale_by_residuals).slope;
+}
+
 double TailExponent::total_sigma() const { return std::hypot(gamma.sigma, window_systematic); }
 
-TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_hi, double window_shift) {
+TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_hi, double window_shift,
+                                    std::optional<double> linear_coefficient) {
     TailExponent result;
-    result.fit = fit_tail_exponent(tail.z, tail.log_phi, tail.log_phi_sigma, z_lo, z_hi);
+    result.fit = fit_tail_exponent(tail.z, tail.log_phi, tail.log_phi_sigma, z_lo, z_hi, linear_coefficient);
     const std::size_t chains = tail.log_phi_leave_one_chain_out.size();
     if (chains < 2) throw InsufficientData("tail exponent: the jackknife needs >= 2 chains");
     // Leave-one-chain-out fits keep the full estimate's weights (sigma).
     result.gamma = jackknife(chains, [&](std::optional<std::size_t> left_out) {
         if (!left_out) return result.fit.gamma;
-        return fit_tail_exponent(tail.z, tail.log_phi_leave_one_chain_out[*left_out], tail.log_phi_sigma, z_lo, z_hi)
+        return fit_tail_exponent(tail.z, tail.log_phi_leave_one_chain_out[*left_out], tail.log_phi_sigma, z_lo, z_hi,
+                                 linear_coefficient)
             .gamma;
     });
     double lowest = result.fit.gamma, highest = result.fit.gamma;
@@ -104,7 +140,9 @@ TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_h
         for (double hi_shift : {-window_shift, 0.0, window_shift}) {
             try {
                 const double g =
-                    fit_tail_exponent(tail.z, tail.log_phi, tail.log_phi_sigma, z_lo + lo_shift, z_hi + hi_shift).gamma;
+                    fit_tail_exponent(tail.z, tail.log_phi, tail.log_phi_sigma, z_lo + lo_shift, z_hi + hi_shift,
+                                      linear_coefficient)
+                        .gamma;
                 lowest = std::min(lowest, g);
                 highest = std::max(highest, g);
             } catch (const InsufficientData&) {

@@ -28,7 +28,9 @@ constexpr double exact_tail_linear_coefficient = 2.676;
 // prior (it is reversible for it) and changes v by ~ 0.45 sigma: a small step
 // for chains at large bias, where redrawing from the prior is mostly rejected.
 constexpr double autoregressive_rho = 0.9;
-constexpr double uniform_step = 0.2;  // reflected uniform step on [-1, 1] (symmetric: keeps the uniform law)
+constexpr double uniform_step = 0.2;
+// Below this z the bias is weak and the prior is a good start.
+constexpr double instanton_z_min = 1.5;  // reflected uniform step on [-1, 1] (symmetric: keeps the uniform law)
 
 // Platform-independent variates: top 53 bits (as generate_initial_condition),
 // Gaussians by Box-Muller.
@@ -70,44 +72,131 @@ struct ChainRecord {
     std::vector<double> samples;    // per bias (in range or not)
     std::vector<double> accepted;
     std::vector<double> sum_z;
+    std::vector<double> swaps_tried;     // per neighbour pair (k, k + 1)
+    std::vector<double> swaps_accepted;
 };
 
+// One replica: the window's velocities at one bias, and its z.
+struct Replica {
+    std::vector<double> velocity;
+    double z = 0.0;
+};
+
+// One Metropolis step for the weight prior(v) exp(beta z(v)). Two moves:
+//  - one site: a proposal reversible for the prior (propose()), accepted
+//    with min(1, exp(beta dz));
+//  - a block shift: velocities of a run of up to block_max consecutive sites
+//    move together, by one delta (flat) or by delta falling linearly to 0
+//    across the run (ramp), with sd ~ sigma / sqrt(length) so the prior
+//    changes by O(1). The tail's optimal windows are collective (a fast
+//    cluster needs the particles ahead of it to clear the way: a ramp of
+//    velocities, see tagged_cluster_instanton), which single sites build
+//    only slowly. Accepted with min(1, prior ratio exp(beta dz));
+//    for the uniform law the prior ratio is 1 inside [-1, 1] and 0 outside.
+bool metropolis_step(const TailSamplerParameters& p, const WindowObservable& observable, double beta,
+                     Replica& replica, std::vector<double>& saved, std::mt19937_64& engine, std::int64_t& evaluations) {
+    const auto focus_width = static_cast<double>(p.focus_end - p.focus_begin);
+    auto pick_site = [&] {
+        const bool in_focus = unit_uniform(engine) < p.focus_probability;
+        return static_cast<std::size_t>(
+            in_focus ? p.focus_begin + static_cast<std::int64_t>(unit_uniform(engine) * focus_width)
+                     : static_cast<std::int64_t>(unit_uniform(engine) * static_cast<double>(p.sites)));
+    };
+    std::vector<double>& velocity = replica.velocity;
+    double log_prior_ratio = 0.0;
+    std::size_t first = 0, length = 1;
+    if (p.block_probability > 0.0 && unit_uniform(engine) < p.block_probability) {
+        length = 1 + static_cast<std::size_t>(unit_uniform(engine) * static_cast<double>(p.block_max));
+        first = pick_site();
+        length = std::min(length, velocity.size() - first);
+        const bool ramp = unit_uniform(engine) < 0.5;  // else flat
+        const double delta =
+            std::sqrt(velocity_variance / static_cast<double>(length)) * (ramp ? 1.0 : 0.5) * standard_normal(engine);
+        saved.assign(velocity.begin() + static_cast<std::ptrdiff_t>(first),
+                     velocity.begin() + static_cast<std::ptrdiff_t>(first + length));
+        bool inside = true;
+        for (std::size_t i = first; i < first + length; ++i) {
+            const double shape =
+                ramp ? 1.0 - static_cast<double>(i - first) / static_cast<double>(length) : 1.0;
+            const double moved = velocity[i] + delta * shape;
+            // Gaussian prior: ln prior(v') - ln prior(v) = -(v'^2 - v^2) / (2 sigma^2).
+            log_prior_ratio -= (moved * moved - velocity[i] * velocity[i]) / (2.0 * velocity_variance);
+            inside = inside && std::abs(moved) <= 1.0;
+            velocity[i] = moved;
+        }
+        if (p.law == VelocityLaw::uniform) log_prior_ratio = inside ? 0.0 : -std::numeric_limits<double>::infinity();
+    } else {
+        first = pick_site();
+        saved.assign(1, velocity[first]);
+        velocity[first] = propose(p.law, velocity[first], engine);
+    }
+    const double proposed_z = std::isfinite(log_prior_ratio) ? observable(velocity) : replica.z;
+    if (std::isfinite(log_prior_ratio)) ++evaluations;
+    const double log_ratio = log_prior_ratio + beta * (proposed_z - replica.z);
+    const bool accept = log_ratio >= 0.0 || unit_uniform(engine) < std::exp(log_ratio);
+    if (accept)
+        replica.z = proposed_z;
+    else
+        std::copy(saved.begin(), saved.end(), velocity.begin() + static_cast<std::ptrdiff_t>(first));
+    return accept;
+}
+
+// One independent chain: a replica per bias, all stepped in turn, with
+// replica exchange between neighbouring biases every exchange_interval steps
+// (Swendsen & Wang, PRL 57, 2607 (1986); Hukushima & Nemoto, JPSJ 65, 1604
+// (1996)): swapping the states of biases k and k + 1 is accepted with
+// min(1, exp((beta_{k+1} - beta_k)(z_k - z_{k+1}))), which keeps every
+// replica's law, and lets a state found at one bias serve the others.
 ChainRecord run_chain(const TailSamplerParameters& p, const WindowObservable& observable, std::int64_t chain,
                       std::size_t fine_bins, std::int64_t& evaluations) {
     std::mt19937_64 engine(realization_seed(p.seed, chain));
-    std::vector<double> velocity(static_cast<std::size_t>(p.sites));
-    for (double& v : velocity) v = draw_from_prior(p.law, engine);
-    double z = observable(velocity);
-    ++evaluations;
     const std::size_t biases = p.biases.size();
-    ChainRecord record{std::vector<double>(biases * fine_bins, 0.0), std::vector<double>(biases, 0.0),
-                       std::vector<double>(biases, 0.0), std::vector<double>(biases, 0.0)};
-    const auto focus_width = static_cast<double>(p.focus_end - p.focus_begin);
+    std::vector<Replica> replicas(biases);
+    const auto sites = static_cast<std::size_t>(p.sites);
     for (std::size_t k = 0; k < biases; ++k) {
-        const double beta = p.biases[k];
-        for (std::int64_t step = 0; step < p.burn_in_steps + p.steps_per_bias; ++step) {
-            const bool in_focus = unit_uniform(engine) < p.focus_probability;
-            const auto site = static_cast<std::size_t>(
-                in_focus ? p.focus_begin + static_cast<std::int64_t>(unit_uniform(engine) * focus_width)
-                         : static_cast<std::int64_t>(unit_uniform(engine) * static_cast<double>(p.sites)));
-            const double old_velocity = velocity[site];
-            velocity[site] = propose(p.law, old_velocity, engine);
-            const double proposed_z = observable(velocity);
-            ++evaluations;
-            // Metropolis for the weight prior(v) exp(beta z(v)); the proposal keeps the prior.
-            const double log_ratio = beta * (proposed_z - z);
-            const bool accept = log_ratio >= 0.0 || unit_uniform(engine) < std::exp(log_ratio);
-            if (accept)
-                z = proposed_z;
-            else
-                velocity[site] = old_velocity;
-            if (step < p.burn_in_steps) continue;
-            record.samples[k] += 1.0;
-            record.accepted[k] += accept ? 1.0 : 0.0;
-            record.sum_z[k] += z;
-            const double position = (z - p.z_min) / p.fine_bin_width;
-            if (position >= 0.0 && position < static_cast<double>(fine_bins))
-                record.histogram[k * fine_bins + static_cast<std::size_t>(position)] += 1.0;
+        Replica& replica = replicas[k];
+        replica.velocity.resize(sites);
+        for (double& v : replica.velocity) v = draw_from_prior(p.law, engine);
+        // Start near the bias's typical set: prior noise about the given mean
+        // (the burn-in removes what the start gets wrong).
+        if (!p.start_mean.empty())
+            for (std::size_t i = 0; i < sites; ++i) {
+                const double shifted = replica.velocity[i] + p.start_mean[k * sites + i];
+                if (p.law == VelocityLaw::gaussian || std::abs(shifted) <= 1.0) replica.velocity[i] = shifted;
+            }
+        replica.z = observable(replica.velocity);
+        ++evaluations;
+    }
+    ChainRecord record{std::vector<double>(biases * fine_bins, 0.0), std::vector<double>(biases, 0.0),
+                       std::vector<double>(biases, 0.0), std::vector<double>(biases, 0.0),
+                       std::vector<double>(biases, 0.0), std::vector<double>(biases, 0.0)};
+    std::vector<double> saved;
+    const std::int64_t interval = std::max<std::int64_t>(1, p.exchange_interval);
+    const std::int64_t total = p.burn_in_steps + p.steps_per_bias;
+    for (std::int64_t done = 0, round = 0; done < total; done += interval, ++round) {
+        const std::int64_t steps = std::min(interval, total - done);
+        for (std::size_t k = 0; k < biases; ++k) {
+            for (std::int64_t step = 0; step < steps; ++step) {
+                const bool accept =
+                    metropolis_step(p, observable, p.biases[k], replicas[k], saved, engine, evaluations);
+                if (done + step < p.burn_in_steps) continue;
+                const double z = replicas[k].z;
+                record.samples[k] += 1.0;
+                record.accepted[k] += accept ? 1.0 : 0.0;
+                record.sum_z[k] += z;
+                const double position = (z - p.z_min) / p.fine_bin_width;
+                if (position >= 0.0 && position < static_cast<double>(fine_bins))
+                    record.histogram[k * fine_bins + static_cast<std::size_t>(position)] += 1.0;
+            }
+        }
+        // Even pairs on even rounds, odd pairs on odd rounds.
+        for (auto k = static_cast<std::size_t>(round % 2); k + 1 < biases; k += 2) {
+            const double log_ratio = (p.biases[k + 1] - p.biases[k]) * (replicas[k].z - replicas[k + 1].z);
+            record.swaps_tried[k] += 1.0;
+            if (log_ratio >= 0.0 || unit_uniform(engine) < std::exp(log_ratio)) {
+                std::swap(replicas[k], replicas[k + 1]);
+                record.swaps_accepted[k] += 1.0;
+            }
         }
     }
     return record;
@@ -138,6 +227,30 @@ std::vector<double> tail_bias_ladder(double z_reach, double z_step) {
     for (double z = z_step; z <= z_reach + 1e-9; z += z_step)
         biases.push_back(std::max(z / exact_phi_variance, 1.5 * z * z + exact_tail_linear_coefficient));
     return biases;
+}
+
+std::vector<double> tail_ladder_targets(double z_reach, double z_step) {
+    std::vector<double> targets{0.0};
+    for (double z = z_step; z <= z_reach + 1e-9; z += z_step) targets.push_back(z);
+    return targets;
+}
+
+std::vector<double> tagged_cluster_instanton(double z, double time, std::int64_t half_window) {
+    std::vector<double> mean(static_cast<std::size_t>(2 * half_window + 1), 0.0);
+    if (z < instanton_z_min) return mean;
+    const double velocity = z / std::cbrt(time);                      // EB8: V = z t^(-1/3)
+    const double mass_unit = std::cbrt(velocity_variance * time * time);  // EB2: M* = (D t^2)^(1/3)
+    // EB9's saddle: scaled mass m = 6/w^2, w = z D^(-1/3).
+    const double w = z / std::cbrt(velocity_variance);
+    const auto cluster = static_cast<std::int64_t>(std::max(1.0, std::round(6.0 / (w * w) * mass_unit)));
+    const double ramp = velocity * time;  // the particles ahead within V t must clear the way
+    for (std::int64_t offset = -half_window; offset <= half_window; ++offset) {
+        double v = 0.0;
+        if (offset <= 0 && offset > -cluster) v = velocity;
+        if (offset > 0 && static_cast<double>(offset) < ramp) v = velocity * (1.0 - static_cast<double>(offset) / ramp);
+        mean[static_cast<std::size_t>(offset + half_window)] = v;
+    }
+    return mean;
 }
 
 std::vector<double> wham_log_probability(std::span<const double> histograms, std::span<const double> samples,
@@ -212,6 +325,9 @@ TailEstimate sample_far_tail(const TailSamplerParameters& p, const WindowObserva
     if (p.sites < 1 || p.focus_begin < 0 || p.focus_end > p.sites || p.focus_end <= p.focus_begin)
         throw InputError("tail sampler: the focus range must lie inside the window");
     if (p.steps_per_bias < 1 || p.burn_in_steps < 0) throw InputError("tail sampler: need >= 1 step per bias");
+    if (!p.start_mean.empty() && p.start_mean.size() != p.biases.size() * static_cast<std::size_t>(p.sites))
+        throw InputError("tail sampler: start_mean must hold one window per bias");
+    if (p.block_probability > 0.0 && p.block_max < 1) throw InputError("tail sampler: block shifts need block_max >= 1");
     if (!(p.z_max > p.z_min) || !(p.fine_bin_width > 0.0) || p.fine_bins_per_output_bin < 1)
         throw InputError("tail sampler: bad histogram range or bin width");
     const auto group = static_cast<std::size_t>(p.fine_bins_per_output_bin);
@@ -299,6 +415,15 @@ TailEstimate sample_far_tail(const TailSamplerParameters& p, const WindowObserva
         estimate.acceptance[k] = accepted / pooled_samples[k];
         estimate.mean_z[k] = sum_z / pooled_samples[k];
     }
+    estimate.swap_acceptance.assign(biases, 0.0);
+    for (std::size_t k = 0; k + 1 < biases; ++k) {
+        double tried = 0.0, accepted = 0.0;
+        for (std::size_t c = 0; c < chains; ++c) {
+            tried += records[c].swaps_tried[k];
+            accepted += records[c].swaps_accepted[k];
+        }
+        estimate.swap_acceptance[k] = tried > 0.0 ? accepted / tried : 0.0;
+    }
     estimate.overlap_with_next.assign(biases, 0.0);
     for (std::size_t k = 0; k + 1 < biases; ++k) {
         double overlap = 0.0;
@@ -334,6 +459,10 @@ void write_tail_estimate(const std::string& path, const std::string& program, co
     root.set_attribute("focus_begin", p.focus_begin);
     root.set_attribute("focus_end", p.focus_end);
     root.set_attribute("focus_probability", p.focus_probability);
+    root.set_attribute("block_probability", p.block_probability);
+    root.set_attribute("block_max", p.block_max);
+    root.set_attribute("exchange_interval", p.exchange_interval);
+    root.set_attribute("instanton_start", static_cast<std::int64_t>(!p.start_mean.empty()));
     root.set_attribute("z_min", p.z_min);
     root.set_attribute("z_max", p.z_max);
     root.set_attribute("fine_bin_width", p.fine_bin_width);
@@ -354,6 +483,7 @@ void write_tail_estimate(const std::string& path, const std::string& program, co
     pieces.write("mean_z", e.mean_z);
     pieces.write("log_partition", e.log_partition);
     pieces.write("overlap_with_next", e.overlap_with_next);
+    pieces.write("swap_acceptance", e.swap_acceptance);
     file.commit();
 }
 

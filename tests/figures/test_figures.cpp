@@ -25,8 +25,8 @@ double attribute(const std::string& file, const std::string& group, const std::s
 constexpr double k_sigma = 3.0;
 
 TEST(Figures, EveryFigureHasPngAndPdf) {
-    for (const char* name :
-         {"fig1", "fig2", "fig3", "fig4", "fig5", "fig_collapse", "fig_crossovers", "fig_haff", "fig_tradeoff"})
+    for (const char* name : {"fig1", "fig2", "fig3", "fig4", "fig5", "fig_collapse", "fig_crossovers", "fig_haff",
+                             "fig_tradeoff", "fig_tail"})
         for (const char* extension : {".png", ".pdf"}) {
             const fs::path path = fs::path(figure_dir) / (std::string(name) + extension);
             ASSERT_TRUE(fs::exists(path)) << path;

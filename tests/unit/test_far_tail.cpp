@@ -48,11 +48,15 @@ TEST(TailExponent, KnownGammaRecoveredWithinItsJackknifeError) {
     constexpr double allowed_sigmas = 4.0;
     for (double gamma : {3.0, 2.5, 3.5}) {
         const FarTail tail = synthetic_tail(gamma, 0.5, 2.676, 6, 0.2 * std::sqrt(6.0), 17);
-        const auto estimate = shockgas::analysis::estimate_tail_exponent(tail, 2.0, 5.8);
-        EXPECT_NEAR(estimate.gamma.value, gamma, allowed_sigmas * estimate.gamma.sigma) << "gamma = " << gamma;
-        EXPECT_GT(estimate.gamma.sigma, 0.0);
-        EXPECT_LT(estimate.gamma.sigma, 0.1);  // the data determine gamma to better than the target
-        EXPECT_GE(estimate.window_systematic, 0.0);
+        // b fixed at its true value (the default), and b fitted.
+        const auto fixed = shockgas::analysis::estimate_tail_exponent(tail, 2.0, 5.8, 0.25, 2.676);
+        EXPECT_NEAR(fixed.gamma.value, gamma, allowed_sigmas * fixed.gamma.sigma) << "gamma = " << gamma;
+        EXPECT_GT(fixed.gamma.sigma, 0.0);
+        EXPECT_LT(fixed.gamma.sigma, 0.05);  // the data determine gamma to better than the target
+        EXPECT_GE(fixed.window_systematic, 0.0);
+        const auto free = shockgas::analysis::estimate_tail_exponent(tail, 2.0, 5.8, 0.25, std::nullopt);
+        EXPECT_NEAR(free.gamma.value, gamma, allowed_sigmas * free.gamma.sigma) << "gamma = " << gamma;
+        EXPECT_LT(free.gamma.sigma, 0.1);
     }
 }
 
@@ -61,7 +65,7 @@ TEST(TailExponent, ExactTailWithoutNoiseGivesGammaToRounding) {
     // the golden-section tolerance (1e-7 relative).
     const FarTail tail = synthetic_tail(3.0, 0.5, 2.676, 2, 0.0, 1);
     std::vector<double> sigma(tail.z.size(), 0.1);
-    const auto fit = shockgas::analysis::fit_tail_exponent(tail.z, tail.log_phi, sigma, 2.0, 5.8);
+    const auto fit = shockgas::analysis::fit_tail_exponent(tail.z, tail.log_phi, sigma, 2.0, 5.8, std::nullopt);
     constexpr double minimiser_tolerance = 1e-5;
     EXPECT_NEAR(fit.gamma, 3.0, minimiser_tolerance);
     EXPECT_NEAR(fit.a, 0.5, 1e-4);

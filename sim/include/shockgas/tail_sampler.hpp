@@ -67,8 +67,12 @@ struct TailSamplerParameters {
     std::int64_t focus_begin = 0;        // proposals pick a site in [focus_begin, focus_end) ...
     std::int64_t focus_end = 0;
     double focus_probability = 0.8;      // ... with this probability, else any site
+    double block_probability = 0.3;      // share of block-shift moves (a run of sites moved together)
+    std::int64_t block_max = 100;        // longest run a block shift moves
+    std::int64_t exchange_interval = 50; // steps per bias between replica-exchange attempts
+    std::vector<double> start_mean;      // biases x sites: replica k starts at prior noise + this (empty: prior)
     std::int64_t steps_per_bias = 0;     // recorded Metropolis steps per chain and bias
-    std::int64_t burn_in_steps = 0;      // unrecorded steps before each bias's record
+    std::int64_t burn_in_steps = 0;      // unrecorded steps per bias before the record starts
     std::int64_t chains = 4;             // independent chains (error bars); >= 2
     std::uint64_t seed = 1;
     VelocityLaw law = VelocityLaw::gaussian;
@@ -83,6 +87,20 @@ struct TailSamplerParameters {
 // A chain at beta then sits near z*, and neighbours overlap when step is
 // below the tilted law's width (~ 1/sqrt(3 z*)).
 std::vector<double> tail_bias_ladder(double z_reach, double z_step);
+
+// The z_k at which tail_bias_ladder(z_reach, z_step) centres its chains (0 first).
+std::vector<double> tail_ladder_targets(double z_reach, double z_step);
+
+// The optimal (instanton) mean of the initial velocities for the tagged
+// cluster to reach z at time t, from the saddle of EB9 in lattice units:
+// the cluster, of scaled mass 6/w^2 (w = z D^(-1/3)) ending at the tag, moves
+// at V = z t^(-1/3); the particles ahead must get out of its way, which
+// costs least as a linear ramp of velocities from V down to 0 over the V t
+// particles it would otherwise sweep up (the one-sided factor
+// psi(b) ~ exp(-|b|^3/6) of EB4' is the cost of this ramp: the cubic tail).
+// Zero for z < 1.5. Used to start the chains near their typical set; it is
+// also why the window must reach well beyond V t ahead of the tag.
+std::vector<double> tagged_cluster_instanton(double z, double time, std::int64_t half_window);
 
 struct TailEstimate {
     // Output bins (centres): Phi, its jackknife sigma (NaN where a
@@ -100,13 +118,14 @@ struct TailEstimate {
     std::vector<double> mean_z;
     std::vector<double> log_partition;    // F_k = ln sum_b P_b exp(beta_k z_b), from WHAM
     std::vector<double> overlap_with_next;// sum_b min(h_k(b), h_{k+1}(b)) of normalized histograms
+    std::vector<double> swap_acceptance;  // replica exchange between biases k and k + 1
     std::int64_t chains = 0;
     std::int64_t evaluations = 0;         // observable evaluations, all chains
     std::int64_t wham_iterations = 0;
 };
 
-// Runs the chains and combines them. Each chain starts from the prior and
-// walks up the ladder (each bias starts from the previous bias's last state).
+// Runs the chains and combines them. Each chain holds one replica per bias,
+// all started from the prior, with replica exchange between neighbours.
 TailEstimate sample_far_tail(const TailSamplerParameters& parameters, const WindowObservable& observable);
 
 // The WHAM equations on bins of centres z_b for histograms h_kb (K x B,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,15 @@ FarTail read_far_tail(const std::string& path);
 
 // Eq. (5) with the exact tail's prefactor and linear term (EB9):
 //   ln Phi = c - 2 ln z - a z^gamma - b z.
-// At fixed gamma it is linear in (c, a, b) (weighted_multilinear_fit with
-// sigma = sigma(ln Phi)); gamma minimises chi2 over [1, 6]. The Delta
-// chi2 = 1 width ignores that neighbouring bins share chains' samples.
+// b is either fixed (default: EB9's |a_1|/(2D)^(1/3) = 2.676 at D = 1/3, a
+// subleading term known exactly) or free. At fixed gamma the model is
+// linear: in (c, a) with b fixed (weighted_linear_fit against z^gamma), in
+// (c, a, b) with b free (weighted_multilinear_fit); sigma = sigma(ln Phi).
+// gamma minimises chi2 over [1, 6]. With b free, a, b and gamma are
+// strongly correlated: over z in [2, 6] gamma's error is ~4x larger. On the
+// exact Phi (python/exact_ballistic.py) the fixed-b fit gives gamma = 3.001
+// over [2, 5.5] and 3.013 over [2, 4] (the O(1/z^2) corrections of EB9).
+// The Delta chi2 = 1 width ignores that neighbouring bins share samples.
 struct TailExponentFit {
     double gamma = 0.0;
     double gamma_fit_sigma = 0.0;
@@ -34,8 +41,19 @@ struct TailExponentFit {
     std::size_t points = 0;
     double z_lo = 0.0, z_hi = 0.0;
 };
+constexpr double exact_tail_linear_coefficient = 2.676;  // EB9: |a_1| / (2D)^(1/3), D = 1/3
 TailExponentFit fit_tail_exponent(const std::vector<double>& z, const std::vector<double>& log_phi,
-                                  const std::vector<double>& log_phi_sigma, double z_lo, double z_hi);
+                                  const std::vector<double>& log_phi_sigma, double z_lo, double z_hi,
+                                  std::optional<double> linear_coefficient = exact_tail_linear_coefficient);
+
+// Local exponent d ln(-ln(z^2 Phi / A)) / d ln z at z0 (A = EB9's prefactor
+// 2^(11/6) D^(1/3)/Ai'(a_1) = 3.5237 at D = 1/3): the slope of a straight line
+// through the bins within +-half_width of z0 (weighted_linear_fit); NaN where
+// fewer than 3 bins or -ln(z^2 Phi/A) <= 0. Tends to gamma for z -> infinity;
+// on the exact Phi 2.26, 2.50, 2.65 at z = 3, 4, 5.
+constexpr double exact_tail_prefactor = 3.523703;
+double local_tail_exponent(const std::vector<double>& z, const std::vector<double>& log_phi, double z0,
+                           double half_width = 0.25);
 
 // gamma over [z_lo, z_hi] with its statistical error from the delete-one-chain
 // jackknife (the chains are independent) and a window systematic: half the
@@ -46,6 +64,7 @@ struct TailExponent {
     double window_systematic = 0.0;
     double total_sigma() const;     // statistical (+) systematic in quadrature
 };
-TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_hi, double window_shift = 0.25);
+TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_hi, double window_shift = 0.25,
+                                    std::optional<double> linear_coefficient = exact_tail_linear_coefficient);
 
 }  // namespace shockgas::analysis
