@@ -80,12 +80,14 @@ lock)
   args=(-N 100000 -r 0.9 -d 0.01 -t 1e6 -R 1 -q --seed 3)
   "$sim" "${args[@]}" --checkpoint-interval 0.2 --resume -o run.h5 2>first.err &
   first=$!
+  trap 'kill -9 $first 2>/dev/null' EXIT
   for _ in $(seq 1 600); do
     grep -q '^shockgas-sim: checkpoint:' first.err && break
     sleep 0.02
   done
   kill -0 "$first" 2>/dev/null || fail "the first run ended too early"
-  "$sim" "${args[@]}" --checkpoint-interval 0.2 --resume -o run.h5 2>second.err
+  # Refused at once if the lock works; otherwise it would run on (stopped after 10 s).
+  timeout 10 "$sim" "${args[@]}" --checkpoint-interval 0.2 --resume -o run.h5 2>second.err
   status=$?
   kill -0 "$first" 2>/dev/null || fail "the first run ended before the second was refused: make it longer"
   kill -9 "$first"
