@@ -14,6 +14,7 @@
 #                         a time, says so, and completes
 set -u
 case_name=$1 sim=$2 dir=$3 python=${4:-} same=${5:-}
+source "$(dirname "$0")/checkpoint_helpers.sh"
 mkdir -p "$dir/$case_name"
 cd "$dir/$case_name" || exit 1
 rm -rf ./*
@@ -36,15 +37,7 @@ file_size_checkpoint)
   args=(-N 20000 -r 0.8 -d 0.005 -t 400 -R 2 -j 2 -q --seed 7 --snapshot-times 50,100)
   "$sim" "${args[@]}" --checkpoint-interval 0 -o reference.h5 2>reference.err || fail "reference run"
   # A checkpoint of the run in progress, from Ctrl-C.
-  "$sim" "${args[@]}" --checkpoint-interval 0.1 -o run.h5 2>stopped.err &
-  pid=$!
-  for _ in $(seq 1 600); do
-    [ "$(grep -c '^shockgas-sim: checkpoint:' stopped.err)" -ge 2 ] && break
-    kill -0 "$pid" 2>/dev/null || break
-    sleep 0.02
-  done
-  kill -INT "$pid" 2>/dev/null
-  wait "$pid"
+  run_until_checkpoints 2 INT stopped.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o run.h5
   [ $? -eq 130 ] || fail "the run was not stopped mid-way: make it longer"
   cp run.h5.checkpoint saved.current
   cp run.h5.checkpoint.previous saved.previous
