@@ -90,7 +90,8 @@ cp pristine.current run.h5.checkpoint
 cp pristine.previous run.h5.checkpoint.previous
 resume_case intact
 grep -q "warning" intact.err && { echo "FAIL [intact]: warned about a good checkpoint"; failures=$((failures + 1)); }
-grep -q "resuming from 'run.h5.checkpoint'" intact.err || { echo "FAIL [intact]: did not resume"; failures=$((failures + 1)); }
+grep -q "resuming from 'run.h5.checkpoint': .* 2 continue" intact.err ||
+  { echo "FAIL [intact]: did not resume both realizations mid-way (the stopped run's last checkpoint lost them)"; failures=$((failures + 1)); }
 
 echo "damage detected in $((detected - 2)) of $damaged_cases overwritten copies; $cases resumed runs"
 # Overwritten bytes land in checksummed data or metadata except for the
