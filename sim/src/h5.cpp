@@ -482,7 +482,12 @@ AtomicFile::AtomicFile(std::string target_path)
         return true;
     }();
     (void)file_size_signal_ignored;
-    file_ = std::make_unique<File>(File::create(temporary_));
+    try {
+        file_ = std::make_unique<File>(File::create(temporary_));
+    } catch (const Error&) {
+        std::remove(temporary_.c_str());  // a disk full at creation leaves a partial file
+        throw;
+    }
 }
 
 AtomicFile::~AtomicFile() {

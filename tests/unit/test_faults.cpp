@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -121,6 +124,29 @@ TEST(CheckpointLock, ASecondHolderIsRefusedUntilTheFirstLetsGo) {
     }
     EXPECT_FALSE(std::filesystem::exists(path + ".lock")) << "the lock file is removed when released";
     EXPECT_NO_THROW(shockgas::CheckpointLock again(path));
+}
+
+// A full disk (ENOSPC), made real by pointing the temporary file at
+// /dev/full, whose every write fails so: one error naming the target and the
+// system's cause, the temporary file removed, no target left.
+TEST(FullDisk, AWriteThatFailsNamesTheFileAndCauseAndLeavesNothing) {
+    const std::string target = "full_disk.h5";
+    const std::string temporary = target + ".tmp." + std::to_string(::getpid());
+    std::filesystem::remove(target);
+    std::filesystem::remove(temporary);
+    std::filesystem::create_symlink("/dev/full", temporary);
+    const std::vector<double> values(1 << 16, 1.0);
+    try {
+        shockgas::h5::write_atomically(target, [&](shockgas::h5::Group& root) { root.write("values", values); });
+        FAIL() << "a write to a full disk succeeded";
+    } catch (const shockgas::h5::Error& error) {
+        EXPECT_EQ(error.cause, "No space left on device") << error.what();
+        EXPECT_NE(std::string(error.what()).find("cannot write 'full_disk.h5': No space left on device"),
+                  std::string::npos)
+            << error.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(temporary))) << "temporary file left";
+    EXPECT_FALSE(std::filesystem::exists(target));
 }
 
 // The documented costs (memory.cpp, docs/reliability.md): 128 bytes per
