@@ -3,7 +3,9 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <algorithm>
 #include <memory>
+#include <thread>
 
 #include <unistd.h>
 
@@ -15,6 +17,7 @@
 #include "shockgas/distributed.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/h5.hpp"
+#include "shockgas/memory.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/parameters.hpp"
 #include "shockgas/provenance.hpp"
@@ -135,6 +138,11 @@ int main(int argc, char** argv) {
                    "seconds of wall time, and at each tenth of the run; 0: only at each tenth")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
+    std::string max_memory;
+    app.add_option("--max-memory", max_memory,
+                   "memory the run may use, e.g. 8G or 500M (default: what the machine and any cgroup limit leave "
+                   "free); fewer realizations run at once if all do not fit, and a run of which not even one fits "
+                   "is refused");
     app.add_flag("-q,--quiet", quiet, "do not print the T(t) table");
     app.set_version_flag("--version", "shockgas-sim " + shockgas::build_info().version);
     app.footer("Output schema: docs/cli-and-output.md (installed in share/doc/shockgas). Ctrl-C writes what has been computed, marked "
@@ -171,7 +179,7 @@ int main(int argc, char** argv) {
         }
         shockgas::validate(p);
         if (session.is_root()) shockgas::h5::check_writable(output);
-        const shockgas::SimulationParameters mine = session.share(p);
+        shockgas::SimulationParameters mine = session.share(p);
 
         // Each MPI rank keeps its own checkpoint of its own block.
         if (checkpoint_file.empty()) checkpoint_file = shockgas::checkpoint_path_for(output);
@@ -191,6 +199,33 @@ int main(int argc, char** argv) {
             else
                 fmt::print(stderr, "{}\n", line);
         };
+
+        // Memory: estimated before anything is allocated (memory.hpp).
+        if (mine.realizations > 0) {
+            const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+            const int threads = std::clamp(mine.threads > 0 ? mine.threads : hardware, 1, mine.realizations);
+            std::string source = "--max-memory";
+            const double budget = max_memory.empty() ? shockgas::available_memory_bytes(&source)
+                                                     : shockgas::parse_memory_size(max_memory);
+            if (budget >= 0.0) {
+                const bool checkpoints = !checkpoint.path.empty() && checkpoint.interval_seconds > 0.0;
+                const auto plan = shockgas::plan_memory(mine, threads, checkpoints, budget);
+                if (plan.realizations_at_once == 0)
+                    throw shockgas::InputError(fmt::format(
+                        "not enough memory: one realization of N = {} needs about {}, but {} may be used ({}); "
+                        "lower N or the snapshots, or set --max-memory",
+                        mine.particles, shockgas::format_bytes(plan.need_bytes(1)), shockgas::format_bytes(budget),
+                        source));
+                if (plan.realizations_at_once < threads) {
+                    checkpoint.note(fmt::format("running realizations {} at a time instead of {}: each needs about {} "
+                                                "and {} may be used in all ({})",
+                                                plan.realizations_at_once, threads,
+                                                shockgas::format_bytes(plan.per_realization_bytes),
+                                                shockgas::format_bytes(budget), source));
+                    mine.threads = plan.realizations_at_once;
+                }
+            }
+        }
 
         // One process per checkpoint; then clear what killed runs left.
         std::unique_ptr<shockgas::CheckpointLock> lock;

@@ -70,7 +70,10 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
         try {
             checkpoint = read_checkpoint(candidate);
         } catch (const std::exception& error) {  // h5::Error (checksums, truncation) or InputError (layout)
-            damaged.push_back(error.what());
+            const std::string what = error.what();
+            damaged.push_back(what.find(candidate) != std::string::npos
+                                  ? what
+                                  : fmt::format("checkpoint '{}' is damaged: {}", candidate, what));
             continue;
         }
         // Another run or code version: not damage, and its older generation

@@ -351,7 +351,12 @@ private:
                     outs[k].status = RealizationStatus::not_run;
                 }
                 checkpoint.samples_done[k] = outs[k].samples_done;
-                d.reset();  // a deposit serves one checkpoint: free its copy of the state
+                // A deposit serves one checkpoint: free its copy of the state.
+                // Except a final one (the user stopped the run) taken by a
+                // periodic checkpoint that was under way: the last checkpoint,
+                // written after the workers end, needs it too, or it would
+                // replace a good checkpoint by one with nothing in progress.
+                if (epoch == final_epoch || !d || d->epoch != final_epoch) d.reset();
             }
         }
         assemble(outs, r);

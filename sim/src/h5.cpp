@@ -20,8 +20,15 @@ namespace shockgas::h5 {
 namespace {
 
 // HDF5 prints its own error stack by default; we report through exceptions.
+// H5dont_atexit: a file whose close failed (disk full while HDF5 wrote its
+// metadata) stays half-closed, and HDF5 1.10's own clean-up at exit crashes
+// on it (SIGSEGV in H5F__close_cb); every file is closed by its handle
+// anyway, so that clean-up is not needed.
 struct SilenceHdf5Errors {
-    SilenceHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+    SilenceHdf5Errors() {
+        H5dont_atexit();
+        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    }
 };
 const SilenceHdf5Errors silence_hdf5_errors;
 
@@ -481,12 +488,27 @@ AtomicFile::AtomicFile(std::string target_path)
     (void)file_size_signal_ignored;
     // Errors name the output the user asked for, not the temporary file.
     check_writable(target_);
-    file_ = std::make_unique<File>(File::create(temporary_, target_));
+    try {
+        file_ = std::make_unique<File>(File::create(temporary_, target_));
+    } catch (const Error&) {
+        std::remove(temporary_.c_str());  // a disk full at creation leaves a partial file
+        throw;
+    }
 }
 
 AtomicFile::~AtomicFile() {
     file_.reset();
     if (!committed_) std::remove(temporary_.c_str());
+}
+
+bool File::close() {
+    if (!handle_.valid()) return true;
+    const hid_t id = handle_.id();
+    const bool closed = H5Fclose(id) >= 0;
+    // A file whose close failed stays half-open; HDF5 is kept from closing it
+    // again at exit (see SilenceHdf5Errors) and the process reports the error.
+    handle_.forget();
+    return closed;
 }
 
 namespace {
@@ -512,9 +534,8 @@ void AtomicFile::commit(const std::string& keep_previous_as) {
     }
     // Close before the rename so every byte is written; a close that cannot
     // write what HDF5 still holds is a failed write.
-    Handle handle = file_->release();
+    if (!file_->close()) fail(fmt::format("cannot write '{}'", temporary_));
     file_.reset();
-    check_status(handle.close_checked(), fmt::format("cannot write '{}'", temporary_));
     sync_to_disk(temporary_, false);
     namespace fs = std::filesystem;
     std::error_code error;

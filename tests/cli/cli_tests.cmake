@@ -176,5 +176,19 @@ if(SHOCKGAS_PYTHON)
                    ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/damaged_checkpoint")
   set_tests_properties(cli.faults.damaged_checkpoint PROPERTIES LABELS cli TIMEOUT 300)
 endif()
+foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock memory_fewer_at_once)
+  add_test(NAME cli.faults.${_case}
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/faults_test.sh ${_case} ${_sim} "${_cli_dir}/faults"
+                   "${SHOCKGAS_PYTHON}" ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py)
+  set_tests_properties(cli.faults.${_case} PROPERTIES LABELS cli TIMEOUT 120)
+endforeach()
+if(NOT SHOCKGAS_PYTHON)  # file_size_checkpoint compares outputs with Python
+  set_tests_properties(cli.faults.file_size_checkpoint PROPERTIES DISABLED TRUE)
+endif()
+# A budget below one realization (100000 particles: about 41 MiB with checkpoints) is refused.
+shockgas_cli_error(faults_memory_refused
+                   "not enough memory: one realization of N = 100000 needs about [0-9]+ MiB, but 1 MiB may be used \\(--max-memory\\)"
+                   -N 100000 -R 2 -j 2 -t 10 --max-memory 1M)
+shockgas_cli_error(max_memory_not_a_size "--max-memory '3X' is not a size" -N 100 --max-memory 3X)
 shockgas_cli_error(checkpoint_interval_negative "checkpoint-interval" -N 10 --checkpoint-interval -1)
 shockgas_cli_error(checkpoint_unwritable "directory .* does not exist" -N 10 --checkpoint "${_cli_dir}/absent_dir/c.h5")

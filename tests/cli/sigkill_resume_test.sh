@@ -12,6 +12,7 @@
 # can be killed.
 set -u
 sim=$1 python=$2 same=$3 dir=$4
+source "$(dirname "$0")/checkpoint_helpers.sh"
 mkdir -p "$dir"
 cd "$dir" || exit 1
 rm -f reference.h5 killed.h5 killed.h5.checkpoint ./*.err
@@ -21,16 +22,8 @@ args=(-N 100000 -r 0.9 -d 0.01 -t 1000 -R 2 -j 2 -q --seed 11 --histogram-times 
 
 "$sim" "${args[@]}" --checkpoint-interval 0 -o reference.h5 2>reference.err || { cat reference.err; echo "FAIL: reference run"; exit 1; }
 
-"$sim" "${args[@]}" --checkpoint-interval 0.3 -o killed.h5 2>killed.err &
-pid=$!
-# Wait for the second checkpoint note (the first may be taken before any event).
-for _ in $(seq 1 600); do
-  [ "$(grep -c '^shockgas-sim: checkpoint:' killed.err)" -ge 2 ] && break
-  kill -0 "$pid" 2>/dev/null || break
-  sleep 0.05
-done
-kill -9 "$pid" 2>/dev/null
-wait "$pid" 2>/dev/null
+# Killed once its second checkpoint is on disk (the first may be taken before any event).
+run_until_checkpoints 2 9 killed.err -- "$sim" "${args[@]}" --checkpoint-interval 0.3 -o killed.h5
 cat killed.err
 [ -e killed.h5 ] && { echo "FAIL: the run finished (or left an output) before SIGKILL: make it longer"; exit 1; }
 [ -s killed.h5.checkpoint ] || { echo "FAIL: no checkpoint after SIGKILL"; exit 1; }

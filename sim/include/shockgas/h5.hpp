@@ -49,6 +49,7 @@ public:
         id_ = H5I_INVALID_HID;
         return status;
     }
+    void forget() { id_ = H5I_INVALID_HID; }  // already closed elsewhere
     bool valid() const { return id_ >= 0; }
 
 private:
@@ -118,7 +119,8 @@ public:
     static File open_read(const std::string& path);
     Group root() const;
     const std::string& path() const { return path_; }
-    Handle release() { return std::move(handle_); }  // the caller closes it (and checks the close)
+    // Closes the file, writing what HDF5 still holds; false if that failed.
+    bool close();
 
 private:
     File(Handle handle, std::string path, std::string display)

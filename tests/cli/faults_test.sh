@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# faults_test.sh CASE SIM DIR [PYTHON COMPARE_OUTPUTS]
+# One fault per CASE (issue 19); each says what must happen and fails otherwise.
+#   file_size_output      a file-size limit (ulimit -f) during the output write: one line naming the
+#                         file and "File too large", exit 2 (not killed by SIGXFSZ), nothing left behind
+#   file_size_checkpoint  a resumed run whose next checkpoint exceeds the limit: one line naming the
+#                         checkpoint, exit 2, both checkpoint generations untouched, no temporary file;
+#                         a later --resume without the limit equals the uninterrupted run
+#   stale_temporaries     *.tmp.<pid> of a dead process beside the output and the checkpoint are removed
+#                         with a note; one of a live process is kept
+#   lock                  a second --resume of a run in progress is refused with one line naming the
+#                         holder; after the holder is killed with kill -9, --resume works again
+#   memory_fewer_at_once  a --max-memory budget that fits one realization but not two: runs them one at
+#                         a time, says so, and completes
+set -u
+case_name=$1 sim=$2 dir=$3 python=${4:-} same=${5:-}
+source "$(dirname "$0")/checkpoint_helpers.sh"
+mkdir -p "$dir/$case_name"
+cd "$dir/$case_name" || exit 1
+rm -rf ./*
+fail() { echo "FAIL [$case_name]: $*"; for f in ./*.err; do [ -e "$f" ] && { echo "--- $f"; cat "$f"; }; done; exit 1; }
+
+case $case_name in
+file_size_output)
+  # About 6 MB of snapshots (20000 particles x 32 bytes x 10 times) under a 2 MB limit.
+  (ulimit -f 2048; exec "$sim" -N 20000 -r 0.9 -d 0.01 -t 10 -R 1 -q --checkpoint-interval 0 \
+     --snapshot-interval 1 -o out.h5) 2>run.err
+  status=$?
+  [ "$status" -ne 0 ] || fail "exit status 0 under a file-size limit"
+  [ "$status" -lt 128 ] || fail "killed by a signal (exit $status): SIGXFSZ must not end the process"
+  [ "$(wc -l <run.err)" -eq 1 ] || fail "expected one line on stderr"
+  grep -q "^shockgas-sim: error: cannot write 'out.h5': File too large" run.err || fail "the line does not name the file and cause"
+  [ ! -e out.h5 ] || fail "an output file was left"
+  ls out.h5.tmp.* >/dev/null 2>&1 && fail "a temporary file was left"
+  ;;
+file_size_checkpoint)
+  args=(-N 20000 -r 0.8 -d 0.005 -t 400 -R 2 -j 2 -q --seed 7 --snapshot-times 50,100)
+  "$sim" "${args[@]}" --checkpoint-interval 0 -o reference.h5 2>reference.err || fail "reference run"
+  # A checkpoint of the run in progress, from Ctrl-C.
+  run_until_checkpoints 2 INT stopped.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o run.h5
+  [ $? -eq 130 ] || fail "the run was not stopped mid-way: make it longer"
+  cp run.h5.checkpoint saved.current
+  cp run.h5.checkpoint.previous saved.previous
+  size_kib=$(( $(stat -c %s run.h5.checkpoint) / 1024 ))
+  # Resume under a limit of half the checkpoint's size: its next checkpoint cannot be written.
+  (ulimit -f $((size_kib / 2)); exec "$sim" "${args[@]}" --checkpoint-interval 0.1 --resume -o run.h5) 2>limited.err
+  status=$?
+  [ "$status" -ne 0 ] || fail "exit status 0 although no checkpoint could be written"
+  [ "$status" -lt 128 ] || fail "killed by a signal (exit $status)"
+  [ "$(grep -c 'error' limited.err)" -eq 1 ] || fail "expected one error line"
+  grep -q "^shockgas-sim: error: cannot write 'run.h5.checkpoint': File too large" limited.err ||
+    fail "the error does not name the checkpoint and the cause"
+  cmp -s saved.current run.h5.checkpoint && cmp -s saved.previous run.h5.checkpoint.previous ||
+    fail "the previous checkpoints were changed"
+  ls ./*.tmp.* >/dev/null 2>&1 && fail "a temporary file was left"
+  [ ! -e run.h5 ] || [ "$(stat -c %s run.h5)" -gt 0 ] || fail "an empty output"
+  "$sim" "${args[@]}" --checkpoint-interval 0 --resume -o run.h5 2>resumed.err || fail "the later --resume failed"
+  grep -q "resuming from 'run.h5.checkpoint'" resumed.err || fail "the later --resume did not use the kept checkpoint"
+  "$python" "$same" reference.h5 run.h5 || fail "the resumed run differs from the uninterrupted one"
+  ;;
+stale_temporaries)
+  dead=999999999  # above any pid_max (at most 2^22): no such process
+  : >out.h5.tmp.$dead
+  : >out.h5.checkpoint.tmp.$((dead - 1))
+  : >out.h5.tmp.$$  # this shell is alive: its file must stay
+  "$sim" -N 100 -t 10 -q --checkpoint-interval 1 -o out.h5 2>run.err || fail "the run failed"
+  grep -q "removed 'out.h5.tmp.$dead', left by a run that no longer exists" run.err || fail "no note for the stale output temporary"
+  grep -q "removed 'out.h5.checkpoint.tmp.$((dead - 1))'" run.err || fail "no note for the stale checkpoint temporary"
+  [ ! -e out.h5.tmp.$dead ] && [ ! -e out.h5.checkpoint.tmp.$((dead - 1)) ] || fail "stale temporaries left"
+  [ -e out.h5.tmp.$$ ] || fail "the temporary file of a live process was removed"
+  ;;
+lock)
+  args=(-N 100000 -r 0.9 -d 0.01 -t 1e6 -R 1 -q --seed 3)
+  "$sim" "${args[@]}" --checkpoint-interval 0.2 --resume -o run.h5 2>first.err &
+  first=$!
+  trap 'kill -9 $first 2>/dev/null' EXIT
+  for _ in $(seq 1 600); do
+    grep -q '^shockgas-sim: checkpoint:' first.err && break
+    sleep 0.02
+  done
+  kill -0 "$first" 2>/dev/null || fail "the first run ended too early"
+  # Refused at once if the lock works; otherwise it would run on (stopped after 10 s).
+  timeout 10 "$sim" "${args[@]}" --checkpoint-interval 0.2 --resume -o run.h5 2>second.err
+  status=$?
+  kill -0 "$first" 2>/dev/null || fail "the first run ended before the second was refused: make it longer"
+  kill -9 "$first"
+  wait "$first" 2>/dev/null
+  [ "$status" -eq 2 ] || fail "the second --resume was not refused (exit $status)"
+  [ "$(wc -l <second.err)" -eq 1 ] || fail "expected one line from the refused run"
+  grep -q "error: checkpoint 'run.h5.checkpoint' is in use by another running shockgas-sim (process $first)" second.err ||
+    fail "the refusal does not name the checkpoint and the process holding it"
+  # The lock dies with its holder, even with kill -9.
+  "$sim" -N 100000 -r 0.9 -d 0.01 -t 10 -R 1 -q --seed 3 --resume -o run.h5 2>third.err ||
+    fail "a --resume after the holder died was refused"
+  ;;
+memory_fewer_at_once)
+  # 100000 particles: about 25 MiB per running realization with checkpoints (docs/reliability.md); 60 MiB
+  # holds the program and one, not two.
+  "$sim" -N 100000 -r 0.9 -d 0.01 -t 10 -R 2 -j 2 -q --max-memory 60M -o out.h5 2>run.err || fail "the run failed"
+  grep -q "running realizations 1 at a time instead of 2" run.err || fail "no note that fewer realizations run at once"
+  grep -q "complete" run.err || fail "the run did not complete"
+  ;;
+*) echo "unknown case $case_name"; exit 1 ;;
+esac
+echo "ok [$case_name]"
