@@ -12,6 +12,8 @@ refused with UnsupportedSchemaVersion, never read on a guess.
 # version -> what it is (one line each; the newest last).
 SCHEMA_VERSIONS = {
     1: "the first published layout: fixed-length ASCII text attributes, samples from t > 0",
+    2: "text attributes variable-length UTF-8; numbered groups (/snapshots, /histograms, /collapse/states) "
+       "zero-padded to one width, so they sort in time order; root attributes positions, velocity_distribution",
 }
 
 

@@ -20,9 +20,8 @@ void dump_snapshots(std::FILE* out, const std::string& path, std::int64_t realiz
     const auto file = shockgas::h5::File::open_read(path);
     const auto snapshots = file.root().open_group("snapshots");
     fmt::print(out, "# time position velocity mass first_particle  (from {})\n", path);
-    const std::size_t count = snapshots.children().size();
-    for (std::size_t s = 0; s < count; ++s) {
-        const auto group = snapshots.open_group(fmt::format("{}", s));
+    for (const auto& name : snapshots.numbered_children()) {
+        const auto group = snapshots.open_group(name);
         if (group.attribute_integer("realization") != realization) continue;
         const double time = group.attribute_double("time");
         const auto position = group.read_doubles("position");

@@ -22,7 +22,9 @@ struct BuildInfo {
 const BuildInfo& build_info();
 
 // Schema version of the simulation output; bump on any incompatible change.
-constexpr long long output_schema_version = 1;
+// 2 (2026-11-23): text attributes variable-length UTF-8; numbered groups
+// (/snapshots, /histograms, /collapse/states) zero-padded; readers take both.
+constexpr long long output_schema_version = 2;
 
 // Writes program, version, compiler, flags, build type, HDF5 version, host and
 // the current UTC date as root attributes.
