@@ -82,6 +82,8 @@ install(DIRECTORY "${PROJECT_SOURCE_DIR}/figures/"
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/python/exact_ballistic.py" "${PROJECT_SOURCE_DIR}/python/sticky_pav.py"
                  "${PROJECT_SOURCE_DIR}/python/refit_check.py"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/python COMPONENT runtime)
+# shockgas-look finds figures/look.gp and style.gp in ../share/shockgas/figures.
+install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/shockgas-look" DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/fidelity_report.py" "${PROJECT_SOURCE_DIR}/tools/reproduce-check"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/tools COMPONENT runtime)
 
