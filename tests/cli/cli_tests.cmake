@@ -85,6 +85,11 @@ if(GNUPLOT_EXECUTABLE)
 endif()
 
 if(SHOCKGAS_PYTHON)
+  # The README's results rows, generated from a (miniature) pipeline tree.
+  add_test(NAME cli.readme_tables
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/readme_tables_test.sh ${CMAKE_BINARY_DIR} ${SHOCKGAS_PYTHON}
+                   "${_cli_dir}/readme_tables")
+  set_tests_properties(cli.readme_tables PROPERTIES LABELS cli)
   add_test(NAME cli.setup.bad_init_files
            COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/make_bad_init.py "${_cli_dir}")
   set_tests_properties(cli.setup.bad_init_files PROPERTIES FIXTURES_SETUP bad_init LABELS cli)
