@@ -6,6 +6,14 @@
 //   reference  EventEngine: the global-order loop it is bit-identical to
 //   textbook   a plain peer kept only here: absolute positions and velocities
 //              in separate arrays, std::priority_queue with lazy invalidation
+//   passthrough PassThroughEngine: elastic collisions counted, not processed
+//              (collisions per second count every collision, elastic ones
+//              included: "equivalent" collisions)
+//
+// SHOCKGAS_BENCH_LONG=1 adds the side-by-side long workloads, one
+// thread, fast against passthrough on the same start: r = 0.9, delta = 1e-2,
+// N = 10^5 to t = 10^4 and to t = 10^5, and Fig. 5's r = 0.99, delta = 1e-4,
+// N = 2 10^4 to t = 10^5 (tens of CPU minutes), with the time ratio printed.
 //
 // Run: build/bench/bench_engine  (N = 10^3 .. 10^6, a few minutes)
 //      SHOCKGAS_BENCH_LARGE=1 build/bench/bench_engine   adds N = 10^7
@@ -18,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <map>
 #include <queue>
 #include <string>
@@ -26,6 +35,7 @@
 #include "shockgas/collision.hpp"
 #include "shockgas/event_engine.hpp"
 #include "shockgas/fast_engine.hpp"
+#include "shockgas/passthrough_engine.hpp"
 
 namespace {
 
@@ -160,11 +170,67 @@ void BM_textbook(benchmark::State& state) {
     });
 }
 
+void BM_passthrough(benchmark::State& state) {
+    measure(state, "passthrough", shockgas::PassThroughEngine::bytes_per_particle(), [](const auto& initial) {
+        shockgas::PassThroughEngine engine(initial, paper_gas);
+        engine.advance_to(t_end);
+        return engine.collisions();
+    });
+}
+
+// One long workload, both engines from the same start: CPU seconds each.
+struct LongWorkload {
+    const char* name;
+    std::int64_t particles;
+    shockgas::CollisionModel model;
+    double t_end;
+};
+
+std::map<std::string, std::pair<double, double>>& long_seconds() {
+    static std::map<std::string, std::pair<double, double>> table;
+    return table;
+}
+
+void run_long(benchmark::State& state, const LongWorkload& w) {
+    for (auto _ : state) {
+        const auto initial = shockgas::generate_initial_condition(w.particles, static_cast<double>(w.particles), 1, 0);
+        const auto cpu = [] { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; };
+        double start = cpu();
+        shockgas::FastEventEngine fast(initial, w.model, {});
+        fast.advance_to(w.t_end);
+        const double fast_seconds = cpu() - start;
+        start = cpu();
+        shockgas::PassThroughEngine pass(initial, w.model);
+        pass.advance_to(w.t_end);
+        const double pass_seconds = cpu() - start;
+        long_seconds()[w.name] = {fast_seconds, pass_seconds};
+        state.counters["fast_s"] = fast_seconds;
+        state.counters["passthrough_s"] = pass_seconds;
+        state.counters["ratio"] = fast_seconds / pass_seconds;
+        state.counters["collisions_fast"] = static_cast<double>(fast.collisions());
+        state.counters["collisions_passthrough"] = static_cast<double>(pass.collisions());
+    }
+}
+
+void register_long() {
+    static const std::vector<LongWorkload> workloads = {
+        {"long/N=1e5,t=1e4", 100000, paper_gas, 1e4},
+        {"long/N=1e5,t=1e5", 100000, paper_gas, 1e5},
+        {"long/fig5,N=2e4,t=1e5", 20000, {0.99, 1e-4, shockgas::Subthreshold::elastic}, 1e5}};
+    for (const LongWorkload& w : workloads)
+        benchmark::RegisterBenchmark(w.name, [&w](benchmark::State& state) { run_long(state, w); })
+            ->Iterations(1)
+            ->Unit(benchmark::kSecond);
+}
+
 void register_all(std::int64_t particles) {
     // One iteration is 40-odd collisions per particle: enough from N = 10^5 on.
     const auto iterations = particles >= 100000 ? 1 : (particles >= 10000 ? 3 : 30);
-    for (auto* bench : {&BM_fast, &BM_reference, &BM_textbook}) {
-        const char* name = bench == &BM_fast ? "fast" : (bench == &BM_reference ? "reference" : "textbook");
+    for (auto* bench : {&BM_fast, &BM_reference, &BM_textbook, &BM_passthrough}) {
+        const char* name = bench == &BM_fast        ? "fast"
+                           : bench == &BM_reference ? "reference"
+                           : bench == &BM_textbook  ? "textbook"
+                                                    : "passthrough";
         benchmark::RegisterBenchmark(name, bench)
             ->Arg(particles)
             ->Iterations(iterations)
@@ -179,12 +245,14 @@ int main(int argc, char** argv) {
     for (const std::int64_t n : {1000, 10000, 100000, 1000000}) register_all(n);
     if (const char* large = std::getenv("SHOCKGAS_BENCH_LARGE"); large != nullptr && std::string(large) == "1")
         register_all(10000000);
+    if (const char* long_runs = std::getenv("SHOCKGAS_BENCH_LONG"); long_runs != nullptr && std::string(long_runs) == "1")
+        register_long();
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
-    std::printf("\n%10s %14s %14s %14s %8s %10s %10s\n", "N", "fast c/s", "reference c/s", "textbook c/s",
-                "fast/tb", "B/p fast", "B/p tb");
+    std::printf("\n%10s %14s %14s %14s %14s %8s %8s %10s %10s\n", "N", "fast c/s", "reference c/s",
+                "textbook c/s", "passthru c/s", "fast/tb", "pt/fast", "B/p fast", "B/p tb");
     std::map<std::int64_t, bool> sizes;
     for (const auto& [key, rate] : rates()) sizes[key.second] = true;
     for (const auto& [n, present] : sizes) {
@@ -192,9 +260,15 @@ int main(int argc, char** argv) {
             const auto it = rates().find({engine, n});
             return it == rates().end() ? std::nan("") : it->second;
         };
-        std::printf("%10lld %14.3e %14.3e %14.3e %8.2f %10zu %10zu\n", static_cast<long long>(n), get("fast"),
-                    get("reference"), get("textbook"), get("fast") / get("textbook"),
+        std::printf("%10lld %14.3e %14.3e %14.3e %14.3e %8.2f %8.2f %10zu %10zu\n", static_cast<long long>(n),
+                    get("fast"), get("reference"), get("textbook"), get("passthrough"),
+                    get("fast") / get("textbook"), get("passthrough") / get("fast"),
                     shockgas::FastEventEngine::bytes_per_particle(), TextbookRing::bytes_per_particle());
+    }
+    if (!long_seconds().empty()) {
+        std::printf("\n%-26s %12s %14s %8s\n", "long workload", "fast CPU s", "passthru CPU s", "fast/pt");
+        for (const auto& [name, pair] : long_seconds())
+            std::printf("%-26s %12.2f %14.2f %8.2f\n", name.c_str(), pair.first, pair.second, pair.first / pair.second);
     }
     return 0;
 }

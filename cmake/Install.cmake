@@ -23,7 +23,7 @@ set(SHOCKGAS_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/shockgas"
 set(SHOCKGAS_INSTALL_DATADIR "${CMAKE_INSTALL_DATADIR}/shockgas")
 mark_as_advanced(SHOCKGAS_INSTALL_CMAKEDIR)
 
-set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze)
+set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail)
 
 # Libraries, programs and headers. The programs are exported too, apart
 # (shockgasPrograms.cmake, in the runtime component, needing nothing found): the

@@ -1,6 +1,7 @@
 // shockgas-analyze: one subcommand per estimator of the analysis library.
 // Parses arguments, calls the library, writes the results file and the
 // gnuplot data files; no analysis happens here.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -14,6 +15,7 @@
 
 #include "shockgas/analysis/collapse.hpp"
 #include "shockgas/analysis/compare.hpp"
+#include "shockgas/analysis/far_tail.hpp"
 #include "shockgas/analysis/results.hpp"
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
@@ -270,42 +272,124 @@ void run_shocks(const std::string& input, const std::string& output, const std::
     }
 }
 
-void run_collapse(const std::vector<std::string>& inputs, const std::string& output, const std::string& data) {
+void set_collapse_forms(ResultsFile& results, const std::string& section, const std::vector<CollapseForm>& forms) {
+    double best_aic = INFINITY, best_bic = INFINITY;
+    for (const auto& form : forms) {
+        best_aic = std::min(best_aic, form.fit.aic());
+        best_bic = std::min(best_bic, form.fit.bic());
+    }
+    auto parent = results.section(section);
+    for (const auto& form : forms) {
+        auto group = parent.create_group(form.name);
+        group.set_attribute("formula", form.formula);
+        group.set_attribute("prefactor", form.prefactor);
+        set_estimate(group, "exponent", form.exponent);
+        group.set_attribute("exponent_sigma_scaled", form.exponent_sigma_scaled);
+        group.set_attribute("parameters", static_cast<std::int64_t>(form.fit.parameters));
+        group.set_attribute("points", static_cast<std::int64_t>(form.fit.points));
+        group.set_attribute("chi2", form.fit.chi2);
+        group.set_attribute("chi2_per_dof", form.fit.chi2_per_dof());
+        group.set_attribute("aic", form.fit.aic());
+        group.set_attribute("bic", form.fit.bic());
+        group.set_attribute("delta_aic", form.fit.aic() - best_aic);
+        group.set_attribute("delta_bic", form.fit.bic() - best_bic);
+        std::printf("  %-15s %-28s exponent %8.4f +- %.4f (scaled %.4f)  chi2/dof %6.2f  dAIC %6.2f  dBIC %6.2f\n",
+                    form.name.c_str(), form.formula.c_str(), form.exponent.value, form.exponent.sigma,
+                    form.exponent_sigma_scaled, form.fit.chi2_per_dof(), form.fit.aic() - best_aic,
+                    form.fit.bic() - best_bic);
+    }
+}
+
+// Collapse time and cluster mass per input; with --vs eps the competing forms
+// against eps, with --vs N the first-collapse statistics across N.
+void run_collapse(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
+                  const std::string& versus, const std::string& hazard_data) {
     ResultsFile results(output, "shockgas-analyze collapse", inputs);
+    std::vector<CollapseEvents> runs;
     std::vector<double> inelasticity;
     std::vector<Estimate> time, mass;
     std::unique_ptr<DataFile> file;
     if (!data.empty())
-        file = std::make_unique<DataFile>(data, "inelastic collapse per inelasticity",
-                                          std::vector<std::string>{"eps", "collapse_time", "collapse_time_sigma",
-                                                                   "cluster_mass", "cluster_mass_sigma", "collapsed",
-                                                                   "realizations"});
+        file = std::make_unique<DataFile>(data, "inelastic collapse per input (mean and SE over realizations)",
+                                          std::vector<std::string>{"eps", "particles", "collapse_time",
+                                                                   "collapse_time_sigma", "cluster_mass",
+                                                                   "cluster_mass_sigma", "collapsed", "realizations",
+                                                                   "collapse_time_spread"});
     for (std::size_t k = 0; k < inputs.size(); ++k) {
-        const auto summary = summarize_collapse(read_collapse_events(inputs[k]));
+        runs.push_back(read_collapse_events(inputs[k]));
+        const auto summary = summarize_collapse(runs.back());
         inelasticity.push_back(summary.inelasticity);
         time.push_back(summary.time);
         mass.push_back(summary.cluster_mass);
         auto group = results.section("collapse" + std::to_string(k));
         group.set_attribute("inelasticity", summary.inelasticity);
+        group.set_attribute("particles", summary.particles);
         set_estimate(group, "collapse_time", summary.time);
         set_estimate(group, "cluster_mass", summary.cluster_mass);
+        group.set_attribute("collapse_time_spread", summary.time_spread);
         group.set_attribute("collapsed", static_cast<std::int64_t>(summary.collapsed));
         if (file)
-            file->row({summary.inelasticity, summary.time.value, summary.time.sigma, summary.cluster_mass.value,
-                       summary.cluster_mass.sigma, static_cast<double>(summary.collapsed),
-                       static_cast<double>(summary.realizations)});
-        std::printf("eps %-8g collapse time %.4g +- %.2g, cluster mass %.4g +- %.2g (%zu/%zu collapsed)\n",
-                    summary.inelasticity, summary.time.value, summary.time.sigma, summary.cluster_mass.value,
-                    summary.cluster_mass.sigma, summary.collapsed, summary.realizations);
+            file->row({summary.inelasticity, static_cast<double>(summary.particles), summary.time.value,
+                       summary.time.sigma, summary.cluster_mass.value, summary.cluster_mass.sigma,
+                       static_cast<double>(summary.collapsed), static_cast<double>(summary.realizations),
+                       summary.time_spread});
+        std::printf("eps %-8g N %-8lld collapse time %.4g +- %.2g (spread %.2g), cluster mass %.4g +- %.2g "
+                    "(%zu/%zu collapsed)\n",
+                    summary.inelasticity, static_cast<long long>(summary.particles), summary.time.value,
+                    summary.time.sigma, summary.time_spread, summary.cluster_mass.value, summary.cluster_mass.sigma,
+                    summary.collapsed, summary.realizations);
     }
-    if (inputs.size() >= 2) {
-        auto group = results.section("scaling_in_eps");
-        const auto time_fit = fit_against_inelasticity(inelasticity, time);
-        const auto mass_fit = fit_against_inelasticity(inelasticity, mass);
-        set_power_law(group, "collapse_time", time_fit);
-        set_power_law(group, "cluster_mass", mass_fit);
-        std::printf("collapse time ~ eps^(%.3f +- %.3f), cluster mass ~ eps^(%.3f +- %.3f)\n", time_fit.slope,
-                    time_fit.slope_sigma(), mass_fit.slope, mass_fit.slope_sigma());
+    if (versus == "eps" && inputs.size() >= 2) {
+        std::printf("collapse time against eps:\n");
+        set_collapse_forms(results, "time_forms", fit_collapse_forms(CollapseQuantity::time, inelasticity, time));
+        std::printf("cluster mass against eps:\n");
+        set_collapse_forms(results, "mass_forms",
+                           fit_collapse_forms(CollapseQuantity::cluster_mass, inelasticity, mass));
+    }
+    if (versus == "N" && inputs.size() >= 2) {
+        const auto scaling = fit_first_collapse_scaling(runs);
+        auto group = results.section("first_collapse");
+        set_power_law(group, "mean_time", scaling.mean_time);
+        set_power_law(group, "cluster_mass", scaling.cluster_mass);
+        group.set_attribute("hazard_exponent", scaling.hazard.slope);
+        group.set_attribute("hazard_exponent_sigma", scaling.hazard.slope_sigma());
+        group.set_attribute("hazard_prefactor", std::exp(scaling.hazard.intercept));
+        set_estimate(group, "predicted_mean_time_exponent", scaling.predicted_mean_time_exponent);
+        group.set_attribute("gumbel_min_regions", gumbel_min_regions);
+        group.set_attribute("gumbel_runs", static_cast<std::int64_t>(scaling.gumbel_runs));
+        if (scaling.gumbel_runs >= 2) {
+            group.set_attribute("gumbel_intercept", scaling.gumbel.intercept);
+            group.set_attribute("gumbel_chi2_per_dof", scaling.gumbel.chi2_per_dof());
+            set_estimate(group, "gumbel_tau", scaling.gumbel_tau);
+            set_estimate(group, "gumbel_predicted_spread", scaling.gumbel_predicted_spread);
+            set_estimate(group, "gumbel_measured_spread", scaling.gumbel_measured_spread);
+            std::printf("%zu runs with N/<m> >= %g: <t_collapse> = %.4g - (%.4g +- %.2g) ln N (chi2/dof %.2f); Gumbel "
+                        "spread pi tau/sqrt 6 = %.4g +- %.2g, measured %.4g +- %.2g\n",
+                        scaling.gumbel_runs, gumbel_min_regions, scaling.gumbel.intercept, scaling.gumbel_tau.value,
+                        scaling.gumbel_tau.sigma, scaling.gumbel.chi2_per_dof(), scaling.gumbel_predicted_spread.value,
+                        scaling.gumbel_predicted_spread.sigma, scaling.gumbel_measured_spread.value,
+                        scaling.gumbel_measured_spread.sigma);
+        }
+        std::printf("<t_collapse> ~ N^(%.4f +- %.4f) (chi2/dof %.2f); hazard per particle ~ t^(%.3f +- %.3f), "
+                    "which predicts N^(%.4f +- %.4f); <m> ~ N^(%.4f +- %.4f)\n",
+                    scaling.mean_time.slope, scaling.mean_time.slope_sigma(), scaling.mean_time.chi2_per_dof(),
+                    scaling.hazard.slope, scaling.hazard.slope_sigma(), scaling.predicted_mean_time_exponent.value,
+                    scaling.predicted_mean_time_exponent.sigma, scaling.cluster_mass.slope,
+                    scaling.cluster_mass.slope_sigma());
+        if (!hazard_data.empty()) {
+            DataFile curves(hazard_data,
+                            "Nelson-Aalen cumulative collapse hazard per particle H(t)/N, one block per input",
+                            {"time", "hazard_per_particle", "hazard_per_particle_sigma", "particles"});
+            for (const auto& run : runs) {
+                const auto curve = cumulative_hazard_per_particle(run);
+                curves.comment("N = " + std::to_string(run.particles));
+                for (std::size_t i = 0; i < curve.time.size(); ++i)
+                    curves.row({curve.time[i], curve.per_particle[i], curve.per_particle_sigma[i],
+                                static_cast<double>(run.particles)});
+                curves.blank_line();
+                curves.blank_line();
+            }
+        }
     }
     results.commit();
 }
@@ -368,6 +452,39 @@ void run_compare(const std::string& reference_path, const std::vector<std::strin
         }
     }
     results.commit();
+}
+
+// gamma of the far tail (Eq. (5)) from shockgas-tail output, and ln Phi for gnuplot.
+void run_far_tail(const std::string& input, const std::string& output, const std::string& data, double z_lo,
+                  double z_hi, double window_shift) {
+    const FarTail tail = read_far_tail(input);
+    const TailExponent gamma = estimate_tail_exponent(tail, z_lo, z_hi, window_shift);
+    ResultsFile results(output, "shockgas-analyze far-tail", {input});
+    auto group = results.section("far_tail");
+    set_estimate(group, "gamma", gamma.gamma);
+    group.set_attribute("gamma_window_systematic", gamma.window_systematic);
+    group.set_attribute("gamma_fit_sigma", gamma.fit.gamma_fit_sigma);
+    group.set_attribute("a", gamma.fit.a);
+    group.set_attribute("b", gamma.fit.b);
+    group.set_attribute("c", gamma.fit.c);
+    group.set_attribute("chi2_per_dof", gamma.fit.chi2_per_dof);
+    group.set_attribute("z_lo", gamma.fit.z_lo);
+    group.set_attribute("z_hi", gamma.fit.z_hi);
+    group.set_attribute("time", tail.time);
+    results.commit();
+    std::printf("%s: t = %g, gamma = %.3f +- %.3f (jackknife over chains) +- %.3f (window), fit over z in [%.2f, %.2f], "
+                "%zu bins, chi2/dof = %.2f; a = %.3f, b = %.3f\n",
+                input.c_str(), tail.time, gamma.gamma.value, gamma.gamma.sigma, gamma.window_systematic, gamma.fit.z_lo,
+                gamma.fit.z_hi, gamma.fit.points, gamma.fit.chi2_per_dof, gamma.fit.a, gamma.fit.b);
+    if (data.empty()) return;
+    DataFile table(data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (5) form",
+                   {"z", "log_phi", "log_phi_sigma", "fitted_log_phi"});
+    for (std::size_t i = 0; i < tail.z.size(); ++i) {
+        if (!std::isfinite(tail.log_phi[i])) continue;
+        const double z = tail.z[i];
+        const double fitted = gamma.fit.c - 2.0 * std::log(z) - gamma.fit.a * std::pow(z, gamma.fit.gamma) - gamma.fit.b * z;
+        table.row({z, tail.log_phi[i], tail.log_phi_sigma[i], z > 0.0 ? fitted : NAN});
+    }
 }
 
 }  // namespace
@@ -434,10 +551,20 @@ int main(int argc, char** argv) {
                        "compressive runs at most this many expanding pairs apart are one shock")
         ->capture_default_str();
 
-    auto* collapse = app.add_subcommand("collapse", "collapse time and cluster mass per eps (delta = 0 runs)");
-    collapse->add_option("inputs", inputs, "shockgas-sim outputs, one per eps")->required()->check(CLI::ExistingFile);
+    std::string versus = "eps", hazard;
+    auto* collapse = app.add_subcommand(
+        "collapse", "collapse time and cluster mass per input (delta = 0 runs); forms against eps, or statistics across N");
+    collapse->add_option("inputs", inputs, "shockgas-sim outputs, one per eps (--vs eps) or per N (--vs N)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    collapse->add_option("--vs", versus,
+                         "what the inputs vary: eps (fit t ~ eps^x, eps^-3/2 (ln 1/eps)^y, eps^-3/2, McNamara-Young; "
+                         "the same for the mass) or N (first-collapse statistics)")
+        ->check(CLI::IsMember({"eps", "N"}))
+        ->capture_default_str();
     collapse->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
     collapse->add_option("--data", data, "collapse table for gnuplot");
+    collapse->add_option("--hazard", hazard, "with --vs N: cumulative hazard per particle H(t)/N, one block per N");
 
     std::string reference, curves;
     auto* compare = app.add_subcommand("compare", "deviation of T(t) from a reference run, with cost (the speed/accuracy trade)");
@@ -448,6 +575,16 @@ int main(int argc, char** argv) {
     compare->add_option("--data", data, "table: delta, cost, deviation, departure time");
     compare->add_option("--curves", curves, "deviation against time, one block per input");
 
+    double z_lo = 2.0, z_hi = 6.0, window_shift = 0.25;
+    auto* far_tail = app.add_subcommand("far-tail", "tail exponent gamma of Phi from shockgas-tail output");
+    far_tail->add_option("input", input, "shockgas-tail output")->required()->check(CLI::ExistingFile);
+    far_tail->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
+    far_tail->add_option("--data", data, "ln Phi(z) and the fit for gnuplot");
+    far_tail->add_option("--z-lo", z_lo, "fit window start")->capture_default_str();
+    far_tail->add_option("--z-hi", z_hi, "fit window end")->capture_default_str();
+    far_tail->add_option("--window-shift", window_shift, "window systematic: both ends moved by +- this")
+        ->capture_default_str();
+
     if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
     try {
         // Refuse an unwritable output before the work, naming it (not a temporary file).
@@ -456,8 +593,9 @@ int main(int argc, char** argv) {
         if (*crossover) run_crossover(inputs, output, data, crossover_rule);
         if (*scaling) run_scaling(inputs, output, data, tail_rule);
         if (*shocks) run_shocks(input, output, data, shock_rule);
-        if (*collapse) run_collapse(inputs, output, data);
+        if (*collapse) run_collapse(inputs, output, data, versus, hazard);
         if (*compare) run_compare(reference, inputs, output, data, curves);
+        if (*far_tail) run_far_tail(input, output, data, z_lo, z_hi, window_shift);
     } catch (const InputError& error) {  // every error a user's input causes: one form, exit 2
         fmt::print(stderr, "shockgas-analyze: error: {}\n", error.what());
         return cli::bad_input;

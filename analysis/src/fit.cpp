@@ -3,17 +3,39 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
+#include <gsl/gsl_multifit.h>
 
 namespace shockgas::analysis {
 
 double LinearFit::slope_sigma() const { return std::sqrt(slope_variance); }
 double LinearFit::intercept_sigma() const { return std::sqrt(intercept_variance); }
 double LinearFit::chi2_per_dof() const {
-    return points > 2 ? chi2 / static_cast<double>(points - 2) : std::numeric_limits<double>::quiet_NaN();
+    return points > parameters ? chi2 / static_cast<double>(points - parameters)
+                               : std::numeric_limits<double>::quiet_NaN();
 }
+double LinearFit::aic() const { return chi2 + 2.0 * static_cast<double>(parameters); }
+double LinearFit::bic() const {
+    return chi2 + static_cast<double>(parameters) * std::log(static_cast<double>(points));
+}
+
+namespace {
+
+// 1/sigma_i^2, after checking that every point is usable.
+std::vector<double> fit_weights(std::span<const double> x, std::span<const double> y, std::span<const double> sigma) {
+    std::vector<double> weight(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (!(sigma[i] > 0.0) || !std::isfinite(sigma[i]) || !std::isfinite(x[i]) || !std::isfinite(y[i]))
+            throw InsufficientData("fit point " + std::to_string(i) + " has a non-finite value or sigma <= 0");
+        weight[i] = 1.0 / (sigma[i] * sigma[i]);  // gsl_fit_wlinear takes w_i = 1/sigma_i^2
+    }
+    return weight;
+}
+
+}  // namespace
 
 LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
                               ErrorModel model) {
@@ -21,12 +43,7 @@ LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double>
         throw std::invalid_argument("weighted_linear_fit: x, y and sigma differ in length");
     if (x.size() < 2)
         throw InsufficientData("a straight-line fit needs at least 2 points, got " + std::to_string(x.size()));
-    std::vector<double> weight(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        if (!(sigma[i] > 0.0) || !std::isfinite(sigma[i]) || !std::isfinite(x[i]) || !std::isfinite(y[i]))
-            throw InsufficientData("fit point " + std::to_string(i) + " has a non-finite value or sigma <= 0");
-        weight[i] = 1.0 / (sigma[i] * sigma[i]);  // gsl_fit_wlinear takes w_i = 1/sigma_i^2
-    }
+    const std::vector<double> weight = fit_weights(x, y, sigma);
     LinearFit fit;
     fit.points = x.size();
     const int status = gsl_fit_wlinear(x.data(), 1, weight.data(), 1, y.data(), 1, x.size(), &fit.intercept,
@@ -41,6 +58,73 @@ LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double>
         fit.intercept_variance *= residual_variance;
         fit.slope_variance *= residual_variance;
         fit.covariance *= residual_variance;
+    }
+    return fit;
+}
+
+MultilinearFit weighted_multilinear_fit(std::span<const double> design, std::size_t parameters,
+                                        std::span<const double> y, std::span<const double> sigma) {
+    const std::size_t points = y.size();
+    if (sigma.size() != points || design.size() != points * parameters)
+        throw std::invalid_argument("weighted_multilinear_fit: design, y and sigma differ in size");
+    if (points <= parameters)
+        throw InsufficientData("a fit of " + std::to_string(parameters) + " parameters needs more points, got " +
+                               std::to_string(points));
+    gsl_matrix* x = gsl_matrix_alloc(points, parameters);
+    gsl_vector* w = gsl_vector_alloc(points);
+    gsl_vector* yv = gsl_vector_alloc(points);
+    gsl_vector* c = gsl_vector_alloc(parameters);
+    gsl_matrix* cov = gsl_matrix_alloc(parameters, parameters);
+    gsl_multifit_linear_workspace* work = gsl_multifit_linear_alloc(points, parameters);
+    MultilinearFit fit;
+    fit.points = points;
+    bool valid = true;
+    for (std::size_t i = 0; i < points; ++i) {
+        valid = valid && sigma[i] > 0.0 && std::isfinite(sigma[i]) && std::isfinite(y[i]);
+        gsl_vector_set(w, i, 1.0 / (sigma[i] * sigma[i]));
+        gsl_vector_set(yv, i, y[i]);
+        for (std::size_t j = 0; j < parameters; ++j) gsl_matrix_set(x, i, j, design[i * parameters + j]);
+    }
+    const int status = valid ? gsl_multifit_wlinear(x, w, yv, c, cov, &fit.chi2, work) : GSL_EINVAL;
+    if (status == GSL_SUCCESS) {
+        for (std::size_t j = 0; j < parameters; ++j) fit.parameters.push_back(gsl_vector_get(c, j));
+        for (std::size_t j = 0; j < parameters; ++j)
+            for (std::size_t k = 0; k < parameters; ++k) fit.covariance.push_back(gsl_matrix_get(cov, j, k));
+    }
+    gsl_multifit_linear_free(work);
+    gsl_matrix_free(cov);
+    gsl_vector_free(c);
+    gsl_vector_free(yv);
+    gsl_vector_free(w);
+    gsl_matrix_free(x);
+    if (status != GSL_SUCCESS)
+        throw InsufficientData(std::string("gsl_multifit_wlinear failed: ") + gsl_strerror(status) +
+                               " (non-finite point or sigma <= 0?)");
+    return fit;
+}
+
+LinearFit fixed_slope_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
+                          double slope) {
+    if (x.size() != y.size() || x.size() != sigma.size())
+        throw std::invalid_argument("fixed_slope_fit: x, y and sigma differ in length");
+    if (x.empty()) throw InsufficientData("a fixed-slope fit needs at least 1 point");
+    const std::vector<double> weight = fit_weights(x, y, sigma);
+    // Minimising sum w (y - a - slope x)^2 over a alone: the weighted mean of
+    // the residuals y - slope x.
+    double weight_sum = 0.0, weighted_sum = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        weight_sum += weight[i];
+        weighted_sum += weight[i] * (y[i] - slope * x[i]);
+    }
+    LinearFit fit;
+    fit.points = x.size();
+    fit.parameters = 1;
+    fit.slope = slope;
+    fit.intercept = weighted_sum / weight_sum;
+    fit.intercept_variance = 1.0 / weight_sum;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const double residual = y[i] - fit.intercept - slope * x[i];
+        fit.chi2 += weight[i] * residual * residual;
     }
     return fit;
 }

@@ -75,40 +75,6 @@ std::vector<std::vector<double>> rescaled_cdfs(const std::vector<VelocityHistogr
     return curves;
 }
 
-// Golden-section minimisation of f on [lo, hi] after a grid search.
-template <class Function>
-double minimise(Function f, double lo, double hi, std::size_t grid = 60) {
-    double best = lo, best_value = std::numeric_limits<double>::infinity();
-    const double step = (hi - lo) / static_cast<double>(grid);
-    for (std::size_t i = 0; i <= grid; ++i) {
-        const double x = lo + step * static_cast<double>(i);
-        const double value = f(x);
-        if (value < best_value) {
-            best_value = value;
-            best = x;
-        }
-    }
-    double a = std::max(lo, best - step), b = std::min(hi, best + step);
-    const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
-    double c = b - golden * (b - a), d = a + golden * (b - a);
-    double fc = f(c), fd = f(d);
-    for (int iteration = 0; iteration < 60 && b - a > 1e-7 * (1.0 + std::abs(best)); ++iteration) {
-        if (fc < fd) {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - golden * (b - a);
-            fc = f(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + golden * (b - a);
-            fd = f(d);
-        }
-    }
-    return (a + b) / 2.0;
-}
 
 }  // namespace
 

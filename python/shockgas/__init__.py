@@ -17,14 +17,14 @@ Every file carries `schema_version`; a version this module does not know is refu
 UnsupportedSchemaVersion, never read on a guess. Layouts: docs/cli-and-output.md; this module:
 docs/python.md. It needs numpy and h5py (Debian: python3-numpy, python3-h5py).
 """
-from ._h5 import Group, decode, open_file, walk
+from ._h5 import DamagedFile, Group, decode, open_file, walk
 from .files import (FILE_KINDS, Checkpoint, Drift, File, Results, Run, attributes, file_kind, kind_of, read,
                     read_checkpoint, read_drift, read_results, read_run, write_initial_condition)
 from .schema import SCHEMA_VERSIONS, SchemaError, UnsupportedSchemaVersion, check_schema_version
 
 __all__ = [
     "read", "read_run", "read_checkpoint", "read_results", "read_drift", "attributes", "kind_of",
-    "write_initial_condition", "walk", "open_file", "decode",
+    "write_initial_condition", "walk", "open_file", "decode", "DamagedFile",
     "Run", "Checkpoint", "Results", "Drift", "File", "Group",
     "SCHEMA_VERSIONS", "SchemaError", "UnsupportedSchemaVersion", "check_schema_version", "FILE_KINDS", "file_kind",
 ]

@@ -29,6 +29,19 @@ def decode_attributes(obj):
     return {name: decode(obj.attrs[name]) for name in obj.attrs}
 
 
+class DamagedFile(OSError):
+    """The file cannot be trusted: it is truncated, or data or metadata fail their checksum (files of
+    schema_version 2 and later carry HDF5's Fletcher32 checksum on every dataset, which HDF5 checks on read)."""
+
+
+def read_dataset(path, dataset):
+    """A dataset's whole value; a read that fails (a checksum mismatch) raises DamagedFile naming both."""
+    try:
+        return dataset[()]
+    except OSError as error:
+        raise DamagedFile(f"{path}: damaged: dataset {dataset.name} cannot be read ({error})") from None
+
+
 @contextlib.contextmanager
 def open_file(path, check_schema=True):
     """The h5py.File, read-only, after checking that this module reads its schema_version (raw
@@ -36,7 +49,7 @@ def open_file(path, check_schema=True):
     try:
         handle = h5py.File(path, "r")
     except OSError as error:
-        raise OSError(f"{path}: cannot be read as HDF5 ({error})") from None
+        raise DamagedFile(f"{path}: cannot be read as HDF5 (damaged, truncated or not HDF5: {error})") from None
     with handle:
         if check_schema:
             check_schema_version(path, decode_attributes(handle))
@@ -94,7 +107,7 @@ def read_group(obj, path="/"):
     for name in sorted(obj.keys(), key=_natural_key):
         child = obj[name]
         if isinstance(child, h5py.Dataset):
-            value = child[()]
+            value = read_dataset(obj.file.filename, child)
             text = isinstance(value, bytes) or (isinstance(value, np.ndarray) and value.dtype.kind in "SO")
             data[name] = decode(value) if text else value  # text as str (lists of str); numbers as numpy
         else:
@@ -113,5 +126,5 @@ def walk(path, raw=False, check_schema=True):
         handle.visit(names.append)
         for name in names:
             obj = handle[name]
-            value = obj[()] if isinstance(obj, h5py.Dataset) else None
+            value = read_dataset(path, obj) if isinstance(obj, h5py.Dataset) else None
             yield "/" + name, attributes(obj), value

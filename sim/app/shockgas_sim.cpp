@@ -4,12 +4,14 @@
 #include <filesystem>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/checkpoint.hpp"
 #include "shockgas/checksum.hpp"
 #include "shockgas/cli.hpp"
 #include "shockgas/distributed.hpp"
@@ -111,7 +113,9 @@ int main(int argc, char** argv) {
                    "run); for an ensemble use --positions / --velocity-distribution");
     app.add_option("--engine", p.engine,
                    "engine: event (event-driven, any r), exact (the sticky gas r = 0: clusters from the variational "
-                   "principle, no event loop) or auto (exact when r = 0, else event)")
+                   "principle, no event loop), passthrough (equal masses, delta > 0, elastic sub-threshold: "
+                   "elastic collisions counted, not processed; pays late in long runs) or auto (exact when r = 0, "
+                   "else event)")
         ->capture_default_str();
     app.add_option("--collapse-speed", p.collapse.collapse_speed,
                    "declare inelastic collapse at an inelastic collision slower than this")
@@ -194,6 +198,17 @@ int main(int argc, char** argv) {
                 fmt::print(stderr, "{}\n", line);
         };
 
+        // One process per checkpoint; then clear what killed runs left.
+        std::unique_ptr<shockgas::CheckpointLock> lock;
+        if (!checkpoint.path.empty()) lock = std::make_unique<shockgas::CheckpointLock>(checkpoint.path);
+        std::vector<std::string> targets;
+        if (session.is_root()) targets.push_back(output);
+        if (!checkpoint.path.empty())
+            targets.insert(targets.end(), {checkpoint.path, shockgas::previous_checkpoint_path(checkpoint.path)});
+        for (const auto& target : targets)
+            for (const auto& stale : shockgas::h5::remove_stale_temporaries(target))
+                checkpoint.note(fmt::format("removed '{}', left by a run that no longer exists", stale));
+
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
         shockgas::ProgressCallback progress;
@@ -218,7 +233,7 @@ int main(int argc, char** argv) {
         const bool mine_interrupted = mine_result.status == "interrupted";
         const auto joined = session.reduce(mine, std::move(mine_result));
         if (!joined) {
-            if (!mine_interrupted && !checkpoint.path.empty()) std::remove(checkpoint.path.c_str());
+            if (!mine_interrupted && !checkpoint.path.empty()) shockgas::remove_checkpoints(checkpoint.path);
             return 0;
         }  // not rank 0: rank 0 writes the file and reports
         const auto& result = *joined;
@@ -226,7 +241,7 @@ int main(int argc, char** argv) {
         shockgas::write_output(output, p, result);
         session.record_provenance(output);
         // The output is safely in place: the checkpoint has served its purpose.
-        if (result.status != "interrupted" && !checkpoint.path.empty()) std::remove(checkpoint.path.c_str());
+        if (result.status != "interrupted" && !checkpoint.path.empty()) shockgas::remove_checkpoints(checkpoint.path);
         if (!quiet) print_table(result);
         fmt::print(stderr, "shockgas-sim: {} ({} engine, {} collisions, {:.2f} s wall, {:.2f} s CPU) -> {}\n",
                    result.status, result.engine, result.total_collisions, result.wall_seconds, result.cpu_seconds,

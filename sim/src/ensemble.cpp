@@ -17,6 +17,7 @@
 
 #include <fmt/format.h>
 
+#include "shockgas/checkpoint.hpp"
 #include "shockgas/event_engine.hpp"
 #include "shockgas/fast_engine.hpp"
 #include "shockgas/observables.hpp"
@@ -67,7 +68,7 @@ public:
         : parameters_(parameters), initial_override_(initial_override), stop_(stop), checkpoint_(checkpoint) {
         result_.times = sample_grid(parameters);
         result_.realizations = parameters.realizations;
-        result_.engine = resolve_engine_name(parameters);
+        result_.engine = resolve_engine_name(parameters, initial_override);
         histogram_times_ = parameters.histogram_times;
         std::sort(histogram_times_.begin(), histogram_times_.end());
         histogram_times_.erase(std::unique(histogram_times_.begin(), histogram_times_.end()), histogram_times_.end());
@@ -84,10 +85,10 @@ public:
         resume_.resize(realizations);
         for (std::size_t k = 0; k < realizations; ++k) {
             live_[k].stop = stop;
+            live_[k].abort = &abort_;
             live_[k].pause = &pause_[k];
         }
-        if (checkpoint_.resume && !checkpoint_.path.empty() && std::filesystem::exists(checkpoint_.path))
-            load_checkpoint();
+        if (checkpoint_.resume && !checkpoint_.path.empty()) resume_from_checkpoint();
     }
 
     EnsembleResult run(const ProgressCallback& progress) {
@@ -112,8 +113,18 @@ public:
             if (progress) progress(snapshot_progress(wall_start));
             const auto now = std::chrono::steady_clock::now();
             if (checkpoints && std::chrono::duration<double>(now - last_checkpoint).count() >= checkpoint_.interval_seconds &&
-                !(stop_ && stop_->load())) {
-                take_checkpoint(wall_start, cpu_start);
+                !halted()) {
+                try {
+                    take_checkpoint(wall_start, cpu_start);
+                } catch (...) {
+                    // A checkpoint that cannot be written (full disk, file-size
+                    // limit) stops the run: the previous checkpoint is kept, so
+                    // the run can be resumed once there is room.
+                    std::lock_guard guard(progress_mutex_);
+                    if (!failure_) failure_ = std::current_exception();
+                    abort_.store(true);
+                    next_.store(parameters_.realizations);
+                }
                 last_checkpoint = std::chrono::steady_clock::now();
             }
         }
@@ -142,10 +153,12 @@ private:
         return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     }
 
+    bool halted() const { return (stop_ && stop_->load()) || abort_.load(); }
+
     void work() {
         for (;;) {
             const std::int64_t k = next_.fetch_add(1);
-            if (k >= parameters_.realizations || (stop_ && stop_->load())) break;
+            if (k >= parameters_.realizations || halted()) break;
             const auto index = static_cast<std::size_t>(k);
             if (finished_[index].load()) continue;  // done before the checkpoint we resumed from
             started_[index].store(true);
@@ -218,7 +231,7 @@ private:
                     out.status = RealizationStatus::collapsed;
                     break;
                 }
-                const bool interrupted = stop_ && stop_->load();
+                const bool interrupted = halted();
                 deposit(k, engine, interrupted);
                 if (interrupted) {
                     out.status = RealizationStatus::interrupted;
@@ -345,38 +358,25 @@ private:
         r.status = "checkpoint";
         r.wall_seconds = previous_wall_seconds_ + seconds_since(wall_start);
         r.cpu_seconds = previous_cpu_seconds_ + cpu_seconds_since(cpu_start);
-        write_checkpoint(checkpoint_.path, checkpoint);
+        save_checkpoint(checkpoint_.path, checkpoint);
         if (checkpoint_.note)
             checkpoint_.note(fmt::format("checkpoint: {} realizations in progress, {} collisions -> {} ({:.2f} s)",
                                          checkpoint.engines.size(), r.total_collisions, checkpoint_.path,
                                          seconds_since(write_start)));
     }
 
-    // Continues from the checkpoint at checkpoint_.path if it is one of this
-    // run made by this code; notes why not otherwise.
-    void load_checkpoint() {
-        Checkpoint checkpoint = read_checkpoint(checkpoint_.path);
+    // Continues from the newest usable checkpoint of this run made by this
+    // code (checkpoint.hpp verifies it and says why it passes one over).
+    void resume_from_checkpoint() {
+        std::optional<Checkpoint> loaded =
+            load_checkpoint(checkpoint_.path, parameters_, result_.times, checkpoint_.note);
+        if (!loaded) return;
+        Checkpoint& checkpoint = *loaded;
         auto note = [&](const std::string& text) {
             if (checkpoint_.note) checkpoint_.note(text);
         };
-        if (checkpoint.signature != run_signature(parameters_)) {
-            note(fmt::format("ignoring checkpoint '{}': it belongs to a run with other parameters; starting from "
-                             "t = 0 (it will be overwritten)",
-                             checkpoint_.path));
-            return;
-        }
-        if (checkpoint.version != build_info().version) {
-            note(fmt::format("ignoring checkpoint '{}': written by shockgas {}, this is {}; starting from t = 0",
-                             checkpoint_.path, checkpoint.version, build_info().version));
-            return;
-        }
         const EnsembleResult& r = checkpoint.result;
         const std::size_t samples = result_.times.size();
-        if (r.times != result_.times) throw InputError("checkpoint '" + checkpoint_.path + "': sample times differ");
-        const std::size_t cells = outputs_.size() * samples;
-        if (r.realization_status.size() != outputs_.size() ||
-            std::any_of(tables.begin(), tables.end(), [&](Table table) { return (r.*table).size() != cells; }))
-            throw InputError("checkpoint '" + checkpoint_.path + "': datasets do not match its realizations and times");
         const auto bins = static_cast<std::size_t>(parameters_.histogram_bins) + 2;
         const double resume_time = checkpoint_time(checkpoint);
         std::int64_t finished = 0;
@@ -389,8 +389,6 @@ private:
             RealizationOutput& out = outputs_[k];
             out.status = status;
             out.samples_done = checkpoint.samples_done[k];
-            if (out.samples_done < 0 || out.samples_done > static_cast<std::int64_t>(samples))
-                throw InputError("checkpoint '" + checkpoint_.path + "': impossible samples_done");
             const auto row = static_cast<std::ptrdiff_t>(k * samples);
             for (const Table table : tables)
                 std::copy_n((r.*table).begin() + row, samples, (result_.*table).begin() + row);
@@ -429,7 +427,7 @@ private:
         for (const auto& state : resume_) resumed += state ? 1 : 0;
         note(fmt::format("resuming from '{}': {} realizations done, {} continue (the furthest from t = {:.6g}), {} "
                          "start anew",
-                         checkpoint_.path, finished, resumed, resume_time,
+                         checkpoint.source, finished, resumed, resume_time,
                          parameters_.realizations - finished - static_cast<std::int64_t>(resumed)));
     }
 
@@ -508,7 +506,8 @@ private:
     std::uint64_t epoch_ = 0;                                  // checkpoints requested; guarded by progress_mutex_
     double previous_cpu_seconds_ = 0.0;  // spent before the checkpoint we resumed from
     double previous_wall_seconds_ = 0.0;
-    std::exception_ptr failure_;  // the first worker exception, guarded by progress_mutex_
+    std::exception_ptr failure_;  // the first worker or checkpoint exception, guarded by progress_mutex_
+    std::atomic<bool> abort_{false};  // raised on failure: every realization stops between two events
     std::atomic<std::int64_t> next_{0};
     std::atomic<std::int64_t> done_{0};
     int threads_ = 1;

@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <algorithm>
 #include <numeric>
+#include <regex>
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -21,13 +26,67 @@ struct SilenceHdf5Errors {
 };
 const SilenceHdf5Errors silence_hdf5_errors;
 
+// Why the last HDF5 call failed, from HDF5's error stack: the system's
+// message when a read or write of the file failed (HDF5's file driver records
+// "errno = 28, error message = 'No space left on device'"), "checksum
+// mismatch" when data or metadata fail their checksum, "truncated file" when
+// the file ends before its recorded end; empty otherwise.
+std::string failure_cause() {
+    struct Found {
+        std::string system, checksum, truncated;
+    } found;
+    H5Ewalk2(
+        H5E_DEFAULT, H5E_WALK_DOWNWARD,
+        [](unsigned, const H5E_error2_t* error, void* data) -> herr_t {
+            auto& f = *static_cast<Found*>(data);
+            const std::string text = error->desc ? error->desc : "";
+            static const std::regex errno_pattern(R"(errno = (\d+))");
+            std::smatch match;
+            if (f.system.empty() && std::regex_search(text, match, errno_pattern))
+                f.system = std::strerror(std::stoi(match[1].str()));
+            if (text.find("checksum") != std::string::npos)
+                f.checksum = "checksum mismatch";
+            if (text.find("truncated file") != std::string::npos) f.truncated = "truncated file";
+            return 0;
+        },
+        &found);
+    if (!found.system.empty()) return found.system;
+    if (!found.checksum.empty()) return found.checksum;
+    return found.truncated;
+}
+
+[[noreturn]] void fail(const std::string& what) {
+    const std::string cause = failure_cause();
+    if (cause.empty()) throw Error(what);
+    throw Error(what + ": " + cause, cause);
+}
+
 hid_t check(hid_t id, const std::string& what) {
-    if (id < 0) throw Error(what);
+    if (id < 0) fail(what);
     return id;
 }
 
 void check_status(herr_t status, const std::string& what) {
-    if (status < 0) throw Error(what);
+    if (status < 0) fail(what);
+}
+
+// Refuses, before allocating, a dataset that declares more values than its
+// file could hold (found by fuzzing: 1.7e11 bytes declared by a 2 kB file):
+// data cannot be larger than the file unless compressed, and 1000x leaves
+// room for compressed files written by other tools.
+void check_declared_size(hid_t dataset, const std::string& where, const std::vector<hsize_t>& dims,
+                         std::size_t element_size) {
+    hsize_t file_size = 0;
+    {
+        const Handle file(H5Iget_file_id(dataset), H5Fclose);
+        if (file.valid()) H5Fget_filesize(file.id(), &file_size);
+    }
+    const hsize_t count = std::accumulate(dims.begin(), dims.end(), hsize_t{1}, std::multiplies<>());
+    const hsize_t capacity = (1000 * file_size + (hsize_t{1} << 20)) / std::max<std::size_t>(element_size, 1);
+    for (const hsize_t d : dims)
+        if (d > capacity || count > capacity)
+            throw Error(fmt::format("dataset {} declares {} values, more than a {}-byte file can hold", where, count,
+                                    file_size));
 }
 
 // No access or modification times in object headers: identical data give
@@ -44,6 +103,31 @@ Handle untimed_group_properties() {
     return plist;
 }
 
+// Elements per chunk, at most: 8 MiB of doubles, well below HDF5's 4 GiB
+// chunk limit, and few chunks for the datasets of a large run.
+constexpr hsize_t max_chunk_elements = hsize_t{1} << 20;
+
+// Chunked (whole trailing rows, as many leading rows as fit) with the
+// Fletcher32 checksum, which HDF5 checks whenever the chunk is read.
+Handle checksummed_dataset_properties(const std::vector<hsize_t>& dims) {
+    Handle plist = untimed_dataset_properties();
+    std::vector<hsize_t> chunk = dims;
+    const hsize_t row = std::accumulate(dims.begin() + 1, dims.end(), hsize_t{1}, std::multiplies<>());
+    chunk[0] = std::clamp<hsize_t>(max_chunk_elements / std::max<hsize_t>(row, 1), 1, dims[0]);
+    check_status(H5Pset_chunk(plist.id(), static_cast<int>(chunk.size()), chunk.data()), "cannot set chunks");
+    check_status(H5Pset_fletcher32(plist.id()), "cannot set the Fletcher32 checksum");
+    return plist;
+}
+
+// No chunk cache while writing: each H5Dwrite then writes its chunks at once
+// and reports a failed write itself, rather than at a close whose failure
+// would be easy to lose.
+Handle uncached_dataset_access() {
+    Handle plist(check(H5Pcreate(H5P_DATASET_ACCESS), "cannot create HDF5 property list"), H5Pclose);
+    check_status(H5Pset_chunk_cache(plist.id(), 0, 0, 1.0), "cannot set the chunk cache");
+    return plist;
+}
+
 template <typename T>
 void write_dataset(hid_t group, const std::string& where, const std::string& name, const std::vector<T>& data,
                    std::vector<hsize_t> dims, hid_t file_type, hid_t memory_type) {
@@ -54,13 +138,16 @@ void write_dataset(hid_t group, const std::string& where, const std::string& nam
     Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                        "cannot create dataspace for " + where),
                  H5Sclose);
-    const Handle plist = untimed_dataset_properties();
-    Handle dataset(check(H5Dcreate2(group, name.c_str(), file_type, space.id(), H5P_DEFAULT, plist.id(), H5P_DEFAULT),
+    // An empty dataset has no data to checksum (and cannot be chunked).
+    const Handle plist = count > 0 ? checksummed_dataset_properties(dims) : untimed_dataset_properties();
+    const Handle access = uncached_dataset_access();
+    Handle dataset(check(H5Dcreate2(group, name.c_str(), file_type, space.id(), H5P_DEFAULT, plist.id(), access.id()),
                          "cannot create dataset " + where),
                    H5Dclose);
     if (count > 0)
         check_status(H5Dwrite(dataset.id(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
                      "cannot write dataset " + where);
+    check_status(dataset.close_checked(), "cannot write dataset " + where);
 }
 
 template <typename T>
@@ -82,20 +169,7 @@ std::vector<T> read_dataset(hid_t group, const std::string& where, const std::st
     std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
     H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
     const hsize_t count = std::accumulate(dims.begin(), dims.end(), hsize_t{1}, std::multiplies<>());
-    // A corrupt or hostile file can declare dimensions far beyond its own size
-    // (found by fuzzing: 1.7e11 bytes from a 2 kB file). Refuse before
-    // allocating: data cannot be larger than the file unless compressed, and
-    // 1000x leaves room for compressed files written by other tools.
-    hsize_t file_size = 0;
-    {
-        const Handle file(H5Iget_file_id(dataset.id()), H5Fclose);
-        if (file.valid()) H5Fget_filesize(file.id(), &file_size);
-    }
-    const hsize_t capacity = (1000 * file_size + (hsize_t{1} << 20)) / sizeof(T);
-    for (const hsize_t d : dims)
-        if (d > capacity || count > capacity)
-            throw Error(fmt::format("dataset {} declares {} values, more than a {}-byte file can hold", where, count,
-                                    file_size));
+    check_declared_size(dataset.id(), where, dims, sizeof(T));
     std::vector<T> data(count);
     if (count > 0)
         check_status(H5Dread(dataset.id(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
@@ -229,8 +303,8 @@ void Group::set_attribute(const std::string& name, const std::vector<double>& va
 
 void Group::set_attribute(const std::string& name, const std::string& value) {
     replace_attribute(id(), name);
-    // Variable-length UTF-8 (schema 2): h5py and netCDF readers give str, not
-    // bytes; schema 1's fixed-length strings are still read (attribute_string).
+    // Variable-length UTF-8 (schema 3): h5py and netCDF readers give str, not
+    // bytes; schema 1-2 fixed-length strings are still read (attribute_string).
     Handle type(check(H5Tcopy(H5T_C_S1), "cannot create string type"), H5Tclose);
     H5Tset_size(type.id(), H5T_VARIABLE);
     H5Tset_cset(type.id(), H5T_CSET_UTF8);
@@ -325,16 +399,92 @@ File File::create(const std::string& path, const std::string& display) {
     Handle plist(check(H5Pcreate(H5P_FILE_CREATE), "cannot create HDF5 property list"), H5Pclose);
     // Timestamps off for the root group as well (see untimed_dataset_properties).
     H5Pset_obj_track_times(plist.id(), false);
-    const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, plist.id(), H5P_DEFAULT);
-    if (id < 0) throw Error(fmt::format("cannot create HDF5 file '{}'", display.empty() ? path : display));
+    // The HDF5 1.10 file format: its superblock, object headers and chunk
+    // indices carry checksums, which HDF5 verifies when it reads them.
+    Handle access(check(H5Pcreate(H5P_FILE_ACCESS), "cannot create HDF5 property list"), H5Pclose);
+    check_status(H5Pset_libver_bounds(access.id(), H5F_LIBVER_V110, H5F_LIBVER_V110), "cannot select file format");
+    const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, plist.id(), access.id());
+    if (id < 0) fail(fmt::format("cannot create HDF5 file '{}'", display.empty() ? path : display));
     return File(Handle(id, H5Fclose), path, display.empty() ? path : display);
 }
+
+namespace {
+
+// Reads every dataset of a file once, so that HDF5 checks each checksum
+// (Fletcher32 on data, the format's own on metadata); throws Error naming
+// the first object that fails.
+void verify_every_dataset(const Group& root, const std::string& path) {
+    struct Walk {
+        std::string failed;  // "dataset /x: cause"
+    } walk;
+    const herr_t status = H5Lvisit(
+        root.id(), H5_INDEX_NAME, H5_ITER_INC,
+        [](hid_t group, const char* name, const H5L_info_t* info, void* data) -> herr_t {
+            auto& w = *static_cast<Walk*>(data);
+            if (info->type != H5L_TYPE_HARD) return 0;
+            const std::string where = std::string("/") + name;
+            const Handle object(H5Oopen(group, name, H5P_DEFAULT), H5Oclose);
+            if (!object.valid()) {
+                w.failed = "object " + where + ": " + failure_cause();
+                return -1;
+            }
+            if (H5Iget_type(object.id()) != H5I_DATASET) return 0;
+            const Handle type(H5Dget_type(object.id()), H5Tclose);
+            const Handle space(H5Dget_space(object.id()), H5Sclose);
+            if (!type.valid() || !space.valid()) {
+                w.failed = "dataset " + where + ": " + failure_cause();
+                return -1;
+            }
+            // Variable-length data live outside the dataset; nothing of ours.
+            if (H5Tget_class(type.id()) == H5T_VLEN || H5Tis_variable_str(type.id()) > 0) return 0;
+            const int rank = std::max(H5Sget_simple_extent_ndims(space.id()), 0);
+            std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+            H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr);
+            const std::size_t element = H5Tget_size(type.id());
+            try {
+                check_declared_size(object.id(), where, dims, element);
+            } catch (const Error& error) {
+                w.failed = error.what();
+                return -1;
+            }
+            const hsize_t count = std::accumulate(dims.begin(), dims.end(), hsize_t{1}, std::multiplies<>());
+            if (count == 0 || element == 0) return 0;
+            std::vector<unsigned char> buffer(count * element);
+            if (H5Dread(object.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0) {
+                const std::string cause = failure_cause();
+                w.failed = "dataset " + where + (cause.empty() ? " cannot be read" : ": " + cause);
+                return -1;
+            }
+            return 0;
+        },
+        &walk);
+    if (!walk.failed.empty()) throw Error(fmt::format("'{}' is damaged: {}", path, walk.failed), "damaged");
+    if (status < 0) {
+        const std::string cause = failure_cause();
+        throw Error(fmt::format("'{}' is damaged: {}", path, cause.empty() ? "its groups cannot be read" : cause),
+                    "damaged");
+    }
+}
+
+}  // namespace
 
 File File::open_read(const std::string& path) {
     if (!std::filesystem::exists(path)) throw Error(fmt::format("file '{}' does not exist", path));
     const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (id < 0) throw Error(fmt::format("'{}' is not a readable HDF5 file", path));
-    return File(Handle(id, H5Fclose), path, path);
+    if (id < 0) {
+        const std::string cause = failure_cause();
+        throw Error(cause.empty() ? fmt::format("'{}' is not a readable HDF5 file", path)
+                                  : fmt::format("'{}' is not a readable HDF5 file: {}", path, cause),
+                    cause.empty() ? "unreadable" : "damaged");
+    }
+    File file(Handle(id, H5Fclose), path, path);
+    try {
+        verify_every_dataset(file.root(), path);
+    } catch (const Error& error) {
+        if (error.cause == "damaged") throw;
+        throw Error(fmt::format("'{}' is damaged: {}", path, error.what()), "damaged");
+    }
+    return file;
 }
 
 Group File::root() const {
@@ -344,6 +494,13 @@ Group File::root() const {
 
 AtomicFile::AtomicFile(std::string target_path)
     : target_(std::move(target_path)), temporary_(target_ + ".tmp." + std::to_string(::getpid())) {
+    // Beyond a file-size limit (ulimit -f) the kernel would kill the process
+    // with SIGXFSZ; ignored, the write fails with EFBIG and is reported.
+    static const bool file_size_signal_ignored = [] {
+        std::signal(SIGXFSZ, SIG_IGN);
+        return true;
+    }();
+    (void)file_size_signal_ignored;
     // Errors name the output the user asked for, not the temporary file.
     check_writable(target_);
     file_ = std::make_unique<File>(File::create(temporary_, target_));
@@ -354,17 +511,72 @@ AtomicFile::~AtomicFile() {
     if (!committed_) std::remove(temporary_.c_str());
 }
 
-void AtomicFile::commit() {
+namespace {
+
+// Forces a file's bytes (or a directory's entries) to the disk.
+void sync_to_disk(const std::string& path, bool directory) {
+    const int descriptor = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
+    if (descriptor < 0) return;
+    const int status = ::fsync(descriptor);
+    const int error = errno;
+    ::close(descriptor);
+    if (status != 0 && !directory)
+        throw Error(fmt::format("cannot write '{}': {}", path, std::strerror(error)), std::strerror(error));
+}
+
+}  // namespace
+
+void AtomicFile::commit(const std::string& keep_previous_as) {
     if (committed_) return;
-    H5Fflush(file_->root().id(), H5F_SCOPE_GLOBAL);
-    file_.reset();  // close before the rename so every byte is on disk
+    {
+        const Group root = file_->root();
+        check_status(H5Fflush(root.id(), H5F_SCOPE_GLOBAL), fmt::format("cannot write '{}'", temporary_));
+    }
+    // Close before the rename so every byte is written; a close that cannot
+    // write what HDF5 still holds is a failed write.
+    Handle handle = file_->release();
+    file_.reset();
+    check_status(handle.close_checked(), fmt::format("cannot write '{}'", temporary_));
+    sync_to_disk(temporary_, false);
+    namespace fs = std::filesystem;
     std::error_code error;
-    std::filesystem::rename(temporary_, target_, error);
+    if (!keep_previous_as.empty() && fs::exists(target_)) fs::rename(target_, keep_previous_as, error);
+    if (!error) fs::rename(temporary_, target_, error);
     if (error) {
         std::remove(temporary_.c_str());
-        throw Error(fmt::format("cannot move '{}' to '{}': {}", temporary_, target_, error.message()));
+        throw Error(fmt::format("cannot move '{}' to '{}': {}", temporary_, target_, error.message()),
+                    error.message());
     }
+    const fs::path directory = fs::path(target_).parent_path();
+    sync_to_disk(directory.empty() ? "." : directory.string(), true);
     committed_ = true;
+}
+
+void rethrow_write_failure(const std::string& target, const Error& error) {
+    if (error.cause.empty()) throw Error(fmt::format("cannot write '{}': {}", target, error.what()));
+    throw Error(fmt::format("cannot write '{}': {} (temporary file removed)", target, error.cause), error.cause);
+}
+
+std::vector<std::string> remove_stale_temporaries(const std::string& target) {
+    namespace fs = std::filesystem;
+    const fs::path path(target);
+    const fs::path directory = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    const std::string prefix = path.filename().string() + ".tmp.";
+    std::vector<std::string> removed;
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(directory, error)) {
+        const std::string name = entry.path().filename().string();
+        if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+        const std::string digits = name.substr(prefix.size());
+        if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+        const auto pid = static_cast<pid_t>(std::stol(digits));
+        // Only a process that no longer exists; ours and any live one's are in use.
+        if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+        std::error_code remove_error;
+        if (fs::remove(entry.path(), remove_error))
+            removed.push_back(path.parent_path().empty() ? name : (directory / name).string());
+    }
+    return removed;
 }
 
 void check_writable(const std::string& path) {

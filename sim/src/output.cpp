@@ -134,10 +134,7 @@ void write_result(h5::Group& root, const SimulationParameters& parameters, const
 }  // namespace
 
 void write_output(const std::string& path, const SimulationParameters& parameters, const EnsembleResult& result) {
-    h5::AtomicFile file(path);
-    auto root = file.root();
-    write_result(root, parameters, result);
-    file.commit();
+    h5::write_atomically(path, [&](h5::Group& root) { write_result(root, parameters, result); });
 }
 
 TimeSeries read_timeseries(const std::string& path) {
@@ -231,7 +228,7 @@ OutputFile read_result(const h5::Group& root) {
     r.kinetic_energy = series.read_doubles("kinetic_energy");
     r.realization_status = series.read_integers("realization_status");
     const auto snapshots = root.open_group("snapshots");
-    // Groups are numbered (schema 1: 0, 1, ...; schema 2 zero-padded): open them in numeric order.
+    // Groups are numbered (schemas 1-2: 0, 1, ...; schema 3 zero-padded): open them in numeric order.
     for (const auto& name : snapshots.numbered_children()) {
         const auto group = snapshots.open_group(name);
         r.snapshots.push_back({group.attribute_integer("realization"), read_state(group)});
@@ -382,9 +379,9 @@ std::string run_signature(const SimulationParameters& p) {
 // signature, the samples each realization has done, the CPU and wall time
 // spent so far, and one group per unfinished realization with its engine
 // state (reals and integers as datasets, doubles stored bit for bit).
-void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
-    h5::AtomicFile file(path);
-    auto root = file.root();
+namespace {
+
+void write_checkpoint_into(h5::Group& root, const Checkpoint& checkpoint) {
     write_result(root, checkpoint.parameters, checkpoint.result);
     auto group = root.create_group("checkpoint");
     group.set_attribute("run_signature", run_signature(checkpoint.parameters));
@@ -401,7 +398,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
         auto integers = state.create_group("integers");
         for (const auto& [name, values] : snapshot.integers) integers.write(name, values);
     }
-    file.commit();
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint, const std::string& keep_previous_as) {
+    h5::write_atomically(path, [&](h5::Group& root) { write_checkpoint_into(root, checkpoint); }, keep_previous_as);
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
@@ -413,6 +415,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     out.parameters = std::move(partial.parameters);
     out.result = std::move(partial.result);
     out.version = std::move(partial.version);
+    out.source = path;
     const auto group = root.open_group("checkpoint");
     out.signature = group.attribute_string("run_signature");
     out.samples_done = group.read_integers("samples_done");

@@ -121,6 +121,12 @@ add_test(NAME cli.small_run
 set_tests_properties(cli.small_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "complete \\(event engine")
 
+# The pass-through engine by name: the same table and a complete file.
+add_test(NAME cli.passthrough_run
+         COMMAND ${_sim} -N 1000 -r 0.9 -d 0.01 -t 100 -R 2 --engine passthrough -o "${_cli_dir}/passthrough.h5")
+set_tests_properties(cli.passthrough_run PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "complete \\(passthrough engine")
+
 # A batch log (stderr not a terminal, as under ctest) gets whole progress lines, at least the last.
 add_test(NAME cli.progress_in_logs
          COMMAND ${_sim} -N 1000 -t 100 -R 2 -q --progress-interval 30 -o "${_cli_dir}/progress.h5")
@@ -151,6 +157,8 @@ shockgas_cli_error(config_bad_restitution "restitution" --config "${_cli_dir}/co
 shockgas_cli_error(config_missing_file "no_such_config" --config "${_cli_dir}/no_such_config.toml")
 shockgas_cli_error(engine_exact_inelastic "engine exact solves only the sticky gas" --engine exact -r 0.5 -N 10)
 shockgas_cli_error(engine_unknown "engine must be" --engine warp -N 10)
+shockgas_cli_error(engine_passthrough_sticky "engine passthrough cannot run this: sticky sub-threshold"
+                   --engine passthrough -r 0.5 -d 0.01 --subthreshold sticky -N 10)
 shockgas_cli_error(particles_not_a_number "particles|abc" -N abc)
 shockgas_cli_error(particles_too_many "below 2\\^31" -N 3000000000)
 shockgas_cli_error(unknown_option "frobnicate" -N 10 --frobnicate 3)
@@ -177,6 +185,13 @@ if(SHOCKGAS_PYTHON)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/sigkill_resume_test.sh ${_sim} ${SHOCKGAS_PYTHON}
                    ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/sigkill")
   set_tests_properties(cli.sigkill_resume_bit_identical PROPERTIES LABELS cli TIMEOUT 300)
+endif()
+# --- issue 19: faults that must not lose work or change results ---
+if(SHOCKGAS_PYTHON)
+  add_test(NAME cli.faults.damaged_checkpoint
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/damaged_checkpoint_test.sh ${_sim} ${SHOCKGAS_PYTHON}
+                   ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/damaged_checkpoint")
+  set_tests_properties(cli.faults.damaged_checkpoint PROPERTIES LABELS cli TIMEOUT 300)
 endif()
 shockgas_cli_error(checkpoint_interval_negative "checkpoint-interval" -N 10 --checkpoint-interval -1)
 shockgas_cli_error(checkpoint_unwritable "directory .* does not exist" -N 10 --checkpoint "${_cli_dir}/absent_dir/c.h5")

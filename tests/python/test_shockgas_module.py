@@ -73,8 +73,8 @@ class Runs(unittest.TestCase):
             self.assertIs(type(r.attrs[name]), str, name)
         self.assertEqual(r.attrs["status"], "complete")
         self.assertIs(type(r.attrs["particles"]), int)
-        self.assertEqual(r.schema_version, 2)
-        # Schema 2: h5py itself (not only this module) gives text as str, and
+        self.assertEqual(r.schema_version, 3)
+        # Schema 3: h5py itself (not only this module) gives text as str, and
         # the numbered groups sort in time order by name (zero-padded).
         objects = list(shockgas.walk(path("whole.h5"), raw=True))  # raw: h5py's own values
         self.assertIs(type(objects[0][1]["status"]), str)
@@ -176,7 +176,7 @@ class Refusals(unittest.TestCase):
         with self.assertRaises(shockgas.UnsupportedSchemaVersion) as raised:
             shockgas.read_run(newer)
         message = str(raised.exception)
-        for needed in ("newer.h5", "schema_version 99", "(1, 2)", "newer than this module"):
+        for needed in ("newer.h5", "schema_version 99", "(1, 2, 3)", "newer than this module"):
             self.assertIn(needed, message)
         with self.assertRaises(shockgas.UnsupportedSchemaVersion):
             shockgas.attributes(newer)

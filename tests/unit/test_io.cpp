@@ -173,7 +173,7 @@ TEST(InitFile, HostileFilesFoundByFuzzingAreRefusedBeforeAllocating) {
 namespace {
 
 TEST(H5, NumberedGroupsReadInNumericOrderPaddedOrNot) {
-    // Schema 1 wrote 0, 1, ..., 10 (HDF5 lists them 0, 1, 10, 2); schema 2 pads them.
+    // Schemas 1-2 wrote 0, 1, ..., 10 (HDF5 lists them 0, 1, 10, 2); schema 3 pads them.
     EXPECT_EQ(shockgas::h5::numbered_name(7, 12), "07");
     EXPECT_EQ(shockgas::h5::numbered_name(0, 1), "0");
     EXPECT_EQ(shockgas::h5::numbered_name(99, 100), "99");

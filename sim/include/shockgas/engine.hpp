@@ -35,10 +35,12 @@ struct LiveStatus {
     std::atomic<double> time{0.0};
     std::atomic<std::uint64_t> collisions{0};
     const std::atomic<bool>* stop = nullptr;
+    const std::atomic<bool>* abort = nullptr;  // the driver gives up (a checkpoint could not be written)
     const std::atomic<bool>* pause = nullptr;
 
     bool halt_requested() const {
         return (stop != nullptr && stop->load(std::memory_order_relaxed)) ||
+               (abort != nullptr && abort->load(std::memory_order_relaxed)) ||
                (pause != nullptr && pause->load(std::memory_order_relaxed));
     }
 };
@@ -73,10 +75,13 @@ public:
     virtual void restore(const EngineSnapshot& snapshot);
 };
 
-// The engine selected by parameters.engine ("auto" resolved here).
+// The engine selected by parameters.engine ("auto" resolved here; see
+// engine.cpp for the rule). `initial`, when known, is the run's start (an init
+// file's masses decide whether the pass-through engine applies); without it
+// the generated start (unit masses) is assumed.
 std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, const InitialCondition& initial,
                                     LiveStatus* live);
-std::string resolve_engine_name(const SimulationParameters& parameters);
+std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial = nullptr);
 // The engine that can restore `snapshot` (snapshot.kind), built from the
 // realization's initial condition and then restored.
 std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const SimulationParameters& parameters,

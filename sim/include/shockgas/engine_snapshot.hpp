@@ -32,6 +32,12 @@ void save_ring(const std::vector<Record>& records, EngineSnapshot& out) {
     }
 }
 
+// Refuses a snapshot written by another engine class, naming both.
+inline void expect_kind(const EngineSnapshot& snapshot, const char* kind, const std::string& engine) {
+    if (snapshot.kind != kind)
+        throw InputError("checkpoint: engine state of kind '" + snapshot.kind + "' given to the " + engine + " engine");
+}
+
 // The array `name` of exactly `size` values; InputError naming it otherwise.
 template <class Map>
 const typename Map::mapped_type& array(const Map& arrays, const std::string& name, std::size_t size,

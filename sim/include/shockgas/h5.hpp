@@ -15,6 +15,11 @@ namespace shockgas::h5 {
 
 struct Error : std::runtime_error {
     using std::runtime_error::runtime_error;
+    // The operating system's reason, when HDF5 failed because a read or write
+    // of the file failed ("No space left on device", "File too large"), or
+    // "checksum mismatch" when stored data fail their checksum; else empty.
+    Error(const std::string& what, std::string reason) : std::runtime_error(what), cause(std::move(reason)) {}
+    std::string cause;
 };
 
 // Owns one hid_t and closes it with the matching H5*close.
@@ -37,6 +42,13 @@ public:
     }
     ~Handle() { close(); }
     hid_t id() const { return id_; }
+    // Closes now and reports failure (a destructor cannot): closing a dataset
+    // or file is when HDF5 writes what it still holds.
+    herr_t close_checked() {
+        const herr_t status = id_ >= 0 && closer_ != nullptr ? closer_(id_) : 0;
+        id_ = H5I_INVALID_HID;
+        return status;
+    }
     bool valid() const { return id_ >= 0; }
 
 private:
@@ -49,7 +61,10 @@ private:
 };
 
 // A group (the file's root is a group too). Datasets are written whole, with
-// no object timestamps, so equal data give byte-identical datasets.
+// no object timestamps, so equal data give byte-identical datasets. Every
+// non-empty dataset is chunked and carries HDF5's Fletcher32 checksum, which
+// HDF5 verifies on every read; the file format (HDF5 1.10) checksums the
+// metadata too, so damaged bytes anywhere are detected rather than read.
 class Group {
 public:
     // file: the file's name as a user knows it, added to every error message.
@@ -64,7 +79,7 @@ public:
     Group open_group(const std::string& name) const;
     std::vector<std::string> children() const;
     // Children named by numbers (0, 1, ... or zero-padded 00, 01, ...), in
-    // numeric order: schema 1 wrote 0 .. 10 unpadded, schema 2 pads them.
+    // numeric order: schemas 1-2 wrote 0 .. 10 unpadded, schema 3 pads them.
     std::vector<std::string> numbered_children() const;
     bool is_group(const std::string& name) const;
 
@@ -101,9 +116,12 @@ class File {
 public:
     // Truncates. display: the name errors give (AtomicFile: the target, not its temporary).
     static File create(const std::string& path, const std::string& display = "");
-    static File open_read(const std::string& path);  // throws Error naming the path if unreadable
+    // Throws Error naming the path if unreadable, truncated or damaged: every
+    // dataset is read once to check its checksum before the file is trusted.
+    static File open_read(const std::string& path);
     Group root() const;
     const std::string& path() const { return path_; }
+    Handle release() { return std::move(handle_); }  // the caller closes it (and checks the close)
 
 private:
     File(Handle handle, std::string path, std::string display)
@@ -113,8 +131,12 @@ private:
     std::string display_;
 };
 
-// Writes to a temporary file beside the target and renames it into place on
-// commit(), so a killed or failed run never leaves a file that looks complete.
+// Writes to a temporary file TARGET.tmp.<pid> beside the target and renames
+// it into place on commit(), so a killed or failed run never leaves a file
+// that looks complete. A write that fails (full disk, file-size limit: the
+// constructor makes SIGXFSZ ignored so that such a write fails with EFBIG
+// rather than killing the process) throws Error with the cause, and the
+// temporary file is removed.
 class AtomicFile {
 public:
     explicit AtomicFile(std::string target_path);
@@ -122,7 +144,10 @@ public:
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
     Group root() const { return file_->root(); }
-    void commit();
+    // Flushes, closes and syncs the temporary file, then renames it onto the
+    // target. With keep_previous_as, an existing target is first renamed to
+    // that name (the previous generation of a checkpoint).
+    void commit(const std::string& keep_previous_as = "");
 
 private:
     std::string target_;
@@ -136,8 +161,31 @@ private:
 // h5py's keys(), a notebook) as well as read back here.
 std::string numbered_name(std::size_t index, std::size_t count);
 
+// Writes a whole file through AtomicFile; any failure is rethrown as one
+// Error naming the target and the cause, after the temporary file is removed.
+template <typename Fill>
+void write_atomically(const std::string& target, Fill&& fill, const std::string& keep_previous_as = "");
+
+// Removes TARGET.tmp.<pid> files beside target whose process <pid> is gone
+// (left by a killed run); returns their names, for a note.
+std::vector<std::string> remove_stale_temporaries(const std::string& target);
+
 // Checks that a file can be created at path (its directory exists and is
 // writable) before a long run starts; throws Error naming the path otherwise.
 void check_writable(const std::string& path);
+
+[[noreturn]] void rethrow_write_failure(const std::string& target, const Error& error);
+
+template <typename Fill>
+void write_atomically(const std::string& target, Fill&& fill, const std::string& keep_previous_as) {
+    try {
+        AtomicFile file(target);
+        auto root = file.root();
+        fill(root);
+        file.commit(keep_previous_as);
+    } catch (const Error& error) {
+        rethrow_write_failure(target, error);
+    }
+}
 
 }  // namespace shockgas::h5

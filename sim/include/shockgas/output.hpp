@@ -67,8 +67,11 @@ struct Checkpoint {
     std::map<std::int64_t, EngineSnapshot> engines;  // realization index -> state
     std::string version;                             // provenance of the writer
     std::string signature;                           // run_signature of the writer's parameters
+    std::string source;                              // the file it was read from
 };
-void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+// Written atomically; with keep_previous_as, an existing checkpoint at path is
+// first renamed to that name (checkpoint.hpp keeps two generations).
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint, const std::string& keep_previous_as = "");
 Checkpoint read_checkpoint(const std::string& path);  // throws InputError / h5::Error naming the problem
 // <output>.checkpoint: where shockgas-sim keeps the checkpoint of <output>.
 std::string checkpoint_path_for(const std::string& output_path);

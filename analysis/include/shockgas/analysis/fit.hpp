@@ -5,7 +5,10 @@
 // correlations between the points of one realization that the fit ignores.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <functional>
 #include <optional>
 #include <span>
@@ -40,10 +43,19 @@ struct LinearFit {
     double covariance = 0.0;  // cov(intercept, slope)
     double chi2 = 0.0;        // sum of (y - intercept - slope x)^2 / sigma^2
     std::size_t points = 0;
+    std::size_t parameters = 2;  // fitted parameters: 2, or 1 when the slope is fixed
 
     double slope_sigma() const;
     double intercept_sigma() const;
-    double chi2_per_dof() const;  // chi2 / (points - 2); NaN for two points
+    double chi2_per_dof() const;  // chi2 / (points - parameters); NaN when no degree of freedom is left
+    // Information criteria for comparing models fitted to the same points with
+    // the same known sigmas (-2 ln L = chi2 + a constant common to all models):
+    // AIC = chi2 + 2k (Akaike 1974), BIC = chi2 + k ln n (Schwarz 1978), k the
+    // fitted parameters, n the points. The model with the lower value is
+    // preferred; a difference of 2 is weak evidence, above 6 strong, above 10
+    // decisive (Kass & Raftery, J. Am. Stat. Assoc. 90, 773 (1995), for BIC).
+    double aic() const;
+    double bic() const;
 };
 
 // Weighted least squares for y = intercept + slope x: minimises
@@ -51,6 +63,13 @@ struct LinearFit {
 // Throws InsufficientData for fewer than two points or a non-positive sigma.
 LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
                               ErrorModel model = ErrorModel::known_sigmas);
+
+// The same least squares with the slope fixed (a one-parameter model):
+// intercept = sum w (y - slope x) / sum w, variance 1 / sum w, w = 1/sigma^2;
+// chi2 as above, parameters = 1, slope_variance = 0. Throws InsufficientData
+// for no points or a non-positive sigma.
+LinearFit fixed_slope_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
+                          double slope);
 
 // Power law y = prefactor x^exponent, fitted as ln y = ln prefactor +
 // exponent ln x with sigma_{ln y} = sigma_y / y (first-order error
@@ -69,6 +88,55 @@ struct Estimate {
 // where theta_(i) is the estimator with sample i left out (estimator(i)) and
 // estimator(nullopt) uses every sample. Needs n >= 2.
 Estimate jackknife(std::size_t samples, const std::function<double(std::optional<std::size_t>)>& estimator);
+
+// Weighted least squares for a model linear in its parameters,
+// y_i = sum_j parameter_j basis_j(x_i) (gsl_multifit_wlinear), sigma as in
+// weighted_linear_fit with ErrorModel::known_sigmas. design is points x
+// parameters, row-major.
+struct MultilinearFit {
+    std::vector<double> parameters;
+    std::vector<double> covariance;  // parameters x parameters, row-major
+    double chi2 = 0.0;
+    std::size_t points = 0;
+};
+MultilinearFit weighted_multilinear_fit(std::span<const double> design, std::size_t parameters,
+                                        std::span<const double> y, std::span<const double> sigma);
+
+// Golden-section minimisation of a one-parameter f on [lo, hi] after a grid
+// search (the nonlinear parameter of the fits that are linear in the rest).
+template <class Function>
+double minimise(Function f, double lo, double hi, std::size_t grid = 60) {
+    double best = lo, best_value = std::numeric_limits<double>::infinity();
+    const double step = (hi - lo) / static_cast<double>(grid);
+    for (std::size_t i = 0; i <= grid; ++i) {
+        const double x = lo + step * static_cast<double>(i);
+        const double value = f(x);
+        if (value < best_value) {
+            best_value = value;
+            best = x;
+        }
+    }
+    double a = std::max(lo, best - step), b = std::min(hi, best + step);
+    const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
+    double c = b - golden * (b - a), d = a + golden * (b - a);
+    double fc = f(c), fd = f(d);
+    for (int iteration = 0; iteration < 60 && b - a > 1e-7 * (1.0 + std::abs(best)); ++iteration) {
+        if (fc < fd) {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - golden * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + golden * (b - a);
+            fd = f(d);
+        }
+    }
+    return (a + b) / 2.0;
+}
 
 // Mean and standard error of the mean (sample standard deviation / sqrt(n)).
 Estimate mean_and_standard_error(std::span<const double> values);

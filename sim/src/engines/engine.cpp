@@ -5,20 +5,42 @@
 #include "shockgas/event_engine.hpp"
 #include "shockgas/exact_engine.hpp"
 #include "shockgas/fast_engine.hpp"
+#include "shockgas/passthrough_engine.hpp"
 
 namespace shockgas {
 
+namespace {
+// The start whose masses decide: the init file's, or the generated start's
+// unit masses.
+InitialCondition masses_of(const InitialCondition* initial) {
+    if (initial != nullptr) return *initial;
+    InitialCondition unit;
+    unit.mass.assign(2, 1.0);
+    return unit;
+}
+}  // namespace
+
 // auto: the exact engine whenever it applies (r = 0: every collision merges,
 // whatever the threshold), since it gives every observable the event engine
-// gives there; the event engine otherwise. Called on the main thread before
-// any realization starts, so an impossible choice is one InputError.
-std::string resolve_engine_name(const SimulationParameters& parameters) {
+// gives there; the event engine otherwise. The pass-through engine is not
+// chosen by auto: it is exact wherever PassThroughEngine::supports holds, but
+// as measured (docs/passthrough-engine.md) it is faster than the windowed
+// event engine only late in a run, when nearly all collisions are elastic,
+// and several times slower in the inelastic early phase, so it is asked for
+// by name. Called on the main thread before any realization starts, so an
+// impossible choice is one InputError.
+std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial) {
     const bool sticky_gas = parameters.collision.restitution == 0.0;
     if (parameters.engine == "auto") return sticky_gas ? "exact" : "event";
     if (parameters.engine == "exact" && !sticky_gas)
         throw InputError(fmt::format("--engine exact solves only the sticky gas r = 0, got r = {}; use --engine "
                                      "event or auto",
                                      parameters.collision.restitution));
+    if (parameters.engine == "passthrough") {
+        const std::string refusal = PassThroughEngine::unsupported_reason(masses_of(initial), parameters.collision,
+                                                                          parameters.collapse);
+        if (!refusal.empty()) throw InputError("--engine passthrough cannot run this: " + refusal);
+    }
     return parameters.engine;
 }
 
@@ -37,6 +59,8 @@ std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const Sim
         engine = std::make_unique<FastEventEngine>(initial, parameters.collision, parameters.collapse, live);
     else if (snapshot.kind == EventEngine::snapshot_kind)
         engine = std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
+    else if (snapshot.kind == PassThroughEngine::snapshot_kind)
+        engine = std::make_unique<PassThroughEngine>(initial, parameters.collision, live);
     else
         throw InputError(fmt::format("checkpoint: unknown engine state kind '{}'", snapshot.kind));
     engine->restore(snapshot);
@@ -45,7 +69,7 @@ std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const Sim
 
 std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, const InitialCondition& initial,
                                     LiveStatus* live) {
-    const std::string name = resolve_engine_name(parameters);
+    const std::string name = resolve_engine_name(parameters, &initial);
     if (name == "event") {
         // The windowed engine gives bit-identical results, faster, wherever it
         // can be exact (FastEventEngine::supports); the global loop otherwise.
@@ -54,6 +78,7 @@ std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, cons
         return std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
     }
     if (name == "exact") return std::make_unique<ExactEngine>(initial, live);
+    if (name == "passthrough") return std::make_unique<PassThroughEngine>(initial, parameters.collision, live);
     throw InputError("engine '" + name + "' is not available in this build");
 }
 

@@ -482,8 +482,7 @@ std::optional<EngineSnapshot> FastEventEngine::snapshot() const {
 }
 
 void FastEventEngine::restore(const EngineSnapshot& snapshot) {
-    if (snapshot.kind != snapshot_kind)
-        throw InputError("checkpoint: engine state of kind '" + snapshot.kind + "' given to the fast event engine");
+    snapshot_io::expect_kind(snapshot, snapshot_kind, "fast event");
     snapshot_io::restore_ring(snapshot, node_);
     const auto& key = snapshot_io::array(snapshot.reals, "key", node_.size(), snapshot);
     for (std::size_t s = 0; s < node_.size(); ++s) node_[s].key = key[s];

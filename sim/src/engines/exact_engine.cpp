@@ -80,6 +80,7 @@
 // focuses groups of particles onto points with contact decided at 2^-30
 // (tests/unit/test_exact_engine.cpp).
 #include "shockgas/exact_engine.hpp"
+#include "shockgas/pav.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -211,20 +212,12 @@ ExactEngine::Block ExactEngine::pooled(const Block& left, const Block& right) co
     return merged;
 }
 
-// Stack PAV (Ayer et al., Ann. Math. Stat. 26, 641 (1955)) along the period,
-// in place: block_[0, top) is the stack of pooled blocks, each non-violating
-// with the one below it.
+// PAV along the period, in place, with this engine's exact violation test
+// (the one stack algorithm, shockgas/pav.hpp).
 void ExactEngine::pool_along_line(double t) {
-    std::size_t top = 0;
-    for (std::size_t next = 0; next < block_.size(); ++next) {
-        Block incoming = block_[next];
-        while (top > 0 && must_pool(block_[top - 1], incoming, t)) {
-            incoming = pooled(block_[top - 1], incoming);
-            --top;
-        }
-        block_[top++] = incoming;
-    }
-    block_.resize(top);
+    pool_adjacent_violators(
+        block_, [this, t](const Block& left, const Block& right) { return must_pool(left, right, t); },
+        [this](const Block& left, const Block& right) { return pooled(left, right); });
 }
 
 // The seam pair (last block, first block one ring length on), then PAV

@@ -222,8 +222,7 @@ std::optional<EngineSnapshot> EventEngine::snapshot() const {
 // The queue is rebuilt from the saved keys: it orders events by (time, slot),
 // a total order, so its pops do not depend on the heap's internal layout.
 void EventEngine::restore(const EngineSnapshot& snapshot) {
-    if (snapshot.kind != snapshot_kind)
-        throw InputError("checkpoint: engine state of kind '" + snapshot.kind + "' given to the event engine");
+    snapshot_io::expect_kind(snapshot, snapshot_kind, name());
     snapshot_io::restore_ring(snapshot, cluster_);
     const auto& key = snapshot_io::array(snapshot.reals, "key", cluster_.size(), snapshot);
     const auto& scalars = snapshot_io::array(snapshot.reals, "scalars", 3, snapshot);

@@ -1,0 +1,205 @@
+// The pass-through engine: elastic sub-threshold collisions as world lines
+// passing through each other (docs/passthrough-engine.md).
+//
+// With equal masses an elastic collision exchanges the two velocities. Swap the
+// labels too and nothing happened: two straight world lines ("lines") crossed.
+// So the engine follows lines, not particles:
+//  * Every crossing of two lines is a physical collision of the two
+//    neighbouring particles there. Its relative speed g = |v_a - v_b| decides
+//    the rule (collision.hpp, classify): below delta the lines pass through
+//    and nothing is computed; at or above it the collision is inelastic, and
+//    the line that keeps going right (the catching one) takes the physical
+//    right particle's new velocity v_a - eps g, the other v_b + eps g, so each
+//    line bends by only eps g.
+//  * The physical ring at time t is the lines sorted by position: particle k is
+//    rank k. The lines are kept in an array in that order (logical index k =
+//    particle k), and a crossing of particles N-1 and 0 across the seam swaps
+//    the first and last entries, shifting their stored positions by -L and +L;
+//    that is the winding.
+//
+// Time advances in steps [s, s + h], h chosen so that a line crosses about
+// `crossings_per_step_target` others per step (and, on a small ring, so that
+// no pair can meet twice). In a step:
+//  1. From the order at s, every pair that will cross inelastically before
+//     s + h if both stay straight is found by scanning each line's reach
+//     ((v - v_min) h to the right); these candidates go to a heap.
+//  2. The candidates run in (time, line, line) order. Before a bend at t_e, the
+//     stretch of the array around the pair is re-sorted by position at t_e,
+//     grown until no line outside it is out of order with it, counting one
+//     collision per swap. The bend's lines then find their new candidates in
+//     the rest of the step; candidates of lines that bent since are stale
+//     (version counters).
+//  3. At s + h the whole array is re-sorted by position (insertion sort: one
+//     swap per crossing), counting one collision per swap.
+// Because a pair's lines are straight between their last sort and the next
+// one, and their relative motion in a step is below L, each swap is exactly one
+// crossing: the collision count includes every elastic collision, exactly.
+//
+// A pair that sorting finds crossed while closing at >= delta is an inelastic
+// crossing whose computed time fell, by rounding, just after the sort's time.
+// It is never swapped by a sort: the next scan sees it closing with a gap of
+// <= 0 and runs it at once, as the event engines run a pair whose gap rounding
+// made negative (ring_kinematics.hpp, contact_time).
+//
+// Valid for equal masses, r in (0, 1], delta > 0 and elastic sub-threshold
+// collisions (supports()); make_engine refuses anything else with one line.
+// No collapse is possible there (every inelastic collision has g >= delta), so
+// collapse() is always empty.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <queue>
+#include <string>
+#include <vector>
+
+#include "shockgas/engine.hpp"
+
+namespace shockgas {
+
+class PassThroughEngine final : public Engine {
+public:
+    PassThroughEngine(const InitialCondition& initial, const CollisionModel& model, LiveStatus* live = nullptr);
+
+    // Empty when the engine is exact for this run; otherwise why not, in a
+    // phrase for a one-line error ("needs equal masses", ...).
+    static std::string unsupported_reason(const InitialCondition& initial, const CollisionModel& model,
+                                          const CollapseCriterion& collapse);
+    static bool supports(const InitialCondition& initial, const CollisionModel& model,
+                         const CollapseCriterion& collapse) {
+        return unsupported_reason(initial, model, collapse).empty();
+    }
+
+    bool advance_to(double t) override;
+    double time() const override { return now_; }
+    void clusters(ClusterState& out) const override;
+    std::uint64_t collisions() const override { return collisions_; }
+    std::int64_t cluster_count() const override { return static_cast<std::int64_t>(line_.size()); }
+    const std::optional<CollapseReport>& collapse() const override { return no_collapse_; }
+    std::string name() const override { return "passthrough"; }
+    // Taken between steps (advance_to returns only there), where the heap is
+    // empty: the lines, the step length and the counters are the whole state.
+    std::optional<EngineSnapshot> snapshot() const override;
+    void restore(const EngineSnapshot& snapshot) override;
+    static constexpr const char* snapshot_kind = "passthrough";
+
+    // Diagnostics for tests and the benchmark.
+    std::uint64_t inelastic_collisions() const { return inelastic_; }
+    std::uint64_t steps() const { return steps_; }
+    std::uint64_t windows() const { return windows_; }
+    // Gaps between physical neighbours at the current time, in ring order from
+    // particle 0; they sum to L up to rounding and are never negative beyond it.
+    std::vector<double> gaps() const;
+
+    // The line record; the heap entries are transient (one step's candidates).
+    static constexpr std::size_t bytes_per_particle() { return sizeof(Line) + sizeof(std::int32_t); }
+
+    // Crossings per line per step the step length aims at: few enough that a
+    // step's scan looks at few lines, many enough that its O(N) sweep is shared
+    // by several crossings (docs/passthrough-engine.md, "Step length").
+    static constexpr double crossings_per_step_target = 0.5;
+    // Crossings per line per window, on average over the ring: a window costs
+    // an O(N) sweep to find its cuts, shared by this many crossings.
+    static constexpr double crossings_per_window_target = 8.0;
+
+private:
+    struct Line {
+        double x;      // position at `clock` (unwrapped; shifted by L at seam swaps)
+        double v;      // velocity
+        double clock;  // time of the last bend
+        std::uint32_t id;       // stable identity of the line, for the heap
+        std::uint32_t version;  // bends so far, to recognize stale candidates
+    };
+    // A line's earliest inelastic crossing in the step, as it was when the
+    // line (the owner) last looked. If the owner has bent since, a newer one
+    // replaced it; if only the other line has, the owner looks again.
+    struct Candidate {
+        double time;
+        std::uint32_t behind;  // the catching line
+        std::uint32_t ahead;
+        std::uint32_t behind_version;
+        std::uint32_t ahead_version;
+        bool owner_is_behind;
+        // Earliest first; ties by line ids, so the order is a total order.
+        bool operator>(const Candidate& o) const {
+            if (time != o.time) return time > o.time;
+            if (behind != o.behind) return behind > o.behind;
+            return ahead > o.ahead;
+        }
+    };
+    // A line taken out of the array for sorting, with its position at the
+    // sort's time on the unwrapped axis of the stretch being sorted.
+    struct Sorted {
+        double position;
+        std::int64_t frame;  // turns of the ring added to the line's own position
+        Line line;
+    };
+
+    double position_at(const Line& line, double t) const { return line.x + line.v * (t - line.clock); }
+    // Position at t of logical index i (any integer): line i mod N, shifted by
+    // L for each time i wraps round the ring.
+    double unwrapped_position(std::int64_t i, double t) const;
+    std::int64_t wrap_index(std::int64_t i) const;
+    void run_window(double window_end);
+    void run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end);
+    void run_step(double step_start, double step_end);
+    void adapt_window(double length, std::uint64_t crossings);
+    void scan_step_candidates(double step_start, double step_end);
+    void scan_line_candidates(std::int64_t index, double t, double step_end);
+    // The meeting time of (behind, ahead), `gap` apart at t, if they cross
+    // inelastically by step_end; infinity otherwise.
+    double meeting_time(const Line& behind, const Line& ahead, double gap, double t, double step_end) const;
+    static void keep_earliest(Candidate& best, const Candidate& found);
+    void bend(const Candidate& candidate, double step_end);
+    Sorted load(std::int64_t i, double t) const;
+    // Re-sorts logical indices [lo, hi] by position at t into buffer_ (stable,
+    // closing inelastic pairs never swapped), growing the stretch until nothing
+    // outside it is out of order with it; counts the swaps as collisions and
+    // returns the final stretch's bounds through lo and hi.
+    void sort_stretch(std::int64_t& lo, std::int64_t& hi, double t, bool linear);
+    void close_ring();
+    void swap_across_seam(bool sink);
+    std::uint64_t insertion_sort(std::vector<Sorted>& buffer, std::size_t begin) const;
+    void write_back(const std::vector<Sorted>& buffer, std::int64_t lo);
+    void update_velocity_bounds();
+
+    std::vector<Line> line_;            // logical (physical ring) order
+    std::vector<std::int32_t> where_;   // line id -> logical index
+    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> heap_;
+    std::vector<Sorted> buffer_;
+    std::vector<double> keys_;  // positions at the step's start, on the block's axis
+    std::vector<Candidate> earliest_;  // per line of the block, during the step's scan
+    // Velocity bounds of the lines at logical indices [16 c, 16 c + 15]: set at
+    // each step's start, widened whenever a line is written into the chunk, so
+    // that a scan can pass over a chunk none of whose lines it could meet
+    // inelastically (a shock's core, all within delta of the line).
+    static constexpr int chunk_shift = 4;
+    std::vector<double> chunk_min_;
+    std::vector<double> chunk_max_;
+    void reset_chunk_bounds(std::int64_t lo, std::int64_t hi);
+    double step_start_ = 0.0;
+    double step_end_ = 0.0;
+    double widest_gap_ = 0.0;        // at the step's start, and the index after it
+    std::int64_t widest_gap_end_ = 0;
+    std::vector<std::int64_t> cuts_;  // the window's uncrossable gaps
+    // The block being run: logical indices [block_lo_, block_hi_] (hi may
+    // exceed N - 1: the block goes round the seam), or the whole ring.
+    std::int64_t block_lo_ = 0;
+    std::int64_t block_hi_ = 0;
+    bool ring_block_ = false;
+    std::uint64_t windows_ = 0;
+    CollisionModel model_;
+    LiveStatus* live_;
+    double ring_length_;
+    double mass_;
+    double now_ = 0.0;
+    double step_ = 0.0;  // the next window's length (adapted)
+    double v_min_ = 0.0;
+    double v_max_ = 0.0;
+    std::uint64_t collisions_ = 0;
+    std::uint64_t inelastic_ = 0;
+    std::uint64_t steps_ = 0;
+    std::optional<CollapseReport> no_collapse_;
+};
+
+}  // namespace shockgas

@@ -1,0 +1,680 @@
+#include "shockgas/passthrough_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "shockgas/collision.hpp"
+#include "shockgas/engine_snapshot.hpp"
+
+namespace shockgas {
+
+namespace {
+constexpr double never = std::numeric_limits<double>::infinity();
+// A step moves any two lines apart by at most (v_max - v_min) h. Keeping that
+// below half the ring means no pair can meet twice in one step, so one swap
+// in a sort is exactly one crossing, on any ring (N = 2 included).
+constexpr double ring_step_fraction = 0.5;
+// Relative slack on scan reaches and sort margins: positions and meeting times
+// carry a few ulps of rounding; a reach widened by this only costs a check of
+// one more line, never a wrong candidate (the meeting time is tested anyway).
+constexpr double reach_slack = 1e-9;
+// The step length changes by at most this factor from one step to the next, so
+// one step with an unusual crossing count cannot swing it.
+constexpr double step_change_limit = 2.0;
+}  // namespace
+
+std::string PassThroughEngine::unsupported_reason(const InitialCondition& initial, const CollisionModel& model,
+                                                  const CollapseCriterion& collapse) {
+    if (model.restitution == 0.0) return "r = 0 is the sticky gas, where every collision merges (--engine exact)";
+    if (!(model.velocity_threshold > 0.0))
+        return "delta = 0 has no elastic collisions to pass through (--engine event)";
+    if (model.subthreshold != Subthreshold::elastic)
+        return "sticky sub-threshold collisions merge particles (--engine event)";
+    for (const double m : initial.mass)
+        if (m != initial.mass.front())
+            return "unequal masses: an elastic collision then does not exchange velocities (--engine event)";
+    // The event engines declare collapse at an inelastic collision slower than
+    // collapse_speed; with g >= delta >= collapse_speed that cannot happen, so
+    // this engine, which reports none, gives the same answer.
+    if (collapse.collapse_speed > model.velocity_threshold)
+        return fmt::format("the collapse speed {} exceeds delta = {} (--engine event)", collapse.collapse_speed,
+                           model.velocity_threshold);
+    if (initial.size() >= std::numeric_limits<std::int32_t>::max())
+        return "more than 2^31 - 1 particles";
+    return "";
+}
+
+PassThroughEngine::PassThroughEngine(const InitialCondition& initial, const CollisionModel& model, LiveStatus* live)
+    : model_(model), live_(live), ring_length_(initial.ring_length) {
+    validate(initial);
+    const auto n = static_cast<std::size_t>(initial.size());
+    mass_ = initial.mass.front();
+    line_.resize(n);
+    where_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        line_[k] = {initial.position[k], initial.velocity[k], 0.0, static_cast<std::uint32_t>(k), 0};
+        where_[k] = static_cast<std::int32_t>(k);
+    }
+    const std::size_t chunks = (n >> chunk_shift) + 1;
+    chunk_min_.assign(chunks, 0.0);
+    chunk_max_.assign(chunks, 0.0);
+    update_velocity_bounds();
+    // First window: about the target number of crossings for a line moving
+    // at the full velocity spread through the mean spacing; adapt_window then
+    // follows the measured crossing rate. Infinite if nothing ever crosses.
+    const double spread = v_max_ - v_min_;
+    const double spacing = ring_length_ / static_cast<double>(n);
+    step_ = spread > 0.0 ? crossings_per_window_target * spacing / spread : std::numeric_limits<double>::infinity();
+}
+
+// Indices stay within one turn of [0, N) (blocks and stretches span less
+// than two turns), so a compare or two replaces the division.
+std::int64_t PassThroughEngine::wrap_index(std::int64_t i) const {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    if (i >= 0 && i < n) return i;
+    if (i >= n && i < 2 * n) return i - n;
+    if (i < 0 && i >= -n) return i + n;
+    const std::int64_t k = i % n;
+    return k < 0 ? k + n : k;
+}
+
+double PassThroughEngine::unwrapped_position(std::int64_t i, double t) const {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    if (i >= 0 && i < n) return position_at(line_[static_cast<std::size_t>(i)], t);
+    const std::int64_t k = wrap_index(i);
+    const auto wraps = (i - k) / n;
+    return position_at(line_[static_cast<std::size_t>(k)], t) + static_cast<double>(wraps) * ring_length_;
+}
+
+void PassThroughEngine::update_velocity_bounds() {
+    const auto [lo, hi] = std::minmax_element(line_.begin(), line_.end(),
+                                              [](const Line& a, const Line& b) { return a.v < b.v; });
+    v_min_ = lo->v;
+    v_max_ = hi->v;
+}
+
+bool PassThroughEngine::advance_to(double t) {
+    while (now_ < t) {
+        if (live_ != nullptr && live_->halt_requested()) return false;
+        const double window_end = now_ + step_ < t ? now_ + step_ : t;
+        run_window(window_end);
+        if (live_ != nullptr) {
+            live_->time.store(now_, std::memory_order_relaxed);
+            live_->collisions.store(collisions_, std::memory_order_relaxed);
+        }
+    }
+    return true;
+}
+
+// One window [now, window_end]. A gap at the window's start wider than the
+// spread's travel in the window, (v_max - v_min) W, cannot be crossed in it:
+// the ring is cut at every such gap, and the blocks between cuts run to the
+// window's end one after the other, each with steps fitted to its own
+// crossing rate (a shock's lines cross each other far more often than lines
+// in the voids between shocks). With no such gap the ring is one block.
+void PassThroughEngine::run_window(double window_end) {
+    const double window_start = now_;
+    const auto n = static_cast<std::int64_t>(line_.size());
+    update_velocity_bounds();
+    const std::uint64_t collisions_before = collisions_;
+    const double uncrossable =
+        (v_max_ - v_min_) * (window_end - window_start) * (1.0 + reach_slack) + reach_slack * ring_length_;
+    cuts_.clear();  // indices k whose gap to k + 1 cannot be crossed
+    double previous = position_at(line_[0], window_start);
+    for (std::int64_t k = 0; k < n; ++k) {
+        const double next = k + 1 < n ? position_at(line_[static_cast<std::size_t>(k + 1)], window_start)
+                                      : position_at(line_[0], window_start) + ring_length_;
+        if (next - previous > uncrossable) cuts_.push_back(k);
+        previous = next;
+    }
+    if (cuts_.empty()) {
+        run_block(0, n - 1, true, window_start, window_end);
+    } else {
+        // Blocks (cut_i, cut_{i+1}], the last one round the seam.
+        const std::vector<std::int64_t> cuts = cuts_;
+        for (std::size_t c = 0; c < cuts.size(); ++c) {
+            const std::int64_t lo = cuts[c] + 1;
+            const std::int64_t hi = c + 1 < cuts.size() ? cuts[c + 1] : cuts[0] + n;
+            run_block(lo, hi, false, window_start, window_end);
+        }
+    }
+    now_ = window_end;
+    ++windows_;
+    adapt_window(window_end - window_start, collisions_ - collisions_before);
+}
+
+// Block [lo, hi] of logical indices from `start` to `end`, in steps of about
+// crossings_per_step_target crossings per line. `ring`: the block is the
+// whole ring with nothing to cut it.
+void PassThroughEngine::run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end) {
+    if (hi == lo && !ring) return;  // a lone line crosses nobody
+    block_lo_ = lo;
+    block_hi_ = hi;
+    ring_block_ = ring;
+    // Velocity bounds of the block: collisions only form convex combinations
+    // of velocities, so they hold for the whole window.
+    v_min_ = std::numeric_limits<double>::infinity();
+    v_max_ = -std::numeric_limits<double>::infinity();
+    for (std::int64_t i = lo; i <= hi; ++i) {
+        const double v = line_[static_cast<std::size_t>(wrap_index(i))].v;
+        v_min_ = std::min(v_min_, v);
+        v_max_ = std::max(v_max_, v);
+    }
+    const double spread = v_max_ - v_min_;
+    if (!(spread > 0.0)) return;  // equal velocities never cross
+    // First step: the block's lines spread over its extent, meeting at about
+    // the spread; then the measured rate.
+    const double extent = std::max(unwrapped_position(hi, start) - unwrapped_position(lo, start),
+                                   ring_length_ / static_cast<double>(line_.size()));
+    const double lines = static_cast<double>(hi - lo + 1);
+    double step = crossings_per_step_target * extent / (lines * spread);
+    const double longest = ring ? ring_step_fraction * ring_length_ / spread : end - start;
+    for (double t = start; t < end;) {
+        step = std::min(step, longest);
+        const double step_end = t + step < end ? t + step : end;
+        const std::uint64_t before = collisions_;
+        run_step(t, step_end);
+        const double per_line = static_cast<double>(collisions_ - before) / lines;
+        const double proposal =
+            per_line > 0.0 ? (step_end - t) * crossings_per_step_target / per_line : step_change_limit * step;
+        step = std::clamp(proposal, step / step_change_limit, step * step_change_limit);
+        t = step_end;
+    }
+}
+
+// The window length for the next window from the crossings of the last one:
+// about crossings_per_window_target per line, changing by at most a factor
+// step_change_limit per window.
+void PassThroughEngine::adapt_window(double length, std::uint64_t crossings) {
+    if (length > 0.0) {
+        const double per_line = static_cast<double>(crossings) / static_cast<double>(line_.size());
+        const double proposal =
+            per_line > 0.0 ? length * crossings_per_window_target / per_line : step_change_limit * step_;
+        step_ = std::clamp(proposal, step_ / step_change_limit, step_ * step_change_limit);
+    }
+}
+
+// Chunk bounds from the velocities now, for every chunk that holds an index
+// of [lo, hi] (lines outside the block in those chunks do not change while
+// the block runs, so their velocities now are bounds too).
+void PassThroughEngine::reset_chunk_bounds(std::int64_t lo, std::int64_t hi) {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    const std::int64_t first = lo;
+    const std::int64_t last = std::min(hi, lo + n - 1);
+    for (std::int64_t i = first; i <= last;) {
+        const std::int64_t k = wrap_index(i);
+        const std::int64_t chunk_begin = (k >> chunk_shift) << chunk_shift;
+        const std::int64_t chunk_end = std::min(chunk_begin + (std::int64_t{1} << chunk_shift), n);
+        double v_lo = line_[static_cast<std::size_t>(chunk_begin)].v;
+        double v_hi = v_lo;
+        for (std::int64_t m = chunk_begin + 1; m < chunk_end; ++m) {
+            v_lo = std::min(v_lo, line_[static_cast<std::size_t>(m)].v);
+            v_hi = std::max(v_hi, line_[static_cast<std::size_t>(m)].v);
+        }
+        chunk_min_[static_cast<std::size_t>(k >> chunk_shift)] = v_lo;
+        chunk_max_[static_cast<std::size_t>(k >> chunk_shift)] = v_hi;
+        i += chunk_end - k;
+    }
+}
+
+// One step [step_start, step_end] of the current block.
+void PassThroughEngine::run_step(double step_start, double step_end) {
+    step_start_ = step_start;
+    step_end_ = step_end;
+    reset_chunk_bounds(block_lo_, block_hi_);
+    scan_step_candidates(step_start, step_end);
+    while (!heap_.empty()) {
+        const Candidate candidate = heap_.top();
+        heap_.pop();
+        const Line& behind = line_[static_cast<std::size_t>(where_[candidate.behind])];
+        const Line& ahead = line_[static_cast<std::size_t>(where_[candidate.ahead])];
+        const bool behind_current = behind.version == candidate.behind_version;
+        const bool ahead_current = ahead.version == candidate.ahead_version;
+        if (behind_current && ahead_current) {
+            bend(candidate, step_end);
+        } else if (candidate.owner_is_behind ? behind_current : ahead_current) {
+            // The other line bent since the owner looked: the owner looks
+            // again from now (crossings it has before now with lines that
+            // changed later were found by those lines when they changed).
+            scan_line_candidates(where_[candidate.owner_is_behind ? candidate.behind : candidate.ahead],
+                                 candidate.time, step_end);
+        }
+    }
+    // The block to step_end. A whole ring is cut after its widest gap at the
+    // step's start: if no line can cross that in the step the sort is linear;
+    // otherwise sort_stretch closes the ring itself.
+    std::int64_t lo = block_lo_;
+    std::int64_t hi = block_hi_;
+    bool linear = true;
+    if (ring_block_) {
+        lo = widest_gap_end_;
+        hi = lo + static_cast<std::int64_t>(line_.size()) - 1;
+        linear = widest_gap_ > (v_max_ - v_min_) * (step_end - step_start) * (1.0 + reach_slack);
+    }
+    sort_stretch(lo, hi, step_end, linear);
+    write_back(buffer_, lo);
+    ++steps_;
+}
+
+// Every line's earliest inelastic crossing in the step, if all lines stayed
+// straight: line k can catch only lines ahead of it within (v_k - v_min) h at
+// the step's start, since nothing ahead moves slower than v_min. Each pair
+// found is offered to both its lines; each line with a crossing goes on the
+// heap once.
+void PassThroughEngine::scan_step_candidates(double step_start, double step_end) {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    const std::int64_t lo = block_lo_;
+    const std::int64_t size = block_hi_ - block_lo_ + 1;
+    const double h = step_end - step_start;
+    const auto block_slot = [size](std::int64_t j) { return static_cast<std::size_t>(j < size ? j : j - size); };
+    keys_.resize(static_cast<std::size_t>(size));
+    for (std::int64_t m = 0; m < size; ++m) keys_[static_cast<std::size_t>(m)] = unwrapped_position(lo + m, step_start);
+    earliest_.assign(static_cast<std::size_t>(size), Candidate{never, 0, 0, 0, 0, false});
+    widest_gap_ = -std::numeric_limits<double>::infinity();
+    widest_gap_end_ = lo;
+    for (std::int64_t m = 0; m < size; ++m) {
+        const auto ms = static_cast<std::size_t>(m);
+        const Line& a = line_[static_cast<std::size_t>(wrap_index(lo + m))];
+        if (ring_block_) {
+            const double gap = (m + 1 < size ? keys_[ms + 1] : keys_[0] + ring_length_) - keys_[ms];
+            if (gap > widest_gap_) {
+                widest_gap_ = gap;
+                widest_gap_end_ = lo + m + 1;
+            }
+        }
+        if (classify(model_, a.v - v_min_) != CollisionKind::inelastic) continue;  // can catch nobody
+        const double slack = reach_slack * (std::abs(keys_[ms]) + (a.v - v_min_) * h);
+        const std::int64_t last = ring_block_ ? m + n - 1 : size - 1;
+        for (std::int64_t j = m + 1; j <= last;) {
+            const std::size_t js = block_slot(j);
+            const double distance = keys_[js] + (j >= size ? ring_length_ : 0.0) - keys_[ms];
+            // Beyond what a can reach before its earliest crossing so far.
+            const double horizon = std::min(earliest_[ms].time, step_end) - step_start;
+            if (distance > (a.v - v_min_) * horizon + slack) break;
+            const std::int64_t index = wrap_index(lo + j);
+            const double chunk_min = chunk_min_[static_cast<std::size_t>(index >> chunk_shift)];
+            if (chunk_min > a.v - model_.velocity_threshold || distance > (a.v - chunk_min) * horizon + slack) {
+                j += std::min<std::int64_t>(((index >> chunk_shift) + 1) << chunk_shift, n) - index;
+                continue;
+            }
+            const Line& b = line_[static_cast<std::size_t>(index)];
+            const double meeting = meeting_time(a, b, distance, step_start, step_end);
+            ++j;
+            if (meeting == never) continue;
+            keep_earliest(earliest_[ms], Candidate{meeting, a.id, b.id, a.version, b.version, true});
+            keep_earliest(earliest_[js], Candidate{meeting, a.id, b.id, a.version, b.version, false});
+        }
+    }
+    for (const Candidate& c : earliest_)
+        if (c.time != never) heap_.push(c);
+}
+
+void PassThroughEngine::keep_earliest(Candidate& best, const Candidate& found) {
+    if (best.time == never || best > found) best = found;
+}
+
+// Pair (behind, ahead), `gap` apart at time t (<= 0: crossed by rounding, so
+// meeting now), both straight from t on: they meet at t + gap / g if they
+// close at g >= delta (Eq. (1)'s rule applies there) and that is before
+// step_end.
+double PassThroughEngine::meeting_time(const Line& behind, const Line& ahead, double gap, double t,
+                                       double step_end) const {
+    const double closing_speed = behind.v - ahead.v;
+    if (classify(model_, closing_speed) != CollisionKind::inelastic) return never;
+    const double meeting = t + std::max(gap, 0.0) / closing_speed;
+    return meeting > step_end ? never : meeting;
+}
+
+// The earliest inelastic crossing of the line at logical index k, looking
+// from time t to step_end: it can meet lines ahead within
+// (v - v_min)(step_end - t) and behind within (v_max - v)(step_end - t).
+// Lines outside the last sorted stretch are in their order of some earlier
+// time of this step, which may be off by the spread's travel in a step, so the
+// scan looks that much further. Pushed on the heap, owned by this line.
+void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double step_end) {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    const Line& line = line_[static_cast<std::size_t>(k)];
+    // Only lines of the block (no other can be met in the window); a ring
+    // block is the whole ring, once round.
+    const std::int64_t at = ring_block_ ? k : block_lo_ + wrap_index(k - block_lo_);  // on the block's axis
+    const std::int64_t last_ahead = ring_block_ ? at + n - 1 : block_hi_;
+    const std::int64_t last_behind = ring_block_ ? at - n + 1 : block_lo_;
+    const double here = unwrapped_position(at, t);
+    const double disorder = (v_max_ - v_min_) * (t - step_start_);  // drift since the lines were last sorted
+    const double slack = reach_slack * (std::abs(here) + disorder);
+    const double threshold = model_.velocity_threshold;
+    Candidate best{never, 0, 0, 0, 0, false};
+    // Only the earliest crossing is wanted, so the search ends sooner once
+    // one is found: nothing beyond (speed) (best - t) can be met before it.
+    const auto horizon = [&] { return std::min(best.time, step_end) - t; };
+    for (std::int64_t j = at + 1; j <= last_ahead;) {
+        const std::int64_t index = wrap_index(j);
+        const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
+        const std::int64_t chunk_rest =
+            std::min<std::int64_t>(((index >> chunk_shift) + 1) << chunk_shift, n) - index;  // indices left in it
+        const double distance = unwrapped_position(j, t) - here;
+        if (distance > (line.v - v_min_) * horizon() + disorder + slack) break;
+        // Pass over the rest of the chunk if none of it is slow enough to be
+        // caught inelastically, or near enough to be caught at all.
+        if (chunk_min_[chunk] > line.v - threshold ||
+            distance > (line.v - chunk_min_[chunk]) * horizon() + 2.0 * disorder + slack) {
+            j += chunk_rest;
+            continue;
+        }
+        const Line& other = line_[static_cast<std::size_t>(index)];
+        const double meeting = meeting_time(line, other, distance, t, step_end);
+        if (meeting != never) keep_earliest(best, {meeting, line.id, other.id, line.version, other.version, true});
+        ++j;
+    }
+    for (std::int64_t j = at - 1; j >= last_behind;) {
+        const std::int64_t index = wrap_index(j);
+        const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
+        const std::int64_t chunk_rest = index - ((index >> chunk_shift) << chunk_shift) + 1;
+        const double distance = here - unwrapped_position(j, t);
+        if (distance > (v_max_ - line.v) * horizon() + disorder + slack) break;
+        if (chunk_max_[chunk] < line.v + threshold ||
+            distance > (chunk_max_[chunk] - line.v) * horizon() + 2.0 * disorder + slack) {
+            j -= chunk_rest;
+            continue;
+        }
+        const Line& other = line_[static_cast<std::size_t>(index)];
+        const double meeting = meeting_time(other, line, distance, t, step_end);
+        if (meeting != never) keep_earliest(best, {meeting, other.id, line.id, other.version, line.version, false});
+        --j;
+    }
+    if (best.time != never) heap_.push(best);
+}
+
+// The inelastic collision of a candidate, at its time t_e.
+void PassThroughEngine::bend(const Candidate& candidate, double step_end) {
+    const double t = candidate.time;
+    const auto n = static_cast<std::int64_t>(line_.size());
+    // The stretch between the two lines: on the block's axis, or the short
+    // way round a ring block.
+    std::int64_t lo = 0;
+    std::int64_t hi = 0;
+    if (ring_block_) {
+        const std::int64_t behind_index = where_[candidate.behind];
+        const std::int64_t ahead_index = where_[candidate.ahead];
+        const std::int64_t forward = wrap_index(ahead_index - behind_index);
+        lo = forward <= n / 2 ? behind_index : ahead_index;
+        hi = forward <= n / 2 ? behind_index + forward : ahead_index + (n - forward);
+    } else {
+        const std::int64_t behind_at = block_lo_ + wrap_index(where_[candidate.behind] - block_lo_);
+        const std::int64_t ahead_at = block_lo_ + wrap_index(where_[candidate.ahead] - block_lo_);
+        lo = std::min(behind_at, ahead_at);
+        hi = std::max(behind_at, ahead_at);
+    }
+    sort_stretch(lo, hi, t, false);
+
+    // Sorting never swaps the closing pair, so the catching line is still
+    // behind: it crosses the other now. Normally they are neighbours; a line
+    // between them sits at the same place up to rounding, and is crossed too.
+    // On a whole ring the other may be ahead across the seam (as on a ring of
+    // two): the catching line moves to the end, the other to the front, and
+    // they cross there.
+    const auto slot_of = [this](std::uint32_t id) {
+        return static_cast<std::size_t>(
+            std::find_if(buffer_.begin(), buffer_.end(), [id](const Sorted& s) { return s.line.id == id; }) -
+            buffer_.begin());
+    };
+    std::size_t behind_slot = slot_of(candidate.behind);
+    std::size_t ahead_slot = slot_of(candidate.ahead);
+    const auto begin = buffer_.begin();
+    if (behind_slot < ahead_slot) {
+        std::rotate(begin + static_cast<std::ptrdiff_t>(behind_slot), begin + static_cast<std::ptrdiff_t>(behind_slot) + 1,
+                    begin + static_cast<std::ptrdiff_t>(ahead_slot) + 1);
+        collisions_ += ahead_slot - behind_slot;
+        behind_slot = ahead_slot;
+        ahead_slot = behind_slot - 1;
+    } else {
+        const std::size_t end = buffer_.size() - 1;
+        std::rotate(begin + static_cast<std::ptrdiff_t>(behind_slot), begin + static_cast<std::ptrdiff_t>(behind_slot) + 1,
+                    buffer_.end());
+        std::rotate(begin, begin + static_cast<std::ptrdiff_t>(ahead_slot), begin + static_cast<std::ptrdiff_t>(ahead_slot) + 1);
+        collisions_ += (end - behind_slot) + ahead_slot;
+        swap_across_seam(false);  // catching last, caught first: they cross at the seam
+        behind_slot = 0;
+        ahead_slot = end;
+    }
+    Sorted& catching = buffer_[behind_slot];  // now the physical right particle
+    Sorted& caught = buffer_[ahead_slot];     // now the physical left particle
+    // The one collision rule (collision.hpp, Eq. (1)). The physical left
+    // particle (on the catching line) leaves with v_b + eps g, the right one
+    // with v_a - eps g; the catching line keeps going right, so it carries the
+    // right particle's velocity and each line bends by eps g.
+    const PostCollision after = collide(mass_, catching.line.v, mass_, caught.line.v, model_.restitution);
+    catching.line.v = after.right_velocity;
+    caught.line.v = after.left_velocity;
+    // Both leave from one point (the caught line's; one ring length apart if
+    // they crossed at the seam), so their order cannot be undone by rounding.
+    catching.position = caught.position - (behind_slot < ahead_slot ? ring_length_ : 0.0);
+    for (Sorted* s : {&catching, &caught}) {
+        s->line.x = s->position - static_cast<double>(s->frame) * ring_length_;
+        s->line.clock = t;
+        ++s->line.version;
+    }
+    ++inelastic_;
+    write_back(buffer_, lo);
+    scan_line_candidates(where_[candidate.behind], t, step_end);
+    scan_line_candidates(where_[candidate.ahead], t, step_end);
+}
+
+PassThroughEngine::Sorted PassThroughEngine::load(std::int64_t i, double t) const {
+    const std::int64_t k = wrap_index(i);
+    const auto frame = (i - k) / static_cast<std::int64_t>(line_.size());
+    const Line& line = line_[static_cast<std::size_t>(k)];
+    return {position_at(line, t) + static_cast<double>(frame) * ring_length_, frame, line};
+}
+
+// Stable insertion sort from `begin` on; one swap per crossing. A pair found
+// crossed while closing at >= delta is left as it is: its inelastic collision
+// is due (see the header).
+std::uint64_t PassThroughEngine::insertion_sort(std::vector<Sorted>& buffer, std::size_t begin) const {
+    std::uint64_t swaps = 0;
+    for (std::size_t i = std::max<std::size_t>(begin, 1); i < buffer.size(); ++i) {
+        if (!(buffer[i - 1].position > buffer[i].position)) continue;
+        const Sorted item = buffer[i];
+        std::size_t j = i;
+        while (j > 0 && buffer[j - 1].position > item.position &&
+               classify(model_, buffer[j - 1].line.v - item.line.v) != CollisionKind::inelastic) {
+            buffer[j] = buffer[j - 1];
+            --j;
+            ++swaps;
+        }
+        buffer[j] = item;
+    }
+    return swaps;
+}
+
+// Indices [lo, hi] sorted by position at t into buffer_ (not yet written
+// back). A line outside the stretch whose position at t is beyond the
+// stretch's smallest (left side) or largest (right side) is out of order with
+// it, and joins it; lines further than the spread's travel in a step cannot
+// be, so the search stops there. `linear`: the caller knows nothing crosses
+// the stretch's ends (a whole ring cut at a gap no line can cross).
+void PassThroughEngine::sort_stretch(std::int64_t& lo, std::int64_t& hi, double t, bool linear) {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    buffer_.clear();
+    for (std::int64_t i = lo; i <= hi; ++i) buffer_.push_back(load(i, t));
+    collisions_ += insertion_sort(buffer_, 0);
+    if (linear) return;
+    const double disorder = (v_max_ - v_min_) * (t - step_start_);  // drift since the lines were last sorted
+    for (;;) {
+        if (static_cast<std::int64_t>(buffer_.size()) >= n) {
+            close_ring();
+            return;
+        }
+        double smallest = buffer_.front().position;
+        double largest = buffer_.front().position;
+        for (const Sorted& s : buffer_) {
+            smallest = std::min(smallest, s.position);
+            largest = std::max(largest, s.position);
+        }
+        const double margin = disorder + reach_slack * (std::abs(smallest) + std::abs(largest) + disorder);
+        // A block's stretch stays in the block; a ring block's may go round.
+        const std::int64_t left_end = ring_block_ ? hi - n + 1 : block_lo_;
+        std::int64_t new_lo = lo;
+        for (std::int64_t j = lo - 1; j >= left_end; --j) {
+            const double p = unwrapped_position(j, t);
+            if (p < smallest - margin) break;
+            if (p > smallest) new_lo = j;
+        }
+        const std::int64_t right_end = ring_block_ ? new_lo + n - 1 : block_hi_;
+        std::int64_t new_hi = hi;
+        for (std::int64_t j = hi + 1; j <= right_end; ++j) {
+            const double p = unwrapped_position(j, t);
+            if (p > largest + margin) break;
+            if (p < largest) new_hi = j;
+        }
+        if (new_lo == lo && new_hi == hi) return;
+        if (new_hi - new_lo + 1 > n) new_hi = new_lo + n - 1;
+        std::vector<Sorted> grown;
+        grown.reserve(static_cast<std::size_t>(new_hi - new_lo + 1));
+        for (std::int64_t i = new_lo; i < lo; ++i) grown.push_back(load(i, t));
+        grown.insert(grown.end(), buffer_.begin(), buffer_.end());
+        for (std::int64_t i = hi + 1; i <= new_hi; ++i) grown.push_back(load(i, t));
+        buffer_.swap(grown);
+        lo = new_lo;
+        hi = new_hi;
+        collisions_ += insertion_sort(buffer_, 0);
+    }
+}
+
+// buffer_ holds the whole ring, sorted on the axis of its first line. The
+// ring is closed if the last line is not beyond the first one's image one
+// ring length on; if it is, it crossed that image (particles N-1 and 0
+// collided across the seam): the two swap places, one ring length moved each
+// way, and sink to their places. Rare: only when no gap is wide enough to cut
+// the ring (small rings, the dense early gas).
+void PassThroughEngine::close_ring() {
+    for (;;) {
+        const Sorted& last = buffer_.back();
+        const Sorted& first = buffer_.front();
+        if (!(last.position > first.position + ring_length_)) return;
+        if (classify(model_, last.line.v - first.line.v) == CollisionKind::inelastic) return;  // due now
+        swap_across_seam(true);
+    }
+}
+
+// The last line of a whole-ring buffer and the first one's image cross: the
+// first takes the last place one ring length on, the last the first place one
+// ring length back; with `sink`, each then sinks to its place (one crossing
+// per swap).
+void PassThroughEngine::swap_across_seam(bool sink) {
+    Sorted& first = buffer_.front();
+    Sorted& last = buffer_.back();
+    std::swap(first, last);
+    first.position -= ring_length_;
+    first.frame -= 1;
+    last.position += ring_length_;
+    last.frame += 1;
+    ++collisions_;
+    if (!sink) return;
+    const auto closing = [this](const Sorted& behind, const Sorted& ahead) {
+        return behind.position > ahead.position &&
+               classify(model_, behind.line.v - ahead.line.v) != CollisionKind::inelastic;
+    };
+    for (std::size_t j = 0; j + 1 < buffer_.size() && closing(buffer_[j], buffer_[j + 1]); ++j) {
+        std::swap(buffer_[j], buffer_[j + 1]);
+        ++collisions_;
+    }
+    for (std::size_t j = buffer_.size() - 1; j > 0 && closing(buffer_[j - 1], buffer_[j]); --j) {
+        std::swap(buffer_[j - 1], buffer_[j]);
+        ++collisions_;
+    }
+}
+
+// The sorted stretch back into the array from logical index lo on. A line's
+// stored position is relative to its index's turn of the ring, so a line that
+// moved across the seam is shifted by the ring length.
+void PassThroughEngine::write_back(const std::vector<Sorted>& buffer, std::int64_t lo) {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    for (std::size_t m = 0; m < buffer.size(); ++m) {
+        const std::int64_t i = lo + static_cast<std::int64_t>(m);
+        const std::int64_t k = wrap_index(i);
+        const std::int64_t frame = (i - k) / n;
+        Line line = buffer[m].line;
+        if (buffer[m].frame != frame) line.x += static_cast<double>(buffer[m].frame - frame) * ring_length_;
+        line_[static_cast<std::size_t>(k)] = line;
+        where_[line.id] = static_cast<std::int32_t>(k);
+        const auto c = static_cast<std::size_t>(k >> chunk_shift);
+        chunk_min_[c] = std::min(chunk_min_[c], line.v);
+        chunk_max_[c] = std::max(chunk_max_[c], line.v);
+    }
+}
+
+void PassThroughEngine::clusters(ClusterState& out) const {
+    out.clear();
+    out.time = now_;
+    const std::size_t n = line_.size();
+    out.position.reserve(n);
+    out.velocity.reserve(n);
+    out.mass.reserve(n);
+    out.first_particle.reserve(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        out.position.push_back(wrap_position(position_at(line_[k], now_), ring_length_));
+        out.velocity.push_back(line_[k].v);
+        out.mass.push_back(mass_);
+        out.first_particle.push_back(static_cast<std::int64_t>(k));
+    }
+}
+
+std::vector<double> PassThroughEngine::gaps() const {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    std::vector<double> out;
+    out.reserve(line_.size());
+    for (std::int64_t k = 0; k < n; ++k) out.push_back(unwrapped_position(k + 1, now_) - unwrapped_position(k, now_));
+    return out;
+}
+
+std::optional<EngineSnapshot> PassThroughEngine::snapshot() const {
+    EngineSnapshot out;
+    out.kind = snapshot_kind;
+    auto& x = out.reals["x"];
+    auto& v = out.reals["v"];
+    auto& clock = out.reals["clock"];
+    auto& id = out.integers["id"];
+    for (const Line& line : line_) {
+        x.push_back(line.x);
+        v.push_back(line.v);
+        clock.push_back(line.clock);
+        id.push_back(line.id);
+    }
+    out.reals["scalars"] = {now_, step_};
+    out.integers["counters"] = {static_cast<std::int64_t>(collisions_), static_cast<std::int64_t>(inelastic_),
+                                static_cast<std::int64_t>(steps_)};
+    return out;
+}
+
+// Versions restart at 0: they only tell candidates of one step apart, and a
+// snapshot is taken between steps.
+void PassThroughEngine::restore(const EngineSnapshot& snapshot) {
+    snapshot_io::expect_kind(snapshot, snapshot_kind, name());
+    const std::size_t n = line_.size();
+    const auto& x = snapshot_io::array(snapshot.reals, "x", n, snapshot);
+    const auto& v = snapshot_io::array(snapshot.reals, "v", n, snapshot);
+    const auto& clock = snapshot_io::array(snapshot.reals, "clock", n, snapshot);
+    const auto& id = snapshot_io::array(snapshot.integers, "id", n, snapshot);
+    const auto& scalars = snapshot_io::array(snapshot.reals, "scalars", 2, snapshot);
+    const auto& counters = snapshot_io::array(snapshot.integers, "counters", 3, snapshot);
+    std::vector<bool> seen(n, false);
+    for (std::size_t k = 0; k < n; ++k) {
+        if (id[k] < 0 || static_cast<std::size_t>(id[k]) >= n || seen[static_cast<std::size_t>(id[k])])
+            throw InputError("checkpoint: passthrough engine state's line ids are not a permutation");
+        seen[static_cast<std::size_t>(id[k])] = true;
+        line_[k] = {x[k], v[k], clock[k], static_cast<std::uint32_t>(id[k]), 0};
+        where_[static_cast<std::size_t>(id[k])] = static_cast<std::int32_t>(k);
+    }
+    now_ = scalars[0];
+    step_ = scalars[1];
+    collisions_ = static_cast<std::uint64_t>(counters[0]);
+    inelastic_ = static_cast<std::uint64_t>(counters[1]);
+    steps_ = static_cast<std::uint64_t>(counters[2]);
+    update_velocity_bounds();
+}
+
+}  // namespace shockgas

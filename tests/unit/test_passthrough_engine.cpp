@@ -1,0 +1,274 @@
+// The pass-through engine (elastic collisions as crossing world lines) against
+// the reference event loop, against the exact crossing count of free lines,
+// and for its invariants and checkpoints. It cannot be bit-identical to the
+// event loop (the same physics rounded differently, amplified by chaos), so
+// the comparison runs until the time at which the reference loop itself
+// diverges from a copy started with one velocity changed by one ulp.
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <string>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "shockgas/engine.hpp"
+#include "shockgas/ensemble.hpp"
+#include "shockgas/event_engine.hpp"
+#include "shockgas/observables.hpp"
+#include "shockgas/passthrough_engine.hpp"
+
+namespace {
+
+using shockgas::ClusterState;
+using shockgas::CollapseCriterion;
+using shockgas::CollisionModel;
+using shockgas::Engine;
+using shockgas::EventEngine;
+using shockgas::InitialCondition;
+using shockgas::PassThroughEngine;
+using shockgas::Subthreshold;
+
+// The agreement criterion: T(t) and the collision count agree to
+// 1e-12 relative at every sample before the chaos horizon. T is a sum of N
+// squares; rounding differences of a few ulps per velocity give ~1e-15.
+constexpr double agreement_tolerance = 1e-12;
+// Two runs count as diverged once their temperatures differ by more than this
+// relative amount (far above rounding, far below any physical difference).
+constexpr double divergence_threshold = 1e-12;
+
+double temperature(const Engine& engine) {
+    ClusterState state;
+    engine.clusters(state);
+    return shockgas::velocity_moments(state.velocity, state.mass).temperature;
+}
+
+struct Trace {
+    std::vector<double> temperature;
+    std::vector<std::uint64_t> collisions;
+};
+
+Trace trace(Engine& engine, const std::vector<double>& times) {
+    Trace out;
+    for (const double t : times) {
+        engine.advance_to(t);
+        out.temperature.push_back(temperature(engine));
+        out.collisions.push_back(engine.collisions());
+    }
+    return out;
+}
+
+// First sample at which two traces differ (temperature beyond the threshold
+// or a different collision count); times.size() if never.
+std::size_t first_difference(const Trace& a, const Trace& b) {
+    for (std::size_t s = 0; s < a.temperature.size(); ++s) {
+        if (a.collisions[s] != b.collisions[s]) return s;
+        if (std::abs(a.temperature[s] - b.temperature[s]) > divergence_threshold * a.temperature[s]) return s;
+    }
+    return a.temperature.size();
+}
+
+InitialCondition random_ring(std::int64_t n, std::uint64_t seed) {
+    return shockgas::generate_initial_condition(n, static_cast<double>(n), seed, 0);
+}
+
+std::vector<double> log_times(double first, double last, int per_decade) {
+    std::vector<double> times;
+    for (int k = 0;; ++k) {
+        const double t = first * std::pow(10.0, k / static_cast<double>(per_decade));
+        if (t > last) break;
+        times.push_back(t);
+    }
+    return times;
+}
+
+// >= 50 seeds, N = 2 ... 200, several (r, delta): the engines agree at every
+// sample before the chaos horizon, measured per case as the first sample at
+// which the reference loop differs from itself under a 1-ulp change of one
+// initial velocity (or the pass-through engine from itself under the same
+// change, whichever is first).
+TEST(PassThroughEngine, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
+    const std::vector<std::int64_t> sizes = {2, 3, 4, 5, 7, 10, 16, 25, 40, 64, 100, 150, 200};
+    const std::vector<CollisionModel> models = {{0.5, 0.05, Subthreshold::elastic},
+                                                {0.8, 0.02, Subthreshold::elastic},
+                                                {0.9, 0.2, Subthreshold::elastic},
+                                                {0.99, 0.01, Subthreshold::elastic}};
+    const auto times = log_times(0.1, 1e4, 8);
+    std::uint64_t compared_collisions = 0;
+    std::size_t compared_samples = 0;
+    int cases = 0;
+    for (std::uint64_t seed = 1; seed <= 54; ++seed) {
+        const std::int64_t n = sizes[seed % sizes.size()];
+        const CollisionModel model = models[seed % models.size()];
+        const InitialCondition start = random_ring(n, seed);
+        InitialCondition nudged = start;
+        nudged.velocity[static_cast<std::size_t>(seed % static_cast<std::uint64_t>(n))] =
+            std::nextafter(nudged.velocity[static_cast<std::size_t>(seed % static_cast<std::uint64_t>(n))], 2.0);
+
+        EventEngine reference(start, model, CollapseCriterion{});
+        EventEngine reference_nudged(nudged, model, CollapseCriterion{});
+        PassThroughEngine passthrough(start, model);
+        PassThroughEngine passthrough_nudged(nudged, model);
+        const Trace ref = trace(reference, times);
+        const Trace ref_nudged = trace(reference_nudged, times);
+        const Trace pass = trace(passthrough, times);
+        const Trace pass_nudged = trace(passthrough_nudged, times);
+        const std::size_t horizon = std::min(first_difference(ref, ref_nudged), first_difference(pass, pass_nudged));
+        for (std::size_t s = 0; s < horizon; ++s) {
+            SCOPED_TRACE(testing::Message() << "seed " << seed << " N " << n << " r " << model.restitution
+                                            << " delta " << model.velocity_threshold << " t " << times[s]);
+            ASSERT_EQ(pass.collisions[s], ref.collisions[s]);
+            ASSERT_NEAR(pass.temperature[s], ref.temperature[s], agreement_tolerance * ref.temperature[s]);
+        }
+        if (horizon > 0) compared_collisions += ref.collisions[horizon - 1];
+        compared_samples += horizon;
+        ++cases;
+    }
+    EXPECT_EQ(cases, 54);
+    // The comparison must have substance: many samples and collisions before
+    // the horizons (measured 2026-11-23; a regression that made the horizon
+    // come at once would otherwise pass silently).
+    EXPECT_GT(compared_samples, 54u * 8u);
+    EXPECT_GT(compared_collisions, 100000u);
+    std::printf("compared %zu samples, %llu collisions before the chaos horizons\n", compared_samples,
+                static_cast<unsigned long long>(compared_collisions));
+}
+
+// With delta above every relative speed all collisions are elastic: the lines
+// are free, and the number of collisions up to t is exactly the number of
+// times each pair's relative position passes a multiple of L (seam included).
+TEST(PassThroughEngine, CountsEveryCrossingOfFreeLinesExactly) {
+    for (const std::int64_t n : {2, 3, 10, 200, 2000}) {
+        const InitialCondition start = random_ring(n, 7 + static_cast<std::uint64_t>(n));
+        const double ring = start.ring_length;
+        const double t = 300.0;
+        PassThroughEngine engine(start, CollisionModel{0.5, 10.0, Subthreshold::elastic});
+        engine.advance_to(t);
+        std::uint64_t expected = 0;
+        for (std::int64_t i = 0; i < n; ++i) {
+            for (std::int64_t j = i + 1; j < n; ++j) {
+                const auto a = static_cast<std::size_t>(i);
+                const auto b = static_cast<std::size_t>(j);
+                // Relative position of j ahead of i: starts in (0, L), moves by
+                // (v_j - v_i) t; each multiple of L passed is one meeting.
+                const double start_gap = start.position[b] - start.position[a];
+                const double end_gap = start_gap + (start.velocity[b] - start.velocity[a]) * t;
+                const double crossings = std::abs(std::floor(end_gap / ring) - std::floor(start_gap / ring));
+                expected += static_cast<std::uint64_t>(crossings);
+            }
+        }
+        EXPECT_EQ(engine.collisions(), expected) << "N = " << n;
+        EXPECT_EQ(engine.inelastic_collisions(), 0u);
+        // Free lines: the temperature never changes.
+        EXPECT_NEAR(temperature(engine), shockgas::velocity_moments(start.velocity, start.mass).temperature, 1e-15);
+    }
+}
+
+// Momentum conserved, energy never rising, the ring in order (gaps >= 0 up
+// to rounding, summing to L), over millions of collisions.
+TEST(PassThroughEngine, KeepsTheInvariants) {
+    const InitialCondition start = random_ring(1000, 99);
+    PassThroughEngine engine(start, CollisionModel{0.9, 0.01, Subthreshold::elastic});
+    const double momentum = std::accumulate(start.velocity.begin(), start.velocity.end(), 0.0);
+    double energy = std::inner_product(start.velocity.begin(), start.velocity.end(), start.velocity.begin(), 0.0);
+    // Rounding of momentum: N values of size <= 1, each collision exact up to
+    // an ulp; 1e-10 absolute is orders above that and far below a lost kick.
+    constexpr double momentum_tolerance = 1e-10;
+    // Gaps are differences of positions of size <= L + |v| t ~ 1e3 to 1e4:
+    // their rounding is ~1e-12; a missed crossing would give -O(1).
+    constexpr double gap_tolerance = 1e-9;
+    for (const double t : log_times(1.0, 3e4, 4)) {
+        engine.advance_to(t);
+        ClusterState state;
+        engine.clusters(state);
+        const double p = std::accumulate(state.velocity.begin(), state.velocity.end(), 0.0);
+        const double e = std::inner_product(state.velocity.begin(), state.velocity.end(), state.velocity.begin(), 0.0);
+        EXPECT_NEAR(p, momentum, momentum_tolerance) << "t = " << t;
+        EXPECT_LE(e, energy * (1.0 + 1e-14)) << "t = " << t;
+        energy = e;
+        const auto gaps = engine.gaps();
+        EXPECT_GE(*std::min_element(gaps.begin(), gaps.end()), -gap_tolerance) << "t = " << t;
+        EXPECT_NEAR(std::accumulate(gaps.begin(), gaps.end(), 0.0), start.ring_length, gap_tolerance * 1000)
+            << "t = " << t;
+    }
+    EXPECT_GT(engine.collisions(), 1000000u);
+    EXPECT_GT(engine.inelastic_collisions(), 10000u);
+}
+
+// A checkpoint between steps resumes bit for bit: the run that stopped at a
+// sample time, saved and restored, goes on exactly as the one that did not.
+TEST(PassThroughEngine, SnapshotResumesBitForBit) {
+    const InitialCondition start = random_ring(500, 5);
+    const CollisionModel model{0.8, 0.02, Subthreshold::elastic};
+    PassThroughEngine straight(start, model);
+    straight.advance_to(700.0);
+    straight.advance_to(2000.0);
+    PassThroughEngine first(start, model);
+    first.advance_to(700.0);
+    const auto snapshot = first.snapshot();
+    ASSERT_TRUE(snapshot.has_value());
+    PassThroughEngine resumed(start, model);
+    resumed.restore(*snapshot);
+    resumed.advance_to(2000.0);
+    ClusterState a;
+    ClusterState b;
+    straight.clusters(a);
+    resumed.clusters(b);
+    EXPECT_EQ(straight.collisions(), resumed.collisions());
+    EXPECT_EQ(a.velocity, b.velocity);
+    EXPECT_EQ(a.position, b.position);
+}
+
+// Through the ensemble driver: a run paused for checkpoints every 20 ms (the
+// driver snapshots and restores the engines) gives bit for bit the result of
+// the run that never paused, and restore_engine knows the engine's kind.
+TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
+    shockgas::SimulationParameters p;
+    p.particles = 5000;
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    p.t_max = 2000.0;
+    p.realizations = 2;
+    p.threads = 2;
+    p.engine = "passthrough";
+    const auto reference = shockgas::run_ensemble(p, nullptr);
+    std::atomic<int> written{0};
+    shockgas::CheckpointOptions options;
+    options.path = "passthrough.checkpoint";
+    std::filesystem::remove(options.path);
+    options.interval_seconds = 0.02;
+    options.note = [&written](const std::string& text) { written += text.rfind("checkpoint:", 0) == 0 ? 1 : 0; };
+    const auto paused = shockgas::run_ensemble(p, nullptr, nullptr, {}, options);
+    EXPECT_GE(written.load(), 2) << "the run ended before checkpoints were taken: the test did not test";
+    EXPECT_EQ(reference.engine, "passthrough");
+    EXPECT_EQ(paused.temperature, reference.temperature);
+    EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
+    std::filesystem::remove(options.path);
+}
+
+TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
+    const InitialCondition start = random_ring(10, 1);
+    EXPECT_EQ(PassThroughEngine::unsupported_reason(start, {0.9, 0.01, Subthreshold::elastic}, {}), "");
+    EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.0, 0.01, Subthreshold::elastic}, {}), "");
+    EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.9, 0.0, Subthreshold::elastic}, {}), "");
+    EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.9, 0.01, Subthreshold::sticky}, {}), "");
+    InitialCondition heavy = start;
+    heavy.mass[3] = 2.0;
+    EXPECT_NE(PassThroughEngine::unsupported_reason(heavy, {0.9, 0.01, Subthreshold::elastic}, {}), "");
+    CollapseCriterion slow_collapse;
+    slow_collapse.collapse_speed = 0.1;
+    EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.9, 0.01, Subthreshold::elastic}, slow_collapse), "");
+    shockgas::SimulationParameters p;
+    p.engine = "passthrough";
+    p.collision = {0.0, 0.01, Subthreshold::elastic};
+    EXPECT_THROW(shockgas::resolve_engine_name(p), shockgas::InputError);
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    EXPECT_EQ(shockgas::resolve_engine_name(p), "passthrough");
+    EXPECT_THROW(shockgas::resolve_engine_name(p, &heavy), shockgas::InputError);
+}
+
+}  // namespace
