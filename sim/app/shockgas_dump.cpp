@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/cli.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/provenance.hpp"
@@ -92,11 +93,7 @@ int main(int argc, char** argv) {
     vars->add_option("--prefix", prefix, "variable name prefix")->capture_default_str();
     bool recursive = false;
     vars->add_flag("--recursive", recursive, "also every subgroup, as PREFIX_<subgroup>_<name>");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& error) {
-        return app.exit(error);
-    }
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-dump"); status >= 0) return status;
     try {
         std::FILE* out = stdout;
         if (!output.empty() && (out = std::fopen(output.c_str(), "w")) == nullptr)

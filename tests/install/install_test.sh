@@ -34,6 +34,12 @@ done
 # The consumer's run: N = 1000, r = 0.9, delta = 1e-2, seed 1, realization 0, to t = 10.
 shockgas-sim -N 1000 -r 0.9 -d 1e-2 -s 1 -R 1 -t 10 -j 1 -q -o run.h5 || fail "the small run"
 [ -s run.h5 ] || fail "no run.h5"
+# shockgas-look from the prefix finds its gnuplot script in share/shockgas/figures.
+if command -v gnuplot >/dev/null; then
+  shockgas-sim -N 2000 -r 0.5 -t 3000 -R 2 -q -o look.h5 2>/dev/null || fail "the run for shockgas-look"
+  shockgas-look look.h5 -o look.png >look.log 2>&1 || { cat look.log; fail "shockgas-look"; }
+  [ -s look.png ] || fail "shockgas-look wrote no look.png"
+fi
 
 # 2. A project of the user's own, built against the installed package.
 cmake -S "$source/tests/install/consumer" -B consumer -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
