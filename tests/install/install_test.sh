@@ -26,7 +26,8 @@ cd "$outside"
 # 1. The programs, from the prefix.
 export PATH="$prefix/bin:$PATH"
 [ "$(command -v shockgas-sim)" = "$prefix/bin/shockgas-sim" ] || fail "shockgas-sim is not the installed one"
-shockgas-sim --help | grep -q -- "--restitution" || fail "shockgas-sim --help lacks --restitution"
+# Not grep -q: it stops reading at the match, and under pipefail the writer's SIGPIPE fails the line.
+shockgas-sim --help | grep -- "--restitution" >/dev/null || fail "shockgas-sim --help lacks --restitution"
 shockgas-sim --version | grep -q "^shockgas-sim " || fail "shockgas-sim --version: $(shockgas-sim --version)"
 for program in shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze; do
   "$program" --help >/dev/null || fail "$program --help"
@@ -72,8 +73,8 @@ grep -q "^%PDF" figures/figures/quick/fig3.pdf || fail "no fig3.pdf from the ins
 # 5. Man pages.
 for program in shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze; do
   page="$prefix/share/man/man1/$program.1.gz"
-  gzip -dc "$page" | grep -q "^\.TH \"\?${program^^}" || fail "$page is not a man page of $program"
+  gzip -dc "$page" | grep "^\.TH \"\?${program^^}" >/dev/null || fail "$page is not a man page of $program"
 done
-gzip -dc "$prefix/share/man/man1/shockgas-sim.1.gz" | grep -q -- "restitution" || fail "shockgas-sim.1 lacks its options"
-gzip -dc "$prefix/share/man/man1/shockgas-analyze.1.gz" | grep -q -- "decay" || fail "shockgas-analyze.1 lacks its subcommands"
+gzip -dc "$prefix/share/man/man1/shockgas-sim.1.gz" | grep -- "restitution" >/dev/null || fail "shockgas-sim.1 lacks its options"
+gzip -dc "$prefix/share/man/man1/shockgas-analyze.1.gz" | grep -- "decay" >/dev/null || fail "shockgas-analyze.1 lacks its subcommands"
 echo "ok: installed into $prefix and used from outside the source tree"
