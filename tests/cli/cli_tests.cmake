@@ -72,6 +72,10 @@ set_tests_properties(cli.analyze_one_realization PROPERTIES LABELS cli FIXTURES_
                      PASS_REGULAR_EXPRESSION "\\+- n/a \\(jackknife: one realization"
                      FAIL_REGULAR_EXPRESSION "nan")
 
+# The pipeline's logs and commands show parameter-file numbers as written (0.9, not 0.90000000000000002).
+add_test(NAME cli.pipeline_numbers_as_written COMMAND ${CMAKE_COMMAND} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/shortest_number_test.cmake)
+set_tests_properties(cli.pipeline_numbers_as_written PROPERTIES LABELS cli)
+
 # tools/shockgas-look: one command from a run to a PNG (fit and P(v,t)), no pipeline variables.
 if(GNUPLOT_EXECUTABLE)
   add_test(NAME cli.setup.look_run
