@@ -70,7 +70,7 @@ configure_file("${PROJECT_SOURCE_DIR}/cmake/installed-pipeline/CMakeLists.txt.in
                "${PROJECT_BINARY_DIR}/installed-pipeline/CMakeLists.txt" @ONLY)
 install(FILES "${PROJECT_BINARY_DIR}/installed-pipeline/CMakeLists.txt"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR} COMPONENT runtime)
-install(FILES "${PROJECT_SOURCE_DIR}/cmake/ShockgasPython.cmake"
+install(FILES "${PROJECT_SOURCE_DIR}/cmake/ShockgasPython.cmake" "${PROJECT_SOURCE_DIR}/cmake/ShortestNumber.cmake"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/cmake COMPONENT runtime)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/paper_targets/"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/paper_targets COMPONENT runtime
@@ -82,6 +82,8 @@ install(DIRECTORY "${PROJECT_SOURCE_DIR}/figures/"
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/python/exact_ballistic.py" "${PROJECT_SOURCE_DIR}/python/sticky_pav.py"
                  "${PROJECT_SOURCE_DIR}/python/refit_check.py"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/python COMPONENT runtime)
+# shockgas-look finds figures/look.gp and style.gp in ../share/shockgas/figures.
+install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/shockgas-look" DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/fidelity_report.py" "${PROJECT_SOURCE_DIR}/tools/reproduce-check"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/tools COMPONENT runtime)
 

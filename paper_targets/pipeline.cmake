@@ -31,6 +31,8 @@ else()
   add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge)
 endif()
 
+include(${PROJECT_SOURCE_DIR}/cmake/ShortestNumber.cmake)  # _shockgas_shortest_number
+
 # Where a run writes before its output is final: <dir>/<name>.running.h5 for
 # <dir>/<name>.h5. An interrupted shockgas-sim (Ctrl-C, SIGTERM, a killed
 # build) still writes its file, marked "interrupted", and exits 130; were that
@@ -80,6 +82,7 @@ function(shockgas_figure_runs figure)
     foreach(j RANGE ${last_option})
       string(JSON key MEMBER "${options}" ${j})
       string(JSON value GET "${options}" ${key})
+      _shockgas_shortest_number("${value}" value)
       if(key STREQUAL "realizations")
         set(realizations ${value})
       else()

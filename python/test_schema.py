@@ -28,7 +28,7 @@ except ImportError as error:  # pragma: no cover
 
 # Attribute kinds the readers rely on (analysis/, python/): strings are parsed as text, the rest as numbers.
 STRING_ATTRIBUTES = {"subthreshold", "sample_times", "snapshot_times", "histogram_times", "init_file",
-                     "positions", "velocity_distribution", "initial_condition", "engine", "status", "program", "version", "compiler",
+                     "init_file_sha256", "positions", "velocity_distribution", "initial_condition", "engine", "status", "program", "version", "compiler",
                      "compiler_flags", "build_type", "hdf5_version", "host", "date"}
 INTEGER_ATTRIBUTES = {"particles", "samples_per_decade", "histogram_bins", "realizations", "seed",
                       "stall_events_min", "schema_version", "total_collisions"}

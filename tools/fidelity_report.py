@@ -1,13 +1,17 @@
 #!/usr/bin/env python3
 """Cost and accuracy of every figure at one fidelity, as Markdown tables.
 
-Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper]
+Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper] [--readme]
 
 Reads the runs (build/paper_targets/<fidelity>/<fig>/*.h5 written by shockgas-sim:
 particles, realizations, cpu_seconds, peak_memory_bytes, total_collisions) and the
 analysis results next to them (decay exponents, crossover and scaling fits,
 shocks, the speed/accuracy comparison), and prints what the README's results and
 cost tables and docs/figures-and-fidelity.md show. Reads only; computes nothing but sums and ratios.
+
+--readme prints instead the rows of the README's results table (| id | quantity | measured | paper /
+theory |) that the build measured, ready to paste, so the README's numbers come from the build at
+that commit rather than from memory.
 """
 import glob
 import os
@@ -16,9 +20,78 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
 import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
 
-build = sys.argv[1] if len(sys.argv) > 1 else "build"
-fidelity = sys.argv[2] if len(sys.argv) > 2 else "quick"
+arguments = [a for a in sys.argv[1:] if a != "--readme"]
+readme = "--readme" in sys.argv[1:]
+build = arguments[0] if len(arguments) > 0 else "build"
+fidelity = arguments[1] if len(arguments) > 1 else "quick"
 base = os.path.join(build, "paper_targets", fidelity)
+
+
+def attrs(path, group):
+    return shockgas.read_results(path)[group].attrs
+
+
+def power(x):
+    """10⁵ for 1e5, 2·10⁴ for 2e4 (the README's way of writing sizes and times); 1643 as it is."""
+    superscript = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+    mantissa, exponent = f"{float(x):.0e}".split("e")
+    if float(f"{mantissa}e{exponent}") != float(x) or abs(int(exponent)) < 3:
+        return f"{float(x):.4g}"
+    tail = "10" + str(int(exponent)).translate(superscript)
+    return tail if mantissa == "1" else f"{mantissa}·{tail}"
+
+
+def readme_rows():
+    """The README's results rows this build measured, in its column order."""
+    rows = []
+    for run, paper in [("r0", "0.67 / 2/3"), ("r0.5", "0.67"), ("r0.9", "0.66")]:
+        path = os.path.join(base, "fig1", run + ".decay.h5")
+        if not os.path.exists(path):
+            continue
+        results = shockgas.read_results(path)
+        d, a = results["decay"].attrs, results.inputs()[0]
+        rows.append(f"| P1 | T ~ t^−α, r = {a['restitution']:g} (N = {power(a['particles'])}, {a['realizations']} "
+                    f"realizations, t ∈ [{power(d['t_lo'])}, "
+                    f"{power(d['t_hi'])}]) | α = {d['exponent']:.3f} ± {d['exponent_sigma']:.3f} ± "
+                    f"{d['exponent_window_systematic']:.3f} (window) | {paper} |")
+    path = os.path.join(base, "fig_crossovers", "crossovers.h5")
+    if os.path.exists(path):
+        d = attrs(path, "scaling_in_eps")
+        rows.append(f"| P2/P3 | t_stick ∝ ε^x | x = {d['t_stick_exponent']:.3f} ± {d['t_stick_exponent_sigma']:.3f} | −3/2 |")
+        rows.append(f"| P3 | T(t_stick) ∝ ε^x | x = {d['temperature_at_stick_exponent']:.3f} ± "
+                    f"{d['temperature_at_stick_exponent_sigma']:.3f} | +1 |")
+    path = os.path.join(base, "fig4", "scaling.h5")
+    if os.path.exists(path):
+        results = shockgas.read_results(path)
+        d = results["collapse"].attrs
+        histograms = [results[g].attrs for g in results.sections if g.startswith("histogram")]
+        rows.append(f"| P7 | P(v,t) = t^(1/3) Φ(v t^(1/3)), best exponent over {len(histograms)} histograms | "
+                    f"β = {d['beta']:.3f} ± {d['beta_sigma']:.3f} | 1/3 |")
+        if histograms:
+            kurtosis = [h["kurtosis"] for h in histograms]
+            rows.append(f"| P7/P8 | kurtosis of Φ, {len(histograms)} histograms | {min(kurtosis):.2f} … "
+                        f"{max(kurtosis):.2f} | 3.041 (exact) |")
+    path = os.path.join(base, "fig5", "shocks.h5")
+    if os.path.exists(path):
+        results = shockgas.read_results(path)
+        d, a = results["shocks0"].attrs, results.inputs()[0]
+        rows.append(f"| P9 | shocks at t = {power(d['time'])}, N = {power(a['particles'])}, r = {a['restitution']:g}, "
+                    f"δ = {power(a['velocity_threshold'])} | {d['shock_count']:.0f} | N t^(−2/3) ≈ "
+                    f"{d['expected_shock_count']:.0f} |")
+        rows.append(f"| P9 | tooth slope × t (Eq. 6, density-corrected) | {d['density_corrected_slope_times_t']:.2f} ± "
+                    f"{d['density_corrected_slope_times_t_sigma']:.2f} | 1 |")
+    return rows
+
+
+if readme:
+    print(f"<!-- {fidelity} fidelity, measured by the build in {build}: "
+          f"/usr/bin/python3 tools/fidelity_report.py {build} {fidelity} --readme -->")
+    print("| id | quantity | measured (quick) | paper / theory |" if fidelity == "quick"
+          else "| id | quantity | measured (paper) | paper / theory |")
+    print("|---|---|---|---|")
+    for row in readme_rows():
+        print(row)
+    sys.exit(0)
 
 
 def runs(figure):
@@ -45,10 +118,6 @@ for figure in ["fig1", "fig2", "fig3", "fig4", "fig5", "fig_crossovers", "fig_ha
     print(f"| {figure} | {len(items)} | {fmt_n} | {', '.join(map(str, reals))} | {collisions:.3g} | "
           f"{cpu:.0f} | {memory / 2**20:.0f} MiB |")
 print(f"| **all** | | | | | **{total_cpu:.0f}** | |\n")
-
-
-def attrs(path, group):
-    return shockgas.read_results(path)[group].attrs
 
 
 print("### Fitted numbers\n")

@@ -31,7 +31,7 @@ def decode_attributes(obj):
 
 class DamagedFile(OSError):
     """The file cannot be trusted: it is truncated, or data or metadata fail their checksum (files of
-    schema_version 2 carry HDF5's Fletcher32 checksum on every dataset, which HDF5 checks on read)."""
+    schema_version 2 and later carry HDF5's Fletcher32 checksum on every dataset, which HDF5 checks on read)."""
 
 
 def read_dataset(path, dataset):

@@ -14,6 +14,9 @@ SCHEMA_VERSIONS = {
     1: "the first published layout: fixed-length ASCII text attributes, samples from t > 0",
     2: "the same groups, datasets and attributes, checksummed: HDF5 1.10 file format (metadata "
        "checksums), every non-empty dataset chunked with the Fletcher32 filter",
+    3: "text attributes variable-length UTF-8 (h5py gives str); numbered groups (/snapshots, /histograms, "
+       "/collapse/states) zero-padded to one width, so they sort in time order; root attributes positions, "
+       "velocity_distribution, init_file_sha256",
 }
 
 

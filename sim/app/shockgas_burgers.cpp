@@ -25,6 +25,7 @@
 
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/burgers.hpp"
+#include "shockgas/cli.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/provenance.hpp"
 #include "shockgas/state.hpp"
@@ -98,7 +99,7 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", output, "profile data file")->required();
     app.add_option("--summary", summary, "gnuplot variables: shock counts and particle-vs-Burgers distances");
     app.add_option("--study", study, "convergence tables (nu -> 0, grid refinement)");
-    CLI11_PARSE(app, argc, argv);
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-burgers"); status >= 0) return status;
 
     try {
         shockgas::InitialCondition initial;

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/cli.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/provenance.hpp"
@@ -20,9 +21,8 @@ void dump_snapshots(std::FILE* out, const std::string& path, std::int64_t realiz
     const auto file = shockgas::h5::File::open_read(path);
     const auto snapshots = file.root().open_group("snapshots");
     fmt::print(out, "# time position velocity mass first_particle  (from {})\n", path);
-    const std::size_t count = snapshots.children().size();
-    for (std::size_t s = 0; s < count; ++s) {
-        const auto group = snapshots.open_group(fmt::format("{}", s));
+    for (const auto& name : snapshots.numbered_children()) {
+        const auto group = snapshots.open_group(name);
         if (group.attribute_integer("realization") != realization) continue;
         const double time = group.attribute_double("time");
         const auto position = group.read_doubles("position");
@@ -93,11 +93,7 @@ int main(int argc, char** argv) {
     vars->add_option("--prefix", prefix, "variable name prefix")->capture_default_str();
     bool recursive = false;
     vars->add_flag("--recursive", recursive, "also every subgroup, as PREFIX_<subgroup>_<name>");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& error) {
-        return app.exit(error);
-    }
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-dump"); status >= 0) return status;
     try {
         std::FILE* out = stdout;
         if (!output.empty() && (out = std::fopen(output.c_str(), "w")) == nullptr)

@@ -1,6 +1,7 @@
 // shockgas-sim: parses arguments, runs the ensemble, writes the HDF5 file.
 // Everything else lives in the shockgas_sim library.
 #include <csignal>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "shockgas/checkpoint.hpp"
+#include "shockgas/checksum.hpp"
 #include "shockgas/cli.hpp"
 #include "shockgas/distributed.hpp"
 #include "shockgas/ensemble.hpp"
@@ -176,6 +178,10 @@ int main(int argc, char** argv) {
                 throw shockgas::InputError("--ring-length disagrees with the init file's ring_length");
             p.particles = initial.size();
             p.ring_length = initial.ring_length;
+            // Recorded so that a result names its start beyond doubt: where
+            // it was (absolute) and what it held (SHA-256 of the file).
+            p.init_file = std::filesystem::absolute(p.init_file).lexically_normal().string();
+            p.init_file_sha256 = shockgas::file_sha256(p.init_file);
         }
         shockgas::validate(p);
         if (session.is_root()) shockgas::h5::check_writable(output);

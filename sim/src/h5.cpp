@@ -1,5 +1,6 @@
 #include "shockgas/h5.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -242,6 +243,24 @@ Group Group::open_group(const std::string& name) const {
                  child_path(name), file_);
 }
 
+std::vector<std::string> Group::numbered_children() const {
+    std::vector<std::pair<unsigned long long, std::string>> numbered;
+    for (const auto& name : children()) {
+        if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos)
+            throw Error(fmt::format("group {} holds '{}' where numbered groups were expected", where(""), name));
+        numbered.emplace_back(std::stoull(name), name);
+    }
+    std::sort(numbered.begin(), numbered.end());
+    std::vector<std::string> names;
+    for (auto& entry : numbered) names.push_back(std::move(entry.second));
+    return names;
+}
+
+std::string numbered_name(std::size_t index, std::size_t count) {
+    const std::size_t width = count > 1 ? std::to_string(count - 1).size() : 1;
+    return fmt::format("{:0{}}", index, width);
+}
+
 bool Group::is_group(const std::string& name) const {
     if (!has(name)) return false;
     const Handle object(H5Oopen(id(), name.c_str(), H5P_DEFAULT), H5Oclose);
@@ -291,15 +310,17 @@ void Group::set_attribute(const std::string& name, const std::vector<double>& va
 
 void Group::set_attribute(const std::string& name, const std::string& value) {
     replace_attribute(id(), name);
+    // Variable-length UTF-8 (schema 3): h5py and netCDF readers give str, not
+    // bytes; schema 1-2 fixed-length strings are still read (attribute_string).
     Handle type(check(H5Tcopy(H5T_C_S1), "cannot create string type"), H5Tclose);
-    H5Tset_size(type.id(), std::max<std::size_t>(value.size(), 1));
+    H5Tset_size(type.id(), H5T_VARIABLE);
     H5Tset_cset(type.id(), H5T_CSET_UTF8);
     Handle space(check(H5Screate(H5S_SCALAR), "cannot create attribute space"), H5Sclose);
     Handle attribute(check(H5Acreate2(id(), name.c_str(), type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT),
                            "cannot create attribute " + where(name)),
                      H5Aclose);
-    const std::string padded = value.empty() ? std::string(1, '\0') : value;
-    check_status(H5Awrite(attribute.id(), type.id(), padded.data()), "cannot write attribute " + where(name));
+    const char* text = value.c_str();
+    check_status(H5Awrite(attribute.id(), type.id(), &text), "cannot write attribute " + where(name));
 }
 
 bool Group::has_attribute(const std::string& name) const { return H5Aexists(id(), name.c_str()) > 0; }
@@ -336,6 +357,7 @@ std::string Group::attribute_string(const std::string& name) const {
     if (H5Tis_variable_str(type.id()) > 0) {
         Handle memory_type(check(H5Tcopy(H5T_C_S1), "cannot create string type"), H5Tclose);
         H5Tset_size(memory_type.id(), H5T_VARIABLE);
+        H5Tset_cset(memory_type.id(), H5Tget_cset(type.id()));  // HDF5 converts no character sets
         char* text = nullptr;
         check_status(H5Aread(attribute.id(), memory_type.id(), &text), "cannot read attribute " + where(name));
         std::string value = text ? text : "";

@@ -50,6 +50,7 @@ void write_parameter_attributes(h5::Group& root, const SimulationParameters& p) 
     root.set_attribute("first_realization", p.first_realization);
     root.set_attribute("seed", static_cast<std::int64_t>(p.seed));
     root.set_attribute("init_file", p.init_file);
+    root.set_attribute("init_file_sha256", p.init_file_sha256);
     root.set_attribute("positions", p.init_file.empty() ? to_string(p.initial_law.positions) : "init_file");
     root.set_attribute("velocity_distribution",
                        p.init_file.empty() ? to_string(p.initial_law.velocities) : "init_file");
@@ -86,7 +87,7 @@ void write_result(h5::Group& root, const SimulationParameters& parameters, const
 
     auto snapshots = root.create_group("snapshots");
     for (std::size_t s = 0; s < result.snapshots.size(); ++s) {
-        auto group = snapshots.create_group(fmt::format("{}", s));
+        auto group = snapshots.create_group(h5::numbered_name(s, result.snapshots.size()));
         group.set_attribute("realization", result.snapshots[s].realization);
         write_state(group, result.snapshots[s].state);
     }
@@ -94,7 +95,7 @@ void write_result(h5::Group& root, const SimulationParameters& parameters, const
     auto histograms = root.create_group("histograms");
     for (std::size_t h = 0; h < result.histograms.size(); ++h) {
         const HistogramRecord& record = result.histograms[h];
-        auto group = histograms.create_group(fmt::format("{}", h));
+        auto group = histograms.create_group(h5::numbered_name(h, result.histograms.size()));
         group.set_attribute("time", record.time);
         group.set_attribute("definition",
                             "mass-weighted counts of v - V (V the realization's mean velocity); "
@@ -122,7 +123,7 @@ void write_result(h5::Group& root, const SimulationParameters& parameters, const
         collapse.set_attribute("criterion", result.collapses.front().report.criterion);
         auto states = collapse.create_group("states");
         for (std::size_t c = 0; c < result.collapses.size(); ++c) {
-            auto group = states.create_group(fmt::format("{}", c));
+            auto group = states.create_group(h5::numbered_name(c, result.collapses.size()));
             group.set_attribute("realization", result.collapses[c].realization);
             group.set_attribute("criterion", result.collapses[c].report.criterion);
             write_state(group, result.collapses[c].state);
@@ -203,6 +204,7 @@ OutputFile read_result(const h5::Group& root) {
     p.first_realization = root.has_attribute("first_realization") ? root.attribute_integer("first_realization") : 0;
     p.seed = static_cast<std::uint64_t>(root.attribute_integer("seed"));
     p.init_file = root.attribute_string("init_file");
+    if (root.has_attribute("init_file_sha256")) p.init_file_sha256 = root.attribute_string("init_file_sha256");
     // Files written before the initial laws existed hold the paper's law.
     if (p.init_file.empty() && root.has_attribute("positions"))
         p.initial_law = {position_law_from_string(root.attribute_string("positions")),
@@ -226,16 +228,14 @@ OutputFile read_result(const h5::Group& root) {
     r.kinetic_energy = series.read_doubles("kinetic_energy");
     r.realization_status = series.read_integers("realization_status");
     const auto snapshots = root.open_group("snapshots");
-    // Groups are named 0, 1, 2, ...: open them in numeric order.
-    const std::size_t snapshot_count = snapshots.children().size();
-    for (std::size_t s = 0; s < snapshot_count; ++s) {
-        const auto group = snapshots.open_group(fmt::format("{}", s));
+    // Groups are numbered (schemas 1-2: 0, 1, ...; schema 3 zero-padded): open them in numeric order.
+    for (const auto& name : snapshots.numbered_children()) {
+        const auto group = snapshots.open_group(name);
         r.snapshots.push_back({group.attribute_integer("realization"), read_state(group)});
     }
     const auto histograms = root.open_group("histograms");
-    const std::size_t histogram_count = histograms.children().size();
-    for (std::size_t h = 0; h < histogram_count; ++h) {
-        const auto group = histograms.open_group(fmt::format("{}", h));
+    for (const auto& name : histograms.numbered_children()) {
+        const auto group = histograms.open_group(name);
         r.histograms.push_back({group.attribute_double("time"), group.read_doubles("edges"), group.read_doubles("counts")});
     }
     if (root.has("collapse")) {
@@ -246,8 +246,11 @@ OutputFile read_result(const h5::Group& root) {
         const auto relative_speed = collapse.read_doubles("relative_speed");
         const auto collisions = collapse.read_integers("collisions");
         const auto states = collapse.open_group("states");
+        const auto state_names = states.numbered_children();
+        if (state_names.size() != time.size())
+            throw h5::Error(fmt::format("/collapse has {} times but {} states", time.size(), state_names.size()));
         for (std::size_t c = 0; c < time.size(); ++c) {
-            const auto group = states.open_group(fmt::format("{}", c));
+            const auto group = states.open_group(state_names[c]);
             CollapseRecord record;
             record.realization = realization[c];
             record.report = {time[c], 0, cluster_mass[c], relative_speed[c], group.attribute_string("criterion")};
@@ -285,6 +288,7 @@ std::vector<std::pair<std::string, std::string>> physics_parameters(const Simula
             {"histogram-range", fmt::format("{}", p.histogram_range)},
             {"seed", fmt::format("{}", p.seed)},
             {"init", p.init_file},
+            {"init-sha256", p.init_file_sha256},
             {"positions", to_string(p.initial_law.positions)},
             {"velocity-distribution", to_string(p.initial_law.velocities)},
             {"collapse-speed", fmt::format("{}", p.collapse.collapse_speed)},

@@ -72,7 +72,28 @@ set_tests_properties(cli.analyze_one_realization PROPERTIES LABELS cli FIXTURES_
                      PASS_REGULAR_EXPRESSION "\\+- n/a \\(jackknife: one realization"
                      FAIL_REGULAR_EXPRESSION "nan")
 
+# The pipeline's logs and commands show parameter-file numbers as written (0.9, not 0.90000000000000002).
+add_test(NAME cli.pipeline_numbers_as_written COMMAND ${CMAKE_COMMAND} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/shortest_number_test.cmake)
+set_tests_properties(cli.pipeline_numbers_as_written PROPERTIES LABELS cli)
+
+# tools/shockgas-look: one command from a run to a PNG (fit and P(v,t)), no pipeline variables.
+if(GNUPLOT_EXECUTABLE)
+  add_test(NAME cli.setup.look_run
+           COMMAND ${_sim} -N 2000 -r 0.5 -t 10000 -R 2 --histogram-times 1000,10000 -q -o "${_cli_dir}/look.h5")
+  set_tests_properties(cli.setup.look_run PROPERTIES FIXTURES_SETUP look_run LABELS cli)
+  add_test(NAME cli.look
+           COMMAND ${CMAKE_COMMAND} -E env SHOCKGAS_BUILD=${CMAKE_BINARY_DIR}
+                   ${PROJECT_SOURCE_DIR}/tools/shockgas-look "${_cli_dir}/look.h5" -o "${_cli_dir}/look.png")
+  set_tests_properties(cli.look PROPERTIES FIXTURES_REQUIRED look_run LABELS cli
+                       PASS_REGULAR_EXPRESSION "decay exponent .*scaling exponent.*shockgas-look: .*look.png")
+endif()
+
 if(SHOCKGAS_PYTHON)
+  # The README's results rows, generated from a (miniature) pipeline tree.
+  add_test(NAME cli.readme_tables
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/readme_tables_test.sh ${CMAKE_BINARY_DIR} ${SHOCKGAS_PYTHON}
+                   "${_cli_dir}/readme_tables")
+  set_tests_properties(cli.readme_tables PROPERTIES LABELS cli)
   add_test(NAME cli.setup.bad_init_files
            COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/make_bad_init.py "${_cli_dir}")
   set_tests_properties(cli.setup.bad_init_files PROPERTIES FIXTURES_SETUP bad_init LABELS cli)

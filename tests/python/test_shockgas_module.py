@@ -73,7 +73,13 @@ class Runs(unittest.TestCase):
             self.assertIs(type(r.attrs[name]), str, name)
         self.assertEqual(r.attrs["status"], "complete")
         self.assertIs(type(r.attrs["particles"]), int)
-        self.assertEqual(r.schema_version, 2)
+        self.assertEqual(r.schema_version, 3)
+        # Schema 3: h5py itself (not only this module) gives text as str, and
+        # the numbered groups sort in time order by name (zero-padded).
+        objects = list(shockgas.walk(path("whole.h5"), raw=True))  # raw: h5py's own values
+        self.assertIs(type(objects[0][1]["status"]), str)
+        names = [p.split("/")[2] for p, _, _ in objects if p.count("/") == 2 and p.startswith("/snapshots/")]
+        self.assertEqual(names, [f"{k:02d}" for k in range(3 * 12)])  # h5py's own (name) order
 
     def test_snapshots_in_numeric_order_and_on_the_time_series(self):
         snapshots = self.whole.snapshots
@@ -170,7 +176,7 @@ class Refusals(unittest.TestCase):
         with self.assertRaises(shockgas.UnsupportedSchemaVersion) as raised:
             shockgas.read_run(newer)
         message = str(raised.exception)
-        for needed in ("newer.h5", "schema_version 99", "(1, 2)", "newer than this module"):
+        for needed in ("newer.h5", "schema_version 99", "(1, 2, 3)", "newer than this module"):
             self.assertIn(needed, message)
         with self.assertRaises(shockgas.UnsupportedSchemaVersion):
             shockgas.attributes(newer)

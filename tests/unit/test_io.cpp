@@ -169,3 +169,29 @@ TEST(InitFile, HostileFilesFoundByFuzzingAreRefusedBeforeAllocating) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(H5, NumberedGroupsReadInNumericOrderPaddedOrNot) {
+    // Schemas 1-2 wrote 0, 1, ..., 10 (HDF5 lists them 0, 1, 10, 2); schema 3 pads them.
+    EXPECT_EQ(shockgas::h5::numbered_name(7, 12), "07");
+    EXPECT_EQ(shockgas::h5::numbered_name(0, 1), "0");
+    EXPECT_EQ(shockgas::h5::numbered_name(99, 100), "99");
+    EXPECT_EQ(shockgas::h5::numbered_name(5, 101), "005");
+    const auto path = temp_path("numbered.h5");
+    {
+        shockgas::h5::AtomicFile file(path);
+        auto root = file.root();
+        auto old = root.create_group("old");
+        for (const char* name : {"0", "1", "10", "2"}) old.create_group(name);
+        auto padded = root.create_group("padded");
+        for (std::size_t k = 0; k < 11; ++k) padded.create_group(shockgas::h5::numbered_name(k, 11));
+        file.commit();
+    }
+    const auto file = shockgas::h5::File::open_read(path);
+    EXPECT_EQ(file.root().open_group("old").numbered_children(), (std::vector<std::string>{"0", "1", "2", "10"}));
+    const auto padded = file.root().open_group("padded");
+    EXPECT_EQ(padded.children(), padded.numbered_children());  // zero-padded: the name order is the numeric order
+}
+
+}  // namespace

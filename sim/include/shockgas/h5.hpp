@@ -79,6 +79,9 @@ public:
     Group create_group(const std::string& name);
     Group open_group(const std::string& name) const;
     std::vector<std::string> children() const;
+    // Children named by numbers (0, 1, ... or zero-padded 00, 01, ...), in
+    // numeric order: schemas 1-2 wrote 0 .. 10 unpadded, schema 3 pads them.
+    std::vector<std::string> numbered_children() const;
     bool is_group(const std::string& name) const;
 
     // Datasets: dims empty means 1-D of data.size(); otherwise product(dims) == data.size().
@@ -154,6 +157,11 @@ private:
     std::unique_ptr<File> file_;
     bool committed_ = false;
 };
+
+// The name of group `index` of `count` numbered groups: zero-padded to the
+// width of count - 1, so that names sort in numeric order anywhere (h5ls,
+// h5py's keys(), a notebook) as well as read back here.
+std::string numbered_name(std::size_t index, std::size_t count);
 
 // Writes a whole file through AtomicFile; any failure is rethrown as one
 // Error naming the target and the cause, after the temporary file is removed.

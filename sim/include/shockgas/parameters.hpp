@@ -73,7 +73,8 @@ struct SimulationParameters {
     std::uint64_t seed = 1;
     int threads = 0;                  // 0: every hardware thread
     InitialLaw initial_law;           // for generated starts; an --init file replaces it
-    std::string init_file;            // optional --init FILE.h5
+    std::string init_file;            // optional --init FILE.h5 (absolute path once read)
+    std::string init_file_sha256;     // its SHA-256, so a result proves which start made it
     std::string engine = "event";     // event | exact | auto (auto resolved before run)
 
     double effective_ring_length() const {

@@ -23,7 +23,9 @@ const BuildInfo& build_info();
 
 // Schema version of the simulation output; bump on any incompatible change.
 // 2: checksummed (HDF5 1.10 format, Fletcher32 on every non-empty dataset).
-constexpr long long output_schema_version = 2;
+// 3 (2026-11-23): text attributes variable-length UTF-8; numbered groups
+// (/snapshots, /histograms, /collapse/states) zero-padded; readers take 1-3.
+constexpr long long output_schema_version = 3;
 
 // Writes program, version, compiler, flags, build type, HDF5 version, host and
 // the current UTC date as root attributes.
