@@ -65,8 +65,8 @@ set ytics auto
 set format y '10^{%L}'
 set xlabel 'particles N'
 set ylabel 't_{collapse}'
-set yrange [5:1000]
-set key bottom left
+set key top right
+set offsets 0, 0, graph 0.6, 0   # headroom for the key above the points
 set title sprintf('first collapse at ε = %g', eps_N) font ',9'
 tn(x) = fit_mean_time_prefactor * x**fit_mean_time_exponent
 tg(x) = fit_gumbel_intercept - fit_gumbel_tau * log(x)
@@ -80,6 +80,7 @@ plot datadir.'/vs_N.dat' using 2:3:4 with yerrorbars lt 1 title '⟨t_{collapse}
          fit_gumbel_predicted_spread, fit_gumbel_predicted_spread_sigma, fit_gumbel_measured_spread, \
          fit_gumbel_measured_spread_sigma)
 
+set offsets 0, 0, 0, 0
 set xlabel 't'
 set ylabel 'H(t) / N'
 set yrange [*:*]

@@ -104,7 +104,7 @@ print(f"### Cost per figure ({fidelity} fidelity, {build})\n")
 print("| figure | runs | N | realizations | collisions | CPU s | peak memory |")
 print("|---|---|---|---|---|---|---|")
 total_cpu = 0.0
-for figure in ["fig1", "fig2", "fig3", "fig4", "fig5", "fig_crossovers", "fig_haff", "fig_tradeoff"]:
+for figure in ["fig1", "fig2", "fig3", "fig4", "fig5", "fig_collapse", "fig_crossovers", "fig_haff", "fig_tradeoff"]:
     items = list(runs(figure))
     if not items:
         continue

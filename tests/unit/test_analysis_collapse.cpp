@@ -229,12 +229,15 @@ TEST(AnalysisCollapse, NelsonAalenHazardPerParticle) {
     }
 }
 
-TEST(AnalysisCollapse, FirstCollapseOfIndependentRegionsIsWeibull) {
-    // Independent regions with cumulative hazard a t^k per particle: the ring
-    // survives with exp(-N a t^k), so t = (E / (N a))^(1/k) with E ~ Exp(1),
-    // and <t> ~ N^(-1/k).
-    constexpr double shape = 2.5, rate = 1e-9;
-    std::mt19937_64 random(1517);
+namespace {
+
+// First collapses of rings of N = 10^3 ... 10^6 particles made of independent
+// regions with cumulative hazard H(t) per particle: the ring survives with
+// exp(-N H(t)), so t = H^-1(E / N) with E ~ Exp(1); 200 realizations each.
+template <class InverseHazard>
+std::vector<sa::CollapseEvents> synthetic_first_collapses(std::uint64_t seed, InverseHazard inverse_hazard,
+                                                          double cluster_mass) {
+    std::mt19937_64 random(seed);
     std::exponential_distribution<double> exponential(1.0);
     std::vector<sa::CollapseEvents> runs;
     for (std::int64_t particles : {1000, 10000, 100000, 1000000}) {
@@ -242,11 +245,21 @@ TEST(AnalysisCollapse, FirstCollapseOfIndependentRegionsIsWeibull) {
         events.particles = particles;
         events.realizations = 200;
         for (std::size_t r = 0; r < events.realizations; ++r) {
-            events.time.push_back(std::pow(exponential(random) / (static_cast<double>(particles) * rate), 1.0 / shape));
-            events.cluster_mass.push_back(50.0 + static_cast<double>(r % 3));
+            events.time.push_back(inverse_hazard(exponential(random) / static_cast<double>(particles)));
+            events.cluster_mass.push_back(cluster_mass + static_cast<double>(r % 3));
         }
         runs.push_back(events);
     }
+    return runs;
+}
+
+}  // namespace
+
+TEST(AnalysisCollapse, FirstCollapseOfIndependentRegionsIsWeibull) {
+    // H = a t^k: t = (E / (N a))^(1/k), and <t> ~ N^(-1/k).
+    constexpr double shape = 2.5, rate = 1e-9;
+    const auto runs = synthetic_first_collapses(
+        1517, [&](double hazard) { return std::pow(hazard / rate, 1.0 / shape); }, 50.0);
     const auto scaling = sa::fit_first_collapse_scaling(runs);
     std::printf("<t> ~ N^(%.4f +- %.4f), hazard ~ t^(%.3f +- %.3f)\n", scaling.mean_time.slope,
                 scaling.mean_time.slope_sigma(), scaling.hazard.slope, scaling.hazard.slope_sigma());
@@ -265,22 +278,10 @@ TEST(AnalysisCollapse, FirstCollapseOfIndependentRegionsIsWeibull) {
 }
 
 TEST(AnalysisCollapse, FirstCollapseWithExponentialHazardIsGumbel) {
-    // Cumulative hazard a e^(t/tau) per particle: t = tau ln(E / (N a)), E ~ Exp(1),
-    // so <t> = const - tau ln N and s.d.(t) = pi tau / sqrt 6 at every N.
+    // H = a e^(t/tau): t = tau ln(E / (N a)), so <t> = const - tau ln N and
+    // s.d.(t) = pi tau / sqrt 6 at every N. Clusters of ~10: N/m >= 100 everywhere.
     constexpr double tau = 100.0, rate = 1e-9;
-    std::mt19937_64 random(1518);
-    std::exponential_distribution<double> exponential(1.0);
-    std::vector<sa::CollapseEvents> runs;
-    for (std::int64_t particles : {1000, 10000, 100000, 1000000}) {
-        sa::CollapseEvents events;
-        events.particles = particles;
-        events.realizations = 200;
-        for (std::size_t r = 0; r < events.realizations; ++r) {
-            events.time.push_back(tau * std::log(exponential(random) / (static_cast<double>(particles) * rate)));
-            events.cluster_mass.push_back(10.0);  // N / m >= 100: every run has enough regions
-        }
-        runs.push_back(events);
-    }
+    auto runs = synthetic_first_collapses(1518, [&](double hazard) { return tau * std::log(hazard / rate); }, 10.0);
     const auto scaling = sa::fit_first_collapse_scaling(runs);
     std::printf("tau %.2f +- %.2f; spread predicted %.2f +- %.2f, measured %.2f +- %.2f\n", scaling.gumbel_tau.value,
                 scaling.gumbel_tau.sigma, scaling.gumbel_predicted_spread.value, scaling.gumbel_predicted_spread.sigma,
