@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Cost and accuracy of every figure at one fidelity, as Markdown tables.
 
-Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper] [--readme]
+Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md]
 
 Reads the runs (build/paper_targets/<fidelity>/<fig>/*.h5 written by shockgas-sim:
 particles, realizations, cpu_seconds, peak_memory_bytes, total_collisions) and the
@@ -12,6 +12,11 @@ cost tables and docs/figures-and-fidelity.md show. Reads only; computes nothing 
 --readme prints instead the rows of the README's results table (| id | quantity | measured | paper /
 theory |) that the build measured, ready to paste, so the README's numbers come from the build at
 that commit rather than from memory.
+
+--check-readme README.md exits 1, naming each row, unless every one of those rows stands verbatim in
+README.md: the test that keeps the README's numbers from going stale (ctest figures.readme_numbers,
+after the figures are built; the simulations are deterministic, so a build at the same commit
+measures the same numbers on any machine).
 """
 import glob
 import os
@@ -20,6 +25,11 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
 import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
 
+check_readme = None
+if "--check-readme" in sys.argv[1:]:
+    position = sys.argv.index("--check-readme")
+    check_readme = sys.argv[position + 1]
+    del sys.argv[position:position + 2]
 arguments = [a for a in sys.argv[1:] if a != "--readme"]
 readme = "--readme" in sys.argv[1:]
 build = arguments[0] if len(arguments) > 0 else "build"
@@ -82,6 +92,19 @@ def readme_rows():
                     f"{d['density_corrected_slope_times_t_sigma']:.2f} | 1 |")
     return rows
 
+
+if check_readme is not None:
+    with open(check_readme, encoding="utf-8") as handle:
+        lines = {line.rstrip("\n") for line in handle}
+    rows = readme_rows()
+    stale = [row for row in rows if row not in lines]
+    if not rows:
+        print(f"{check_readme}: no results found in {base}: build the figures first")
+        sys.exit(1)
+    for row in stale:
+        print(f"{check_readme} lacks this row measured by {build} (paste it in place of the stale one):\n{row}")
+    print(f"{len(rows) - len(stale)} of {len(rows)} measured rows stand in {check_readme}")
+    sys.exit(1 if stale else 0)
 
 if readme:
     print(f"<!-- {fidelity} fidelity, measured by the build in {build}: "

@@ -54,7 +54,7 @@ json.dump(m, open("MANIFEST", "w"), indent=1)
 one_number='
 import h5py
 with h5py.File("build/paper_targets/quick/fig3/worldlines.h5", "r+") as f:
-    f["/snapshots/10/velocity"][3] += 1e-15
+    f["/snapshots/010/velocity"][3] += 1e-15
 '
 
 echo "== 3a. one number altered, MANIFEST untouched: the archive's own SHA-256 check names the file"
@@ -67,7 +67,7 @@ echo "== 3b. the same number altered and MANIFEST rehashed: the comparison with 
 alter number-rehashed "$one_number
 $rehash"
 check "$work/number-rehashed.log" "$copy" "${again[@]}" --work-dir "$work/number-rehashed.work"
-expect 1 "^DIFFERENT +build/paper_targets/quick/fig3/worldlines.h5 +\(dataset /snapshots/10/velocity differs: 1 of 500 elements" \
+expect 1 "^DIFFERENT +build/paper_targets/quick/fig3/worldlines.h5 +\(dataset /snapshots/010/velocity differs: 1 of 500 elements" \
   "$work/number-rehashed.log"
 expect 1 "^OK +build/figures/quick/fig3.png" "$work/number-rehashed.log"
 
