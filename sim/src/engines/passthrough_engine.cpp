@@ -24,6 +24,16 @@ constexpr double reach_slack = 1e-9;
 // The step length changes by at most this factor from one step to the next, so
 // one step with an unusual crossing count cannot swing it.
 constexpr double step_change_limit = 2.0;
+
+// The next length of a step or window that lasted `length` and saw
+// `crossings` among `lines` lines: the measured rate per line, aimed at
+// `target` crossings per line, at most a factor step_change_limit from
+// `current`, which doubles when nothing crossed.
+double adapted_length(double current, double length, std::uint64_t crossings, double lines, double target) {
+    const double per_line = static_cast<double>(crossings) / lines;
+    const double proposal = per_line > 0.0 ? length * target / per_line : step_change_limit * current;
+    return std::clamp(proposal, current / step_change_limit, current * step_change_limit);
+}
 }  // namespace
 
 std::string PassThroughEngine::unsupported_reason(const InitialCondition& initial, const CollisionModel& model,
@@ -134,16 +144,18 @@ void PassThroughEngine::run_window(double window_end) {
         run_block(0, n - 1, true, window_start, window_end);
     } else {
         // Blocks (cut_i, cut_{i+1}], the last one round the seam.
-        const std::vector<std::int64_t> cuts = cuts_;
-        for (std::size_t c = 0; c < cuts.size(); ++c) {
-            const std::int64_t lo = cuts[c] + 1;
-            const std::int64_t hi = c + 1 < cuts.size() ? cuts[c + 1] : cuts[0] + n;
+        for (std::size_t c = 0; c < cuts_.size(); ++c) {
+            const std::int64_t lo = cuts_[c] + 1;
+            const std::int64_t hi = c + 1 < cuts_.size() ? cuts_[c + 1] : cuts_[0] + n;
             run_block(lo, hi, false, window_start, window_end);
         }
     }
     now_ = window_end;
     ++windows_;
-    adapt_window(window_end - window_start, collisions_ - collisions_before);
+    // The next window: about crossings_per_window_target crossings per line.
+    if (window_end > window_start)
+        step_ = adapted_length(step_, window_end - window_start, collisions_ - collisions_before,
+                               static_cast<double>(n), crossings_per_window_target);
 }
 
 // Block [lo, hi] of logical indices from `start` to `end`, in steps of about
@@ -177,23 +189,8 @@ void PassThroughEngine::run_block(std::int64_t lo, std::int64_t hi, bool ring, d
         const double step_end = t + step < end ? t + step : end;
         const std::uint64_t before = collisions_;
         run_step(t, step_end);
-        const double per_line = static_cast<double>(collisions_ - before) / lines;
-        const double proposal =
-            per_line > 0.0 ? (step_end - t) * crossings_per_step_target / per_line : step_change_limit * step;
-        step = std::clamp(proposal, step / step_change_limit, step * step_change_limit);
+        step = adapted_length(step, step_end - t, collisions_ - before, lines, crossings_per_step_target);
         t = step_end;
-    }
-}
-
-// The window length for the next window from the crossings of the last one:
-// about crossings_per_window_target per line, changing by at most a factor
-// step_change_limit per window.
-void PassThroughEngine::adapt_window(double length, std::uint64_t crossings) {
-    if (length > 0.0) {
-        const double per_line = static_cast<double>(crossings) / static_cast<double>(line_.size());
-        const double proposal =
-            per_line > 0.0 ? length * crossings_per_window_target / per_line : step_change_limit * step_;
-        step_ = std::clamp(proposal, step_ / step_change_limit, step_ * step_change_limit);
     }
 }
 
@@ -296,7 +293,8 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
             if (distance > (a.v - v_min_) * horizon + slack) break;
             const std::int64_t index = wrap_index(lo + j);
             const double chunk_min = chunk_min_[static_cast<std::size_t>(index >> chunk_shift)];
-            if (chunk_min > a.v - model_.velocity_threshold || distance > (a.v - chunk_min) * horizon + slack) {
+            if (classify(model_, a.v - chunk_min) != CollisionKind::inelastic ||
+                distance > (a.v - chunk_min) * horizon + slack) {
                 j += std::min<std::int64_t>(((index >> chunk_shift) + 1) << chunk_shift, n) - index;
                 continue;
             }
@@ -345,7 +343,6 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
     const double here = unwrapped_position(at, t);
     const double disorder = (v_max_ - v_min_) * (t - step_start_);  // drift since the lines were last sorted
     const double slack = reach_slack * (std::abs(here) + disorder);
-    const double threshold = model_.velocity_threshold;
     Candidate best{never, 0, 0, 0, 0, false};
     // Only the earliest crossing is wanted, so the search ends sooner once
     // one is found: nothing beyond (speed) (best - t) can be met before it.
@@ -359,7 +356,7 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         if (distance > (line.v - v_min_) * horizon() + disorder + slack) break;
         // Pass over the rest of the chunk if none of it is slow enough to be
         // caught inelastically, or near enough to be caught at all.
-        if (chunk_min_[chunk] > line.v - threshold ||
+        if (classify(model_, line.v - chunk_min_[chunk]) != CollisionKind::inelastic ||
             distance > (line.v - chunk_min_[chunk]) * horizon() + 2.0 * disorder + slack) {
             j += chunk_rest;
             continue;
@@ -375,7 +372,7 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         const std::int64_t chunk_rest = index - ((index >> chunk_shift) << chunk_shift) + 1;
         const double distance = here - unwrapped_position(j, t);
         if (distance > (v_max_ - line.v) * horizon() + disorder + slack) break;
-        if (chunk_max_[chunk] < line.v + threshold ||
+        if (classify(model_, chunk_max_[chunk] - line.v) != CollisionKind::inelastic ||
             distance > (chunk_max_[chunk] - line.v) * horizon() + 2.0 * disorder + slack) {
             j -= chunk_rest;
             continue;
@@ -470,12 +467,12 @@ PassThroughEngine::Sorted PassThroughEngine::load(std::int64_t i, double t) cons
     return {position_at(line, t) + static_cast<double>(frame) * ring_length_, frame, line};
 }
 
-// Stable insertion sort from `begin` on; one swap per crossing. A pair found
+// Stable insertion sort; one swap per crossing. A pair found
 // crossed while closing at >= delta is left as it is: its inelastic collision
 // is due (see the header).
-std::uint64_t PassThroughEngine::insertion_sort(std::vector<Sorted>& buffer, std::size_t begin) const {
+std::uint64_t PassThroughEngine::insertion_sort(std::vector<Sorted>& buffer) const {
     std::uint64_t swaps = 0;
-    for (std::size_t i = std::max<std::size_t>(begin, 1); i < buffer.size(); ++i) {
+    for (std::size_t i = 1; i < buffer.size(); ++i) {
         if (!(buffer[i - 1].position > buffer[i].position)) continue;
         const Sorted item = buffer[i];
         std::size_t j = i;
@@ -500,7 +497,7 @@ void PassThroughEngine::sort_stretch(std::int64_t& lo, std::int64_t& hi, double 
     const auto n = static_cast<std::int64_t>(line_.size());
     buffer_.clear();
     for (std::int64_t i = lo; i <= hi; ++i) buffer_.push_back(load(i, t));
-    collisions_ += insertion_sort(buffer_, 0);
+    collisions_ += insertion_sort(buffer_);
     if (linear) return;
     const double disorder = (v_max_ - v_min_) * (t - step_start_);  // drift since the lines were last sorted
     for (;;) {
@@ -540,7 +537,7 @@ void PassThroughEngine::sort_stretch(std::int64_t& lo, std::int64_t& hi, double 
         buffer_.swap(grown);
         lo = new_lo;
         hi = new_hi;
-        collisions_ += insertion_sort(buffer_, 0);
+        collisions_ += insertion_sort(buffer_);
     }
 }
 
@@ -646,12 +643,12 @@ std::optional<EngineSnapshot> PassThroughEngine::snapshot() const {
     }
     out.reals["scalars"] = {now_, step_};
     out.integers["counters"] = {static_cast<std::int64_t>(collisions_), static_cast<std::int64_t>(inelastic_),
-                                static_cast<std::int64_t>(steps_)};
+                                static_cast<std::int64_t>(steps_), static_cast<std::int64_t>(windows_)};
     return out;
 }
 
 // Versions restart at 0: they only tell candidates of one step apart, and a
-// snapshot is taken between steps.
+// snapshot is taken between windows.
 void PassThroughEngine::restore(const EngineSnapshot& snapshot) {
     snapshot_io::expect_kind(snapshot, snapshot_kind, name());
     const std::size_t n = line_.size();
@@ -660,7 +657,7 @@ void PassThroughEngine::restore(const EngineSnapshot& snapshot) {
     const auto& clock = snapshot_io::array(snapshot.reals, "clock", n, snapshot);
     const auto& id = snapshot_io::array(snapshot.integers, "id", n, snapshot);
     const auto& scalars = snapshot_io::array(snapshot.reals, "scalars", 2, snapshot);
-    const auto& counters = snapshot_io::array(snapshot.integers, "counters", 3, snapshot);
+    const auto& counters = snapshot_io::array(snapshot.integers, "counters", 4, snapshot);
     std::vector<bool> seen(n, false);
     for (std::size_t k = 0; k < n; ++k) {
         if (id[k] < 0 || static_cast<std::size_t>(id[k]) >= n || seen[static_cast<std::size_t>(id[k])])
@@ -674,7 +671,7 @@ void PassThroughEngine::restore(const EngineSnapshot& snapshot) {
     collisions_ = static_cast<std::uint64_t>(counters[0]);
     inelastic_ = static_cast<std::uint64_t>(counters[1]);
     steps_ = static_cast<std::uint64_t>(counters[2]);
-    update_velocity_bounds();
+    windows_ = static_cast<std::uint64_t>(counters[3]);
 }
 
 }  // namespace shockgas
