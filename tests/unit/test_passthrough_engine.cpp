@@ -252,16 +252,16 @@ TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
 
 TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
     const InitialCondition start = random_ring(10, 1);
-    EXPECT_EQ(PassThroughEngine::unsupported_reason(start, {0.9, 0.01, Subthreshold::elastic}, {}), "");
-    EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.0, 0.01, Subthreshold::elastic}, {}), "");
-    EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.9, 0.0, Subthreshold::elastic}, {}), "");
-    EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.9, 0.01, Subthreshold::sticky}, {}), "");
+    EXPECT_EQ(PassThroughEngine::unsupported_reason(start.mass, {0.9, 0.01, Subthreshold::elastic}, {}), "");
+    EXPECT_NE(PassThroughEngine::unsupported_reason(start.mass, {0.0, 0.01, Subthreshold::elastic}, {}), "");
+    EXPECT_NE(PassThroughEngine::unsupported_reason(start.mass, {0.9, 0.0, Subthreshold::elastic}, {}), "");
+    EXPECT_NE(PassThroughEngine::unsupported_reason(start.mass, {0.9, 0.01, Subthreshold::sticky}, {}), "");
     InitialCondition heavy = start;
     heavy.mass[3] = 2.0;
-    EXPECT_NE(PassThroughEngine::unsupported_reason(heavy, {0.9, 0.01, Subthreshold::elastic}, {}), "");
+    EXPECT_NE(PassThroughEngine::unsupported_reason(heavy.mass, {0.9, 0.01, Subthreshold::elastic}, {}), "");
     CollapseCriterion slow_collapse;
     slow_collapse.collapse_speed = 0.1;
-    EXPECT_NE(PassThroughEngine::unsupported_reason(start, {0.9, 0.01, Subthreshold::elastic}, slow_collapse), "");
+    EXPECT_NE(PassThroughEngine::unsupported_reason(start.mass, {0.9, 0.01, Subthreshold::elastic}, slow_collapse), "");
     shockgas::SimulationParameters p;
     p.engine = "passthrough";
     p.collision = {0.0, 0.01, Subthreshold::elastic};

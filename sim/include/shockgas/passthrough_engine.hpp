@@ -45,7 +45,7 @@
 // made negative (ring_kinematics.hpp, contact_time).
 //
 // Valid for equal masses, r in (0, 1], delta > 0 and elastic sub-threshold
-// collisions (supports()); make_engine refuses anything else with one line.
+// collisions (unsupported_reason()); make_engine refuses anything else with one line.
 // No collapse is possible there (every inelastic collision has g >= delta), so
 // collapse() is always empty.
 #pragma once
@@ -64,14 +64,10 @@ class PassThroughEngine final : public Engine {
 public:
     PassThroughEngine(const InitialCondition& initial, const CollisionModel& model, LiveStatus* live = nullptr);
 
-    // Empty when the engine is exact for this run; otherwise why not, in a
-    // phrase for a one-line error ("needs equal masses", ...).
-    static std::string unsupported_reason(const InitialCondition& initial, const CollisionModel& model,
+    // Empty when the engine is exact for a run whose particles have these
+    // masses; otherwise why not, in a phrase for a one-line error.
+    static std::string unsupported_reason(const std::vector<double>& mass, const CollisionModel& model,
                                           const CollapseCriterion& collapse);
-    static bool supports(const InitialCondition& initial, const CollisionModel& model,
-                         const CollapseCriterion& collapse) {
-        return unsupported_reason(initial, model, collapse).empty();
-    }
 
     bool advance_to(double t) override;
     double time() const override { return now_; }

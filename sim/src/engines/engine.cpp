@@ -9,21 +9,10 @@
 
 namespace shockgas {
 
-namespace {
-// The start whose masses decide: the init file's, or the generated start's
-// unit masses.
-InitialCondition masses_of(const InitialCondition* initial) {
-    if (initial != nullptr) return *initial;
-    InitialCondition unit;
-    unit.mass.assign(2, 1.0);
-    return unit;
-}
-}  // namespace
-
 // auto: the exact engine whenever it applies (r = 0: every collision merges,
 // whatever the threshold), since it gives every observable the event engine
 // gives there; the event engine otherwise. The pass-through engine is not
-// chosen by auto: it is exact wherever PassThroughEngine::supports holds, but
+// chosen by auto: it is exact wherever PassThroughEngine::unsupported_reason is empty, but
 // as measured (docs/passthrough-engine.md) it is faster than the windowed
 // event engine only late in a run, when nearly all collisions are elastic,
 // and several times slower in the inelastic early phase, so it is asked for
@@ -37,8 +26,10 @@ std::string resolve_engine_name(const SimulationParameters& parameters, const In
                                      "event or auto",
                                      parameters.collision.restitution));
     if (parameters.engine == "passthrough") {
-        const std::string refusal = PassThroughEngine::unsupported_reason(masses_of(initial), parameters.collision,
-                                                                          parameters.collapse);
+        // The init file's masses decide; the generated start has unit masses.
+        static const std::vector<double> unit_mass{1.0};
+        const std::string refusal = PassThroughEngine::unsupported_reason(
+            initial != nullptr ? initial->mass : unit_mass, parameters.collision, parameters.collapse);
         if (!refusal.empty()) throw InputError("--engine passthrough cannot run this: " + refusal);
     }
     return parameters.engine;

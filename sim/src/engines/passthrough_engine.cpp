@@ -36,15 +36,15 @@ double adapted_length(double current, double length, std::uint64_t crossings, do
 }
 }  // namespace
 
-std::string PassThroughEngine::unsupported_reason(const InitialCondition& initial, const CollisionModel& model,
+std::string PassThroughEngine::unsupported_reason(const std::vector<double>& mass, const CollisionModel& model,
                                                   const CollapseCriterion& collapse) {
     if (model.restitution == 0.0) return "r = 0 is the sticky gas, where every collision merges (--engine exact)";
     if (!(model.velocity_threshold > 0.0))
         return "delta = 0 has no elastic collisions to pass through (--engine event)";
     if (model.subthreshold != Subthreshold::elastic)
         return "sticky sub-threshold collisions merge particles (--engine event)";
-    for (const double m : initial.mass)
-        if (m != initial.mass.front())
+    for (const double m : mass)
+        if (m != mass.front())
             return "unequal masses: an elastic collision then does not exchange velocities (--engine event)";
     // The event engines declare collapse at an inelastic collision slower than
     // collapse_speed; with g >= delta >= collapse_speed that cannot happen, so
@@ -52,7 +52,7 @@ std::string PassThroughEngine::unsupported_reason(const InitialCondition& initia
     if (collapse.collapse_speed > model.velocity_threshold)
         return fmt::format("the collapse speed {} exceeds delta = {} (--engine event)", collapse.collapse_speed,
                            model.velocity_threshold);
-    if (initial.size() >= std::numeric_limits<std::int32_t>::max())
+    if (mass.size() >= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
         return "more than 2^31 - 1 particles";
     return "";
 }
