@@ -1,12 +1,15 @@
 // Helpers shared by the test executables (header only, tests only).
 #pragma once
 
+#include <atomic>
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "shockgas/ensemble.hpp"
 #include "shockgas/observables.hpp"
 #include "shockgas/state.hpp"
 
@@ -37,6 +40,17 @@ inline void expect_identical(const ClusterState& a, const ClusterState& b, const
     const auto moments_a = velocity_moments(a.velocity, a.mass);
     const auto moments_b = velocity_moments(b.velocity, b.mass);
     ASSERT_EQ(moments_a.temperature, moments_b.temperature) << where;
+}
+
+// Checkpoints every 20 ms into a fresh file <name>.checkpoint, counting them
+// in `written` (the driver's note for each one starts "checkpoint:").
+inline CheckpointOptions frequent_checkpoints(const std::string& name, std::atomic<int>& written) {
+    CheckpointOptions options;
+    options.path = name + ".checkpoint";
+    std::filesystem::remove(options.path);
+    options.interval_seconds = 0.02;
+    options.note = [&written](const std::string& text) { written += text.rfind("checkpoint:", 0) == 0 ? 1 : 0; };
+    return options;
 }
 
 }  // namespace shockgas::testing

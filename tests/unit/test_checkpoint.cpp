@@ -156,22 +156,11 @@ void expect_same_result(const EnsembleResult& a, const EnsembleResult& b) {
     for (std::size_t h = 0; h < a.histograms.size(); ++h) EXPECT_TRUE(same(a.histograms[h].counts, b.histograms[h].counts));
 }
 
-// Checkpoints every 20 ms into a fresh file <name>.checkpoint, counting them
-// in `written` (the driver's note for each one starts "checkpoint:").
-CheckpointOptions frequent_checkpoints(const std::string& name, std::atomic<int>& written) {
-    CheckpointOptions options;
-    options.path = name + ".checkpoint";
-    std::filesystem::remove(options.path);
-    options.interval_seconds = 0.02;
-    options.note = [&written](const std::string& text) { written += text.rfind("checkpoint:", 0) == 0 ? 1 : 0; };
-    return options;
-}
-
 TEST(Checkpoint, PausingForCheckpointsChangesNothing) {
     const SimulationParameters p = ensemble_parameters();
     const EnsembleResult reference = shockgas::run_ensemble(p, nullptr);
     std::atomic<int> written{0};
-    const CheckpointOptions options = frequent_checkpoints("pausing", written);
+    const CheckpointOptions options = shockgas::testing::frequent_checkpoints("pausing", written);
     const EnsembleResult paused = shockgas::run_ensemble(p, nullptr, nullptr, {}, options);
     EXPECT_GE(written, 2) << "the run ended before checkpoints were taken: the test did not test";
     expect_same_result(reference, paused);
@@ -182,7 +171,7 @@ TEST(Checkpoint, StoppedRunResumedFromItsFileEqualsUninterruptedRun) {
     const EnsembleResult reference = shockgas::run_ensemble(p, nullptr);
 
     std::atomic<int> written{0};
-    const CheckpointOptions options = frequent_checkpoints("stopped", written);
+    const CheckpointOptions options = shockgas::testing::frequent_checkpoints("stopped", written);
     std::atomic<bool> stop{false};
     std::thread stopper([&] {
         while (written.load() < 2) std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -213,7 +202,7 @@ TEST(Checkpoint, CheckpointOfAnotherRunIsIgnoredWithANote) {
     p.t_max = 60.0;
     p.histogram_times = {30.0};
     std::atomic<int> written{0};
-    CheckpointOptions options = frequent_checkpoints("other_run", written);
+    CheckpointOptions options = shockgas::testing::frequent_checkpoints("other_run", written);
     std::atomic<bool> stop{true};  // stopped at once: a checkpoint with nothing done
     shockgas::run_ensemble(p, nullptr, &stop, {}, options);
     ASSERT_TRUE(std::filesystem::exists(options.path));

@@ -17,6 +17,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../test_support.hpp"
+
 #include "shockgas/engine.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/event_engine.hpp"
@@ -237,11 +239,7 @@ TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
     p.engine = "passthrough";
     const auto reference = shockgas::run_ensemble(p, nullptr);
     std::atomic<int> written{0};
-    shockgas::CheckpointOptions options;
-    options.path = "passthrough.checkpoint";
-    std::filesystem::remove(options.path);
-    options.interval_seconds = 0.02;
-    options.note = [&written](const std::string& text) { written += text.rfind("checkpoint:", 0) == 0 ? 1 : 0; };
+    const auto options = shockgas::testing::frequent_checkpoints("passthrough", written);
     const auto paused = shockgas::run_ensemble(p, nullptr, nullptr, {}, options);
     EXPECT_GE(written.load(), 2) << "the run ended before checkpoints were taken: the test did not test";
     EXPECT_EQ(reference.engine, "passthrough");
