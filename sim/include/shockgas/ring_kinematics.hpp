@@ -28,6 +28,29 @@ inline double contact_time(double gap, double closing_speed, double left_clock, 
     return t >= now ? t : now;
 }
 
+// The ring records of a start, for both event engines (same arithmetic, so
+// their results can be compared bit for bit): each particle a cluster of its
+// own with its velocity and mass, clock 0, the gap to its right neighbour
+// (the last one's across the seam), linked in ring order. Records are any
+// per-slot struct with velocity, gap, clock, mass, next and prev; other
+// fields are left as they are.
+template <class Record>
+void link_ring(const InitialCondition& initial, std::vector<Record>& records) {
+    const auto n = static_cast<std::int32_t>(initial.size());
+    records.resize(static_cast<std::size_t>(n));
+    for (std::int32_t i = 0; i < n; ++i) {
+        const auto s = static_cast<std::size_t>(i);
+        const double right = (i + 1 < n) ? initial.position[s + 1] : initial.position[0] + initial.ring_length;
+        Record& r = records[s];
+        r.velocity = initial.velocity[s];
+        r.gap = right - initial.position[s];
+        r.clock = 0.0;
+        r.mass = initial.mass[s];
+        r.next = (i + 1) % n;
+        r.prev = (i + n - 1) % n;
+    }
+}
+
 // Where the ring closes in a list of positions in ring order, each wrapped
 // into [0, L) (walk_ring's output): going once round, the differences
 // x[k+1] - x[k] fall by L exactly once, at the pair k that crosses x = L -> 0.

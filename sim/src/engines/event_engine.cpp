@@ -33,13 +33,7 @@ EventEngine::EventEngine(const InitialCondition& initial, const CollisionModel& 
       stall_window_(std::max<std::uint64_t>(collapse.stall_events_min, 10 * static_cast<std::uint64_t>(initial.size()))) {
     validate(initial);
     const auto n = static_cast<std::int32_t>(initial.size());
-    cluster_.resize(static_cast<std::size_t>(n));
-    for (std::int32_t i = 0; i < n; ++i) {
-        const auto s = static_cast<std::size_t>(i);
-        const double right = (i + 1 < n) ? initial.position[s + 1] : initial.position[0] + ring_length_;
-        cluster_[s] = {initial.velocity[s], right - initial.position[s], 0.0, initial.mass[s], (i + 1) % n,
-                       (i + n - 1) % n};
-    }
+    link_ring(initial, cluster_);
     anchor_position_ = initial.position[0];
     for (std::int32_t i = 0; i < n; ++i) reschedule(i);
 }

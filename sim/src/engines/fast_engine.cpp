@@ -69,14 +69,7 @@ FastEventEngine::FastEventEngine(const InitialCondition& initial, const Collisio
     if (!supports(initial, model, collapse))
         throw std::logic_error("FastEventEngine: run not supported, use EventEngine (see supports())");
     const auto n = static_cast<std::int32_t>(initial.size());
-    node_.resize(static_cast<std::size_t>(n));
-    // Same initial state and arithmetic as EventEngine's constructor.
-    for (std::int32_t i = 0; i < n; ++i) {
-        const auto s = static_cast<std::size_t>(i);
-        const double right = (i + 1 < n) ? initial.position[s + 1] : initial.position[0] + ring_length_;
-        node_[s] = {initial.velocity[s], right - initial.position[s], 0.0, initial.mass[s], never, (i + 1) % n,
-                    (i + n - 1) % n};
-    }
+    link_ring(initial, node_);  // the same initial state and arithmetic as EventEngine's
     anchor_position_ = initial.position[0];
     for (std::int32_t i = 0; i < n; ++i) node_[static_cast<std::size_t>(i)].key = key_for(i);
     speed_bound_ = 0.0;
