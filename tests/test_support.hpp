@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "shockgas/ensemble.hpp"
@@ -46,8 +48,12 @@ inline void expect_identical(const ClusterState& a, const ClusterState& b, const
 // in `written` (the driver's note for each one starts "checkpoint:").
 inline CheckpointOptions frequent_checkpoints(const std::string& name, std::atomic<int>& written) {
     CheckpointOptions options;
-    options.path = name + ".checkpoint";
+    // In the system's temporary folder, never the working directory: a test binary run by hand from the
+    // source tree must not leave checkpoints (and their ".previous" generation) where git would see them.
+    // The process id keeps two build trees' test runs at the same time apart.
+    options.path = (std::filesystem::temp_directory_path() / ("shockgas_test_" + std::to_string(::getpid()) + "_" + name + ".checkpoint")).string();
     std::filesystem::remove(options.path);
+    std::filesystem::remove(options.path + ".previous");
     options.interval_seconds = 0.02;
     options.note = [&written](const std::string& text) { written += text.rfind("checkpoint:", 0) == 0 ? 1 : 0; };
     return options;
