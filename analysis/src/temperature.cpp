@@ -55,7 +55,9 @@ TemperatureHistory TemperatureHistory::from(const std::vector<double>& time, std
             const double value = temperature[r * time.size() + k];
             if (!std::isfinite(value) || value <= 0.0) every_realization = false;
         }
-        if (every_realization) kept.push_back(k);
+        // t = 0 (schema 4 stores the start) has no place on the log-log axes
+        // every analysis of T(t) uses: kept out here, in one place.
+        if (every_realization && time[k] > 0.0) kept.push_back(k);
     }
     history.time.reserve(kept.size());
     for (std::size_t k : kept) history.time.push_back(time[k]);

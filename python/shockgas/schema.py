@@ -17,6 +17,7 @@ SCHEMA_VERSIONS = {
     3: "text attributes variable-length UTF-8 (h5py gives str); numbered groups (/snapshots, /histograms, "
        "/collapse/states) zero-padded to one width, so they sort in time order; root attributes positions, "
        "velocity_distribution, init_file_sha256",
+    4: "the layout of 3; the time series (/timeseries/time and its tables) starts with t = 0, the initial state",
 }
 
 

@@ -79,7 +79,10 @@ void validate(const SimulationParameters& p) {
 }
 
 std::vector<double> sample_grid(const SimulationParameters& p) {
-    std::vector<double> grid;
+    // t = 0 first: the start's temperature (1/3 for the uniform law) belongs in
+    // the time series a notebook reads. Log-log analyses drop it (analysis's
+    // TemperatureHistory keeps t > 0 only).
+    std::vector<double> grid{0.0};
     // Log grid t_k = 10^(k / K), k = 0, 1, ... while t_k < t_max; computed from
     // k (not by repeated multiplication) so every run has identical times.
     for (int k = 0;; ++k) {

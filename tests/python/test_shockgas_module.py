@@ -73,7 +73,15 @@ class Runs(unittest.TestCase):
             self.assertIs(type(r.attrs[name]), str, name)
         self.assertEqual(r.attrs["status"], "complete")
         self.assertIs(type(r.attrs["particles"]), int)
-        self.assertEqual(r.schema_version, 3)
+        self.assertEqual(r.schema_version, 4)
+        # Schema 4: the time series starts with the initial state (T(0) = 1/3 up to sampling).
+        self.assertEqual(r.time[0], 0.0)
+        self.assertTrue(all(r.collisions_per_particle[:, 0] == 0.0))
+        # T(0) of N = 1000 uniform velocities has standard deviation sqrt((1/5 - 1/9) / 1000) = 0.0094
+        # per realization; 0.03 is over 5 sigma of the 3-realization mean, and T(0) = 1 (a factor
+        # 3, the paper's normalisation mistaken for ours) or 0 would fail.
+        start_temperature_tolerance = 0.03
+        self.assertLess(abs(r.temperature[:, 0].mean() - 1.0 / 3.0), start_temperature_tolerance)
         # Schema 3: h5py itself (not only this module) gives text as str, and
         # the numbered groups sort in time order by name (zero-padded).
         objects = list(shockgas.walk(path("whole.h5"), raw=True))  # raw: h5py's own values
@@ -176,7 +184,7 @@ class Refusals(unittest.TestCase):
         with self.assertRaises(shockgas.UnsupportedSchemaVersion) as raised:
             shockgas.read_run(newer)
         message = str(raised.exception)
-        for needed in ("newer.h5", "schema_version 99", "(1, 2, 3)", "newer than this module"):
+        for needed in ("newer.h5", "schema_version 99", "(1, 2, 3, 4)", "newer than this module"):
             self.assertIn(needed, message)
         with self.assertRaises(shockgas.UnsupportedSchemaVersion):
             shockgas.attributes(newer)

@@ -8,6 +8,7 @@
 
 #include "shockgas/ensemble.hpp"
 #include "shockgas/h5.hpp"
+#include "shockgas/observables.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/state.hpp"
 
@@ -123,6 +124,36 @@ TEST(Output, SchemaAndBitIdenticalReruns) {
     std::vector<hsize_t> dims;
     root.open_group("histograms").open_group("0").read_doubles("counts", &dims);
     EXPECT_EQ(dims, (std::vector<hsize_t>{3, 22}));
+}
+
+// Schema 4: the time series starts with the initial state, t = 0, for every
+// engine (the event engine here, the exact engine at r = 0); its T is the start's
+// own, bit for bit, no collision has happened and every particle is its own cluster.
+TEST(Output, TimeSeriesStartsWithTheInitialState) {
+    for (const double restitution : {0.9, 0.0}) {
+        shockgas::SimulationParameters p;
+        p.particles = 300;
+        p.collision.restitution = restitution;
+        p.t_max = 20;
+        p.realizations = 2;
+        const auto result = shockgas::run_ensemble(p, nullptr);
+        ASSERT_FALSE(result.times.empty());
+        EXPECT_EQ(result.times.front(), 0.0);
+        EXPECT_GT(result.times[1], 0.0);
+        const std::size_t samples = result.times.size();
+        for (std::int64_t r = 0; r < p.realizations; ++r) {
+            const auto start = shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), p.seed,
+                                                                    p.first_realization + r, p.initial_law);
+            const auto cell = static_cast<std::size_t>(r) * samples;
+            EXPECT_EQ(result.temperature[cell], shockgas::velocity_moments(start.velocity, start.mass).temperature);
+            EXPECT_EQ(result.collisions_per_particle[cell], 0.0);
+            EXPECT_EQ(result.clusters[cell], static_cast<double>(p.particles));
+            EXPECT_LT(result.temperature[cell + samples - 1], result.temperature[cell]);  // it did cool
+        }
+        const auto path = temp_path("starts_at_zero.h5");
+        shockgas::write_output(path, p, result);
+        EXPECT_EQ(shockgas::read_timeseries(path).time.front(), 0.0);
+    }
 }
 
 TEST(Output, PartsMergeIntoTheSingleRunResult) {

@@ -25,7 +25,9 @@ const BuildInfo& build_info();
 // 2: checksummed (HDF5 1.10 format, Fletcher32 on every non-empty dataset).
 // 3 (2026-11-23): text attributes variable-length UTF-8; numbered groups
 // (/snapshots, /histograms, /collapse/states) zero-padded; readers take 1-3.
-constexpr long long output_schema_version = 3;
+// 4 (2026-11-23): the time series starts with t = 0 (the initial state); the
+// groups and datasets are those of 3. Readers take 1-4.
+constexpr long long output_schema_version = 4;
 
 // Writes program, version, compiler, flags, build type, HDF5 version, host and
 // the current UTC date as root attributes.

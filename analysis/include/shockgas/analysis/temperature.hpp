@@ -16,7 +16,8 @@
 namespace shockgas::analysis {
 
 // T(t) of every realization at common sample times, restricted to the times
-// every realization reached with T > 0 (a realization that collapsed or was
+// t > 0 (the stored start, t = 0, has no place on log-log axes) that every
+// realization reached with T > 0 (a realization that collapsed or was
 // interrupted would otherwise bias the mean at late times).
 struct TemperatureHistory {
     std::vector<double> time;                // K
