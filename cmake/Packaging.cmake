@@ -40,7 +40,7 @@ endif()
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "cmake, make, gnuplot-nox, python3-scipy")
 
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME shockgas-dev)
-set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libhdf5-dev, libfmt-dev, libgsl-dev")
+set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libhdf5-dev, libfmt-dev, libgsl-dev, libssl-dev")
 if(SHOCKGAS_MPI)
   string(APPEND CPACK_DEBIAN_DEV_PACKAGE_DEPENDS ", libopenmpi-dev")
 endif()

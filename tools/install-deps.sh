@@ -7,6 +7,8 @@ packages=(
   build-essential cmake pkg-config git
   libhdf5-dev hdf5-tools libgsl-dev gnuplot-nox
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # OpenSSL: the SHA-256 that records which --init file made a run.
+  libssl-dev
   python3 python3-numpy python3-scipy python3-h5py
   # Man pages from --help at build time; dpkg-dev for `cpack -G DEB`
   # (dpkg-shlibdeps computes the package's library dependencies).

@@ -50,7 +50,7 @@ if [ "$mode" = build ]; then
     extra=()
     [ "$harness" = fuzz_config ] && extra=("$out_dir/shockgas_sim_app.o")
     clang++ "${flags[@]}" -fsanitize=fuzzer "$source_dir/tests/fuzz/$harness.cpp" "${extra[@]}" "${objects[@]}" \
-      "${libraries[@]}" -lfmt -lpthread -o "$out_dir/$harness"
+      "${libraries[@]}" -lfmt -lcrypto -lpthread -o "$out_dir/$harness"
   done
   echo "built $out_dir/fuzz_init_file $out_dir/fuzz_config"
 elif [ "$mode" = run ]; then
