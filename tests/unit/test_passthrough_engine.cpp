@@ -283,6 +283,7 @@ TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
     EXPECT_EQ(paused.temperature, reference.temperature);
     EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
     std::filesystem::remove(options.path);
+    std::filesystem::remove(options.path + ".previous");
 }
 
 TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
@@ -470,6 +471,7 @@ TEST(HybridEngine, CheckpointPausesChangeNothing) {
     EXPECT_EQ(paused.temperature, reference.temperature);
     EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
     std::filesystem::remove(options.path);
+    std::filesystem::remove(options.path + ".previous");
 }
 
 // Refused exactly where the pass-through engine is, with one line naming the
