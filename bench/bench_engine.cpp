@@ -9,11 +9,20 @@
 //   passthrough PassThroughEngine: elastic collisions counted, not processed
 //              (collisions per second count every collision, elastic ones
 //              included: "equivalent" collisions)
+//   hybrid     HybridEngine: fast until nearly all collisions are elastic,
+//              then passthrough (on this short workload it never switches)
 //
 // SHOCKGAS_BENCH_LONG=1 adds the side-by-side long workloads, one
-// thread, fast against passthrough on the same start: r = 0.9, delta = 1e-2,
+// thread, fast, passthrough and hybrid on the same start: r = 0.9, delta = 1e-2,
 // N = 10^5 to t = 10^4 and to t = 10^5, and Fig. 5's r = 0.99, delta = 1e-4,
-// N = 2 10^4 to t = 10^5 (tens of CPU minutes), with the time ratio printed.
+// N = 2 10^4 to t = 10^4 and 10^5 (tens of CPU minutes), with the CPU seconds
+// and ratios printed.
+//
+// SHOCKGAS_BENCH_CROSSOVER=1 measures where the hybrid's switch should be
+// (HybridSwitchRule): the fast engine runs from check to check (the hybrid's
+// check times), and from its state at each check a pass-through engine runs the
+// same stretch; printed per stretch: the inelastic share of the stretch's
+// collisions (what the rule reads) and both engines' CPU seconds.
 //
 // Run: build/bench/bench_engine  (N = 10^3 .. 10^6, a few minutes)
 //      SHOCKGAS_BENCH_LARGE=1 build/bench/bench_engine   adds N = 10^7
@@ -35,6 +44,7 @@
 #include "shockgas/collision.hpp"
 #include "shockgas/event_engine.hpp"
 #include "shockgas/fast_engine.hpp"
+#include "shockgas/hybrid_engine.hpp"
 #include "shockgas/passthrough_engine.hpp"
 
 namespace {
@@ -178,7 +188,17 @@ void BM_passthrough(benchmark::State& state) {
     });
 }
 
-// One long workload, both engines from the same start: CPU seconds each.
+void BM_hybrid(benchmark::State& state) {
+    measure(state, "hybrid", shockgas::PassThroughEngine::bytes_per_particle(), [](const auto& initial) {
+        shockgas::HybridEngine engine(initial, paper_gas, {});
+        engine.advance_to(t_end);
+        return engine.collisions();
+    });
+}
+
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// One long workload, the engines from the same start: CPU seconds each.
 struct LongWorkload {
     const char* name;
     std::int64_t particles;
@@ -186,51 +206,97 @@ struct LongWorkload {
     double t_end;
 };
 
-std::map<std::string, std::pair<double, double>>& long_seconds() {
-    static std::map<std::string, std::pair<double, double>> table;
+struct LongSeconds {
+    double fast;
+    double passthrough;
+    double hybrid;
+    double switch_time;
+};
+
+std::map<std::string, LongSeconds>& long_seconds() {
+    static std::map<std::string, LongSeconds> table;
     return table;
 }
 
 void run_long(benchmark::State& state, const LongWorkload& w) {
     for (auto _ : state) {
         const auto initial = shockgas::generate_initial_condition(w.particles, static_cast<double>(w.particles), 1, 0);
-        const auto cpu = [] { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; };
-        double start = cpu();
+        double start = cpu_seconds();
         shockgas::FastEventEngine fast(initial, w.model, {});
         fast.advance_to(w.t_end);
-        const double fast_seconds = cpu() - start;
-        start = cpu();
+        const double fast_seconds = cpu_seconds() - start;
+        start = cpu_seconds();
         shockgas::PassThroughEngine pass(initial, w.model);
         pass.advance_to(w.t_end);
-        const double pass_seconds = cpu() - start;
-        long_seconds()[w.name] = {fast_seconds, pass_seconds};
+        const double pass_seconds = cpu_seconds() - start;
+        start = cpu_seconds();
+        shockgas::HybridEngine hybrid(initial, w.model, {});
+        hybrid.advance_to(w.t_end);
+        const double hybrid_seconds = cpu_seconds() - start;
+        long_seconds()[w.name] = {fast_seconds, pass_seconds, hybrid_seconds, hybrid.switch_time()};
         state.counters["fast_s"] = fast_seconds;
         state.counters["passthrough_s"] = pass_seconds;
-        state.counters["ratio"] = fast_seconds / pass_seconds;
+        state.counters["hybrid_s"] = hybrid_seconds;
+        state.counters["switch_time"] = hybrid.switch_time();
         state.counters["collisions_fast"] = static_cast<double>(fast.collisions());
         state.counters["collisions_passthrough"] = static_cast<double>(pass.collisions());
+        state.counters["collisions_hybrid"] = static_cast<double>(hybrid.collisions());
     }
 }
 
+const shockgas::CollisionModel fig5_gas{0.99, 1e-4, shockgas::Subthreshold::elastic};
+
 void register_long() {
-    static const std::vector<LongWorkload> workloads = {
-        {"long/N=1e5,t=1e4", 100000, paper_gas, 1e4},
-        {"long/N=1e5,t=1e5", 100000, paper_gas, 1e5},
-        {"long/fig5,N=2e4,t=1e5", 20000, {0.99, 1e-4, shockgas::Subthreshold::elastic}, 1e5}};
+    static const std::vector<LongWorkload> workloads = {{"long/N=1e5,t=1e4", 100000, paper_gas, 1e4},
+                                                        {"long/N=1e5,t=1e5", 100000, paper_gas, 1e5},
+                                                        {"long/fig5,N=2e4,t=1e4", 20000, fig5_gas, 1e4},
+                                                        {"long/fig5,N=2e4,t=1e5", 20000, fig5_gas, 1e5}};
     for (const LongWorkload& w : workloads)
         benchmark::RegisterBenchmark(w.name, [&w](benchmark::State& state) { run_long(state, w); })
             ->Iterations(1)
             ->Unit(benchmark::kSecond);
 }
 
+// The crossover measurement (SHOCKGAS_BENCH_CROSSOVER=1): per stretch between
+// the hybrid's checks, the inelastic share and both engines' CPU seconds from
+// the same state.
+void crossover(const LongWorkload& w) {
+    const auto initial = shockgas::generate_initial_condition(w.particles, static_cast<double>(w.particles), 1, 0);
+    const shockgas::HybridSwitchRule rule = shockgas::HybridSwitchRule::measured();
+    shockgas::FastEventEngine fast(initial, w.model, {});
+    std::printf("\ncrossover %s\n%12s %12s %14s %12s %12s %10s\n", w.name, "from t", "to t", "inelastic %",
+                "fast CPU s", "passthru s", "fast/pt");
+    for (double from = rule.first_check, to = from * rule.check_factor; from < w.t_end;
+         from = to, to *= rule.check_factor) {
+        fast.advance_to(from);
+        const shockgas::MidRunState state = fast.mid_run_state();
+        const double start = cpu_seconds();
+        fast.advance_to(to);
+        const double fast_seconds = cpu_seconds() - start;
+        const double share = static_cast<double>(fast.inelastic_collisions() - state.inelastic_collisions) /
+                             static_cast<double>(fast.collisions() - state.collisions);
+        double pass_seconds = std::nan("");
+        if (from >= 0.1 * w.t_end / 100.0) {  // early stretches: the pass-through engine is far slower
+            const double pass_start = cpu_seconds();
+            shockgas::PassThroughEngine pass(state, w.model);
+            pass.advance_to(to);
+            pass_seconds = cpu_seconds() - pass_start;
+        }
+        std::printf("%12.4g %12.4g %14.4f %12.4f %12.4f %10.3f\n", from, to, 100.0 * share, fast_seconds,
+                    pass_seconds, fast_seconds / pass_seconds);
+        std::fflush(stdout);
+    }
+}
+
 void register_all(std::int64_t particles) {
     // One iteration is 40-odd collisions per particle: enough from N = 10^5 on.
     const auto iterations = particles >= 100000 ? 1 : (particles >= 10000 ? 3 : 30);
-    for (auto* bench : {&BM_fast, &BM_reference, &BM_textbook, &BM_passthrough}) {
-        const char* name = bench == &BM_fast        ? "fast"
-                           : bench == &BM_reference ? "reference"
-                           : bench == &BM_textbook  ? "textbook"
-                                                    : "passthrough";
+    for (auto* bench : {&BM_fast, &BM_reference, &BM_textbook, &BM_passthrough, &BM_hybrid}) {
+        const char* name = bench == &BM_fast          ? "fast"
+                           : bench == &BM_reference   ? "reference"
+                           : bench == &BM_textbook    ? "textbook"
+                           : bench == &BM_passthrough ? "passthrough"
+                                                      : "hybrid";
         benchmark::RegisterBenchmark(name, bench)
             ->Arg(particles)
             ->Iterations(iterations)
@@ -242,6 +308,11 @@ void register_all(std::int64_t particles) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    if (const char* c = std::getenv("SHOCKGAS_BENCH_CROSSOVER"); c != nullptr && std::string(c) == "1") {
+        crossover({"r=0.9,delta=1e-2,N=1e5", 100000, paper_gas, 1e5});
+        crossover({"fig5,r=0.99,delta=1e-4,N=2e4", 20000, fig5_gas, 1e5});
+        return 0;
+    }
     for (const std::int64_t n : {1000, 10000, 100000, 1000000}) register_all(n);
     if (const char* large = std::getenv("SHOCKGAS_BENCH_LARGE"); large != nullptr && std::string(large) == "1")
         register_all(10000000);
@@ -251,8 +322,8 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
-    std::printf("\n%10s %14s %14s %14s %14s %8s %8s %10s %10s\n", "N", "fast c/s", "reference c/s",
-                "textbook c/s", "passthru c/s", "fast/tb", "pt/fast", "B/p fast", "B/p tb");
+    std::printf("\n%10s %14s %14s %14s %14s %14s %8s %8s %8s %10s %10s\n", "N", "fast c/s", "reference c/s",
+                "textbook c/s", "passthru c/s", "hybrid c/s", "fast/tb", "pt/fast", "hyb/fast", "B/p fast", "B/p tb");
     std::map<std::int64_t, bool> sizes;
     for (const auto& [key, rate] : rates()) sizes[key.second] = true;
     for (const auto& [n, present] : sizes) {
@@ -260,15 +331,18 @@ int main(int argc, char** argv) {
             const auto it = rates().find({engine, n});
             return it == rates().end() ? std::nan("") : it->second;
         };
-        std::printf("%10lld %14.3e %14.3e %14.3e %14.3e %8.2f %8.2f %10zu %10zu\n", static_cast<long long>(n),
-                    get("fast"), get("reference"), get("textbook"), get("passthrough"),
-                    get("fast") / get("textbook"), get("passthrough") / get("fast"),
+        std::printf("%10lld %14.3e %14.3e %14.3e %14.3e %14.3e %8.2f %8.2f %8.2f %10zu %10zu\n",
+                    static_cast<long long>(n), get("fast"), get("reference"), get("textbook"), get("passthrough"),
+                    get("hybrid"), get("fast") / get("textbook"), get("passthrough") / get("fast"),
+                    get("hybrid") / get("fast"),
                     shockgas::FastEventEngine::bytes_per_particle(), TextbookRing::bytes_per_particle());
     }
     if (!long_seconds().empty()) {
-        std::printf("\n%-26s %12s %14s %8s\n", "long workload", "fast CPU s", "passthru CPU s", "fast/pt");
-        for (const auto& [name, pair] : long_seconds())
-            std::printf("%-26s %12.2f %14.2f %8.2f\n", name.c_str(), pair.first, pair.second, pair.first / pair.second);
+        std::printf("\n%-26s %12s %14s %12s %10s %8s %8s\n", "long workload", "fast CPU s", "passthru CPU s",
+                    "hybrid CPU s", "switch t", "fast/pt", "fast/hyb");
+        for (const auto& [name, s] : long_seconds())
+            std::printf("%-26s %12.2f %14.2f %12.2f %10.4g %8.2f %8.2f\n", name.c_str(), s.fast, s.passthrough,
+                        s.hybrid, s.switch_time, s.fast / s.passthrough, s.fast / s.hybrid);
     }
     return 0;
 }

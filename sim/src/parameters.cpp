@@ -74,8 +74,10 @@ void validate(const SimulationParameters& p) {
     check_times(p.sample_times, p.t_max, "sample time");
     check_times(p.snapshot_times, p.t_max, "snapshot time");
     check_times(p.histogram_times, p.t_max, "histogram time");
-    if (p.engine != "event" && p.engine != "exact" && p.engine != "passthrough" && p.engine != "auto")
-        throw InputError(fmt::format("engine must be 'event', 'exact', 'passthrough' or 'auto', got '{}'", p.engine));
+    if (p.engine != "event" && p.engine != "exact" && p.engine != "passthrough" && p.engine != "hybrid" &&
+        p.engine != "auto")
+        throw InputError(
+            fmt::format("engine must be 'event', 'exact', 'passthrough', 'hybrid' or 'auto', got '{}'", p.engine));
 }
 
 std::vector<double> sample_grid(const SimulationParameters& p) {

@@ -1,6 +1,9 @@
 // The pass-through engine (elastic collisions as crossing world lines) against
 // the reference event loop, against the exact crossing count of free lines,
-// and for its invariants and checkpoints. It cannot be bit-identical to the
+// and for its invariants and checkpoints; and the hybrid engine (the windowed
+// event engine handing over to the pass-through engine) against the same
+// reference loop across its switch, bit for bit against the event engine
+// before it, and for its checkpoints. It cannot be bit-identical to the
 // event loop (the same physics rounded differently, amplified by chaos), so
 // the comparison runs until the time at which the reference loop itself
 // diverges from a copy started with one velocity changed by one ulp.
@@ -11,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -22,6 +26,8 @@
 #include "shockgas/engine.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/event_engine.hpp"
+#include "shockgas/fast_engine.hpp"
+#include "shockgas/hybrid_engine.hpp"
 #include "shockgas/observables.hpp"
 #include "shockgas/passthrough_engine.hpp"
 
@@ -32,6 +38,9 @@ using shockgas::CollapseCriterion;
 using shockgas::CollisionModel;
 using shockgas::Engine;
 using shockgas::EventEngine;
+using shockgas::FastEventEngine;
+using shockgas::HybridEngine;
+using shockgas::HybridSwitchRule;
 using shockgas::InitialCondition;
 using shockgas::PassThroughEngine;
 using shockgas::Subthreshold;
@@ -89,21 +98,29 @@ std::vector<double> log_times(double first, double last, int per_decade) {
     return times;
 }
 
-// >= 50 seeds, N = 2 ... 200, several (r, delta): the engines agree at every
-// sample before the chaos horizon, measured per case as the first sample at
-// which the reference loop differs from itself under a 1-ulp change of one
-// initial velocity (or the pass-through engine from itself under the same
-// change, whichever is first).
-TEST(PassThroughEngine, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
+// >= 50 seeds, N = 2 ... 200, several (r, delta): an engine agrees with the
+// reference loop at every sample before the chaos horizon, measured per case
+// as the first sample at which the reference loop differs from itself under a
+// 1-ulp change of one initial velocity (or the engine under test from itself
+// under the same change, whichever is first). `make(start, model, seed)`
+// builds the engine under test; `crossed(engine, t)` says whether something
+// the test is about (the hybrid's switch) happened before t.
+struct ComparisonTotals {
+    std::size_t samples = 0;
+    std::uint64_t collisions = 0;
+    int cases = 0;
+    int crossed = 0;  // cases in which `crossed` held at the horizon
+};
+
+template <class Make, class Crossed>
+ComparisonTotals compare_with_the_reference_loop(Make make, Crossed crossed) {
     const std::vector<std::int64_t> sizes = {2, 3, 4, 5, 7, 10, 16, 25, 40, 64, 100, 150, 200};
     const std::vector<CollisionModel> models = {{0.5, 0.05, Subthreshold::elastic},
                                                 {0.8, 0.02, Subthreshold::elastic},
                                                 {0.9, 0.2, Subthreshold::elastic},
                                                 {0.99, 0.01, Subthreshold::elastic}};
     const auto times = log_times(0.1, 1e4, 8);
-    std::uint64_t compared_collisions = 0;
-    std::size_t compared_samples = 0;
-    int cases = 0;
+    ComparisonTotals totals;
     for (std::uint64_t seed = 1; seed <= 54; ++seed) {
         const std::int64_t n = sizes[seed % sizes.size()];
         const CollisionModel model = models[seed % models.size()];
@@ -114,31 +131,43 @@ TEST(PassThroughEngine, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
 
         EventEngine reference(start, model, CollapseCriterion{});
         EventEngine reference_nudged(nudged, model, CollapseCriterion{});
-        PassThroughEngine passthrough(start, model);
-        PassThroughEngine passthrough_nudged(nudged, model);
+        auto engine = make(start, model, seed);
+        auto engine_nudged = make(nudged, model, seed);
         const Trace ref = trace(reference, times);
         const Trace ref_nudged = trace(reference_nudged, times);
-        const Trace pass = trace(passthrough, times);
-        const Trace pass_nudged = trace(passthrough_nudged, times);
-        const std::size_t horizon = std::min(first_difference(ref, ref_nudged), first_difference(pass, pass_nudged));
+        const Trace tested = trace(*engine, times);
+        const Trace tested_nudged = trace(*engine_nudged, times);
+        const std::size_t horizon =
+            std::min(first_difference(ref, ref_nudged), first_difference(tested, tested_nudged));
         for (std::size_t s = 0; s < horizon; ++s) {
             SCOPED_TRACE(testing::Message() << "seed " << seed << " N " << n << " r " << model.restitution
                                             << " delta " << model.velocity_threshold << " t " << times[s]);
-            ASSERT_EQ(pass.collisions[s], ref.collisions[s]);
-            ASSERT_NEAR(pass.temperature[s], ref.temperature[s], agreement_tolerance * ref.temperature[s]);
+            EXPECT_EQ(tested.collisions[s], ref.collisions[s]);
+            EXPECT_NEAR(tested.temperature[s], ref.temperature[s], agreement_tolerance * ref.temperature[s]);
+            if (::testing::Test::HasFailure()) return totals;  // one sample's report is enough
         }
-        if (horizon > 0) compared_collisions += ref.collisions[horizon - 1];
-        compared_samples += horizon;
-        ++cases;
+        if (horizon > 0) totals.collisions += ref.collisions[horizon - 1];
+        if (horizon > 0 && crossed(*engine, times[horizon - 1])) ++totals.crossed;
+        totals.samples += horizon;
+        ++totals.cases;
     }
-    EXPECT_EQ(cases, 54);
+    return totals;
+}
+
+TEST(PassThroughEngine, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
+    const ComparisonTotals totals = compare_with_the_reference_loop(
+        [](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
+            return std::make_unique<PassThroughEngine>(start, model);
+        },
+        [](const PassThroughEngine&, double) { return false; });
+    EXPECT_EQ(totals.cases, 54);
     // The comparison must have substance: many samples and collisions before
     // the horizons (measured 2026-11-23; a regression that made the horizon
     // come at once would otherwise pass silently).
-    EXPECT_GT(compared_samples, 54u * 8u);
-    EXPECT_GT(compared_collisions, 100000u);
-    std::printf("compared %zu samples, %llu collisions before the chaos horizons\n", compared_samples,
-                static_cast<unsigned long long>(compared_collisions));
+    EXPECT_GT(totals.samples, 54u * 8u);
+    EXPECT_GT(totals.collisions, 100000u);
+    std::printf("compared %zu samples, %llu collisions before the chaos horizons\n", totals.samples,
+                static_cast<unsigned long long>(totals.collisions));
 }
 
 // With delta above every relative speed all collisions are elastic: the lines
@@ -254,6 +283,7 @@ TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
     EXPECT_EQ(paused.temperature, reference.temperature);
     EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
     std::filesystem::remove(options.path);
+    std::filesystem::remove(options.path + ".previous");
 }
 
 TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
@@ -275,6 +305,201 @@ TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
     p.collision = {0.9, 0.01, Subthreshold::elastic};
     EXPECT_EQ(shockgas::resolve_engine_name(p), "passthrough");
     EXPECT_THROW(shockgas::resolve_engine_name(p, &heavy), shockgas::InputError);
+}
+
+// ---- The hybrid engine -------------------------------------------------------
+
+// A rule that hands over at the first check, at time `at`: the test hook
+// that puts the switch early, where small systems are still busy.
+HybridSwitchRule switch_at(double at) {
+    HybridSwitchRule rule;
+    rule.first_check = at;
+    rule.check_factor = 2.0;
+    rule.max_inelastic_share = 1.0;
+    return rule;
+}
+// A rule that never hands over (no stretch has a negative inelastic share).
+HybridSwitchRule never_switch() {
+    HybridSwitchRule rule = HybridSwitchRule::measured();
+    rule.max_inelastic_share = -1.0;
+    return rule;
+}
+
+// Before the switch the hybrid engine is the windowed event engine: the same
+// clusters bit for bit and the same collision counts at every sample, with
+// the measured rule (the switch comes after these samples) and with a rule
+// that never switches.
+TEST(HybridEngine, IsTheEventEngineBeforeTheSwitch) {
+    const InitialCondition start = random_ring(3000, 7);
+    const CollisionModel model{0.9, 0.01, Subthreshold::elastic};
+    const auto times = log_times(0.1, 300.0, 6);
+    for (const HybridSwitchRule& rule : {HybridSwitchRule::measured(), never_switch()}) {
+        FastEventEngine event(start, model, {});
+        HybridEngine hybrid(start, model, {}, nullptr, rule);
+        for (const double t : times) {
+            event.advance_to(t);
+            hybrid.advance_to(t);
+            ASSERT_FALSE(hybrid.switched()) << "t = " << t;
+            ClusterState a;
+            ClusterState b;
+            event.clusters(a);
+            hybrid.clusters(b);
+            shockgas::testing::expect_identical(a, b, "t = " + std::to_string(t));
+            ASSERT_EQ(hybrid.collisions(), event.collisions()) << "t = " << t;
+            ASSERT_EQ(hybrid.inelastic_collisions(), event.inelastic_collisions()) << "t = " << t;
+        }
+    }
+}
+
+// At the moment of the hand-over every observable is the event engine's: the
+// clusters (positions, velocities, order) bit for bit, T, and the collision
+// counts; and the pass-through engine goes on from there.
+TEST(HybridEngine, HandsOverTheWholeState) {
+    const CollisionModel model{0.9, 0.01, Subthreshold::elastic};
+    for (const double at : {0.5, 30.0, 200.0}) {
+        const InitialCondition start = random_ring(2000, 3);
+        FastEventEngine event(start, model, {});
+        HybridEngine hybrid(start, model, {}, nullptr, switch_at(at));
+        event.advance_to(at);
+        hybrid.advance_to(at);
+        ASSERT_TRUE(hybrid.switched());
+        EXPECT_EQ(hybrid.switch_time(), at);
+        ClusterState a;
+        ClusterState b;
+        event.clusters(a);
+        hybrid.clusters(b);
+        shockgas::testing::expect_identical(a, b, "hand-over at t = " + std::to_string(at));
+        EXPECT_EQ(hybrid.collisions(), event.collisions());
+        EXPECT_EQ(hybrid.inelastic_collisions(), event.inelastic_collisions());
+        EXPECT_EQ(hybrid.cluster_count(), event.cluster_count());
+        // And it runs on: the count only grows, and the state stays one ring.
+        const std::uint64_t before = hybrid.collisions();
+        hybrid.advance_to(2.0 * at + 10.0);
+        EXPECT_GT(hybrid.collisions(), before);
+        EXPECT_EQ(hybrid.time(), 2.0 * at + 10.0);
+    }
+}
+
+// Exact across the switch: the reference-loop comparison of the pass-through
+// engine, run on the hybrid engine with its switch forced early (at t = 0.3,
+// 2, 20 or 200 by seed), so that the comparison crosses it in most cases.
+TEST(HybridEngine, AgreesWithTheReferenceLoopAcrossTheSwitch) {
+    const std::vector<double> switch_times = {0.3, 2.0, 20.0, 200.0};
+    const ComparisonTotals totals = compare_with_the_reference_loop(
+        [&](const InitialCondition& start, const CollisionModel& model, std::uint64_t seed) {
+            return std::make_unique<HybridEngine>(start, model, CollapseCriterion{}, nullptr,
+                                                  switch_at(switch_times[seed % switch_times.size()]));
+        },
+        [](const HybridEngine& engine, double t) { return engine.switch_time() < t; });
+    EXPECT_EQ(totals.cases, 54);
+    // The comparison crosses the switch: measured 2026-11-23, every one of the
+    // 54 cases switched before its chaos horizon.
+    EXPECT_GE(totals.crossed, 40);
+    EXPECT_GT(totals.samples, 54u * 8u);
+    EXPECT_GT(totals.collisions, 100000u);
+    std::printf("hybrid: compared %zu samples, %llu collisions before the chaos horizons; %d of %d cases switched "
+                "before theirs\n",
+                totals.samples, static_cast<unsigned long long>(totals.collisions), totals.crossed, totals.cases);
+}
+
+// A snapshot resumes bit for bit, taken before the switch (the event engine's
+// state and the rule's counts) and after it (the pass-through engine's).
+TEST(HybridEngine, SnapshotResumesBitForBitBeforeAndAfterTheSwitch) {
+    const InitialCondition start = random_ring(1000, 9);
+    const CollisionModel model{0.8, 0.02, Subthreshold::elastic};
+    HybridSwitchRule rule = HybridSwitchRule::measured();
+    rule.first_check = 1.0;
+    rule.max_inelastic_share = 0.5;  // switches in this run, after the first pause
+    HybridEngine probe(start, model, {}, nullptr, rule);
+    probe.advance_to(3000.0);
+    ASSERT_TRUE(probe.switched());
+    const double switch_time = probe.switch_time();
+    for (const double pause : {0.5 * switch_time, 2.0 * switch_time}) {
+        // The run that does not stop makes the same calls (the pass-through
+        // engine's windows end at each time it is asked for, as the ensemble
+        // driver's samples are the same whether or not it checkpoints).
+        HybridEngine straight(start, model, {}, nullptr, rule);
+        straight.advance_to(pause);
+        straight.advance_to(3000.0);
+        HybridEngine first(start, model, {}, nullptr, rule);
+        first.advance_to(pause);
+        EXPECT_EQ(first.switched(), pause > switch_time);
+        const auto snapshot = first.snapshot();
+        ASSERT_TRUE(snapshot.has_value());
+        EXPECT_EQ(snapshot->kind, "hybrid");
+        HybridEngine resumed(start, model, {}, nullptr, rule);
+        resumed.restore(*snapshot);
+        resumed.advance_to(3000.0);
+        ClusterState a;
+        ClusterState b;
+        straight.clusters(a);
+        resumed.clusters(b);
+        shockgas::testing::expect_identical(a, b, "paused at t = " + std::to_string(pause));
+        EXPECT_EQ(straight.collisions(), resumed.collisions());
+        EXPECT_EQ(straight.switch_time(), resumed.switch_time());
+    }
+    // A snapshot of another engine is refused, naming both.
+    PassThroughEngine other(start, model);
+    HybridEngine fresh(start, model, {}, nullptr, rule);
+    EXPECT_THROW(fresh.restore(*other.snapshot()), shockgas::InputError);
+}
+
+// Through the ensemble driver with --engine hybrid: checkpoints every 20 ms
+// (before and after the switch) give bit for bit the run that never paused.
+TEST(HybridEngine, CheckpointPausesChangeNothing) {
+    shockgas::SimulationParameters p;
+    p.particles = 5000;
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    p.t_max = 12000.0;  // the measured rule switches at t ~ 5e3 here
+    p.realizations = 2;
+    p.threads = 2;
+    p.engine = "hybrid";
+    {
+        // The measured rule switches within this run, so pauses fall on both sides.
+        HybridEngine probe(shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), p.seed, 0),
+                           p.collision, p.collapse);
+        probe.advance_to(p.t_max);
+        ASSERT_TRUE(probe.switched());
+        ASSERT_LT(probe.switch_time(), 0.8 * p.t_max);
+    }
+    const auto reference = shockgas::run_ensemble(p, nullptr);
+    std::atomic<int> written{0};
+    const auto options = shockgas::testing::frequent_checkpoints("hybrid", written);
+    const auto paused = shockgas::run_ensemble(p, nullptr, nullptr, {}, options);
+    EXPECT_GE(written.load(), 2) << "the run ended before checkpoints were taken: the test did not test";
+    EXPECT_EQ(reference.engine, "hybrid");
+    EXPECT_EQ(paused.temperature, reference.temperature);
+    EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
+    std::filesystem::remove(options.path);
+    std::filesystem::remove(options.path + ".previous");
+}
+
+// Refused exactly where the pass-through engine is, with one line naming the
+// engine and the reason.
+TEST(HybridEngine, RefusesWhatThePassThroughEngineRefuses) {
+    shockgas::SimulationParameters p;
+    p.engine = "hybrid";
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    EXPECT_EQ(shockgas::resolve_engine_name(p), "hybrid");
+    const auto refusal = [&p](const InitialCondition* initial) -> std::string {
+        try {
+            shockgas::resolve_engine_name(p, initial);
+        } catch (const shockgas::InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    p.collision = {0.9, 0.01, Subthreshold::sticky};
+    EXPECT_EQ(refusal(nullptr).rfind("--engine hybrid cannot run this: sticky", 0), 0u) << refusal(nullptr);
+    p.collision = {0.9, 0.0, Subthreshold::elastic};
+    EXPECT_EQ(refusal(nullptr).rfind("--engine hybrid cannot run this: delta = 0", 0), 0u) << refusal(nullptr);
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    InitialCondition heavy = random_ring(10, 1);
+    heavy.mass[3] = 2.0;
+    EXPECT_EQ(refusal(&heavy).rfind("--engine hybrid cannot run this: unequal masses", 0), 0u) << refusal(&heavy);
+    EXPECT_EQ(refusal(nullptr), "");
+    EXPECT_THROW(HybridEngine(heavy, p.collision, {}), std::invalid_argument);
+    EXPECT_NO_THROW(shockgas::validate(p));
 }
 
 }  // namespace

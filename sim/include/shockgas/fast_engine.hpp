@@ -91,6 +91,15 @@ public:
     void restore(const EngineSnapshot& snapshot) override;
     static constexpr const char* snapshot_kind = "fast_event";
 
+    // Collisions at or above delta so far (classify: inelastic); what
+    // HybridEngine's switch rule reads. Not in EventEngine: only this engine
+    // is handed over from.
+    std::uint64_t inelastic_collisions() const { return inelastic_; }
+    // The ring now, one particle per slot, positions unwrapped from the same
+    // walk as clusters() (so a hand-over reports the same positions bit for
+    // bit). Only while every particle is its own cluster (no merge happened).
+    MidRunState mid_run_state() const;
+
     // Diagnostics for the benchmark.
     std::uint64_t windows() const { return windows_; }
     std::uint64_t blocks() const { return blocks_; }
@@ -183,6 +192,7 @@ private:
     std::int64_t particles_;
     std::int64_t alive_;
     std::uint64_t collisions_ = 0;
+    std::uint64_t inelastic_ = 0;
     std::int32_t anchor_ = 0;
     double anchor_position_ = 0.0;
     std::optional<CollapseReport> collapse_;  // stays empty: collapsing runs are not supported

@@ -63,6 +63,12 @@ namespace shockgas {
 class PassThroughEngine final : public Engine {
 public:
     PassThroughEngine(const InitialCondition& initial, const CollisionModel& model, LiveStatus* live = nullptr);
+    // From the middle of a run (HybridEngine's hand-over): the lines start
+    // straight from the given positions at state.time, line k at particle k,
+    // and the collision counts go on from the state's. Equal masses only (the
+    // caller checked unsupported_reason); throws std::invalid_argument for a
+    // state that is not one ring in order.
+    PassThroughEngine(const MidRunState& state, const CollisionModel& model, LiveStatus* live = nullptr);
 
     // Empty when the engine is exact for a run whose particles have these
     // masses; otherwise why not, in a phrase for a one-line error.
@@ -162,6 +168,9 @@ private:
     std::uint64_t insertion_sort(std::vector<Sorted>& buffer) const;
     void write_back(const std::vector<Sorted>& buffer, std::int64_t lo);
     void update_velocity_bounds();
+    // The rest of both constructors once line_ holds the lines: identities,
+    // chunk bounds and the first window.
+    void start_lines();
 
     std::vector<Line> line_;            // logical (physical ring) order
     std::vector<std::int32_t> where_;   // line id -> logical index

@@ -73,17 +73,18 @@ inline std::size_t closing_pair(const std::vector<double>& position) {
 }
 
 // Positions from gaps: the anchor's absolute position moved to `now`, then the
-// gaps summed around the ring. Output in ring order from the smallest slot,
-// positions wrapped into [0, L). Records are any per-slot struct with
-// velocity, clock, mass and next; gap_at(slot, t) gives the gap after slot.
+// gaps summed around the ring, in walk order from the anchor (unwrapped, so
+// non-decreasing up to contact rounding). `first` is the walk index of the
+// smallest live slot. Shared by walk_ring (output) and the hand-over of a
+// mid-run state to another engine (FastEventEngine::mid_run_state), so both
+// read the same positions bit for bit.
 template <class Record, class GapAt>
-void walk_ring(const std::vector<Record>& records, std::int32_t anchor, double anchor_position, double now,
-               std::int64_t alive, double ring_length, GapAt gap_at, ClusterState& out) {
-    out.clear();
-    out.time = now;
+std::size_t walk_positions(const std::vector<Record>& records, std::int32_t anchor, double anchor_position,
+                           double now, std::int64_t alive, GapAt gap_at, std::vector<double>& walk_position,
+                           std::vector<std::int32_t>& walk_slot) {
     const auto count = static_cast<std::size_t>(alive);
-    std::vector<double> walk_position(count);
-    std::vector<std::int32_t> walk_slot(count);
+    walk_position.resize(count);
+    walk_slot.resize(count);
     const Record& anchor_record = records[static_cast<std::size_t>(anchor)];
     double x = anchor_position + anchor_record.velocity * (now - anchor_record.clock);
     std::int32_t s = anchor;
@@ -95,6 +96,22 @@ void walk_ring(const std::vector<Record>& records, std::int32_t anchor, double a
         x += gap_at(s, now);
         s = records[static_cast<std::size_t>(s)].next;
     }
+    return first;
+}
+
+// Output in ring order from the smallest slot, positions wrapped into [0, L).
+// Records are any per-slot struct with velocity, clock, mass and next;
+// gap_at(slot, t) gives the gap after slot.
+template <class Record, class GapAt>
+void walk_ring(const std::vector<Record>& records, std::int32_t anchor, double anchor_position, double now,
+               std::int64_t alive, double ring_length, GapAt gap_at, ClusterState& out) {
+    out.clear();
+    out.time = now;
+    const auto count = static_cast<std::size_t>(alive);
+    std::vector<double> walk_position;
+    std::vector<std::int32_t> walk_slot;
+    const std::size_t first =
+        walk_positions(records, anchor, anchor_position, now, alive, gap_at, walk_position, walk_slot);
     out.position.reserve(count);
     out.velocity.reserve(count);
     out.mass.reserve(count);

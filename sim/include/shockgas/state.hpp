@@ -80,6 +80,21 @@ struct ClusterState {
     }
 };
 
+// The physical state of an equal-or-unequal-mass ring in the middle of a run,
+// for handing a realization from one engine to another (HybridEngine): one
+// entry per particle in ring order from particle 0, positions unwrapped
+// (non-decreasing up to contact rounding, the last at most the first + L),
+// the time they hold at, and the collisions counted so far.
+struct MidRunState {
+    double ring_length = 0.0;
+    double time = 0.0;
+    std::uint64_t collisions = 0;
+    std::uint64_t inelastic_collisions = 0;  // of those, at or above delta (a diagnostic)
+    std::vector<double> position;
+    std::vector<double> velocity;
+    std::vector<double> mass;
+};
+
 // Wraps x into [0, L).
 double wrap_position(double x, double ring_length);
 

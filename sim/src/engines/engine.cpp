@@ -5,6 +5,7 @@
 #include "shockgas/event_engine.hpp"
 #include "shockgas/exact_engine.hpp"
 #include "shockgas/fast_engine.hpp"
+#include "shockgas/hybrid_engine.hpp"
 #include "shockgas/passthrough_engine.hpp"
 
 namespace shockgas {
@@ -25,12 +26,14 @@ std::string resolve_engine_name(const SimulationParameters& parameters, const In
         throw InputError(fmt::format("--engine exact solves only the sticky gas r = 0, got r = {}; use --engine "
                                      "event or auto",
                                      parameters.collision.restitution));
-    if (parameters.engine == "passthrough") {
+    if (parameters.engine == "passthrough" || parameters.engine == "hybrid") {
         // The init file's masses decide; the generated start has unit masses.
+        // The hybrid engine hands over to the pass-through engine, so it
+        // applies exactly where that one does.
         static const std::vector<double> unit_mass{1.0};
         const std::string refusal = PassThroughEngine::unsupported_reason(
             initial != nullptr ? initial->mass : unit_mass, parameters.collision, parameters.collapse);
-        if (!refusal.empty()) throw InputError("--engine passthrough cannot run this: " + refusal);
+        if (!refusal.empty()) throw InputError("--engine " + parameters.engine + " cannot run this: " + refusal);
     }
     return parameters.engine;
 }
@@ -52,6 +55,8 @@ std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const Sim
         engine = std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);
     else if (snapshot.kind == PassThroughEngine::snapshot_kind)
         engine = std::make_unique<PassThroughEngine>(initial, parameters.collision, live);
+    else if (snapshot.kind == HybridEngine::snapshot_kind)
+        engine = std::make_unique<HybridEngine>(initial, parameters.collision, parameters.collapse, live);
     else
         throw InputError(fmt::format("checkpoint: unknown engine state kind '{}'", snapshot.kind));
     engine->restore(snapshot);
@@ -70,6 +75,8 @@ std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, cons
     }
     if (name == "exact") return std::make_unique<ExactEngine>(initial, live);
     if (name == "passthrough") return std::make_unique<PassThroughEngine>(initial, parameters.collision, live);
+    if (name == "hybrid")
+        return std::make_unique<HybridEngine>(initial, parameters.collision, parameters.collapse, live);
     throw InputError("engine '" + name + "' is not available in this build");
 }
 

@@ -313,8 +313,9 @@ void FastEventEngine::run_block(std::int32_t first, std::int32_t last) {
     }
 
     const Node& a = node_[static_cast<std::size_t>(i)];
-    detail::collide_neighbours(*this, i, t,
-                               classify(model_, a.velocity - node_[static_cast<std::size_t>(a.next)].velocity));
+    const CollisionKind kind = classify(model_, a.velocity - node_[static_cast<std::size_t>(a.next)].velocity);
+    inelastic_ += kind == CollisionKind::inelastic ? 1 : 0;
+    detail::collide_neighbours(*this, i, t, kind);
 }
 
 // Replays the cut pair's gap and key updates in global (time, slot) order:
@@ -397,7 +398,8 @@ std::optional<EngineSnapshot> FastEventEngine::snapshot() const {
     for (const Node& c : node_) key.push_back(c.key);
     out.reals["scalars"] = {now_, anchor_position_, window_length_, speed_bound_, window_start_};
     out.integers["counters"] = {static_cast<std::int64_t>(collisions_), alive_, anchor_,
-                                static_cast<std::int64_t>(windows_), static_cast<std::int64_t>(blocks_)};
+                                static_cast<std::int64_t>(windows_), static_cast<std::int64_t>(blocks_),
+                                static_cast<std::int64_t>(inelastic_)};
     auto& recent_end = out.reals["recent_window_end"];
     auto& recent_span = out.reals["recent_window_stall_span"];
     auto& recent_events = out.integers["recent_window_run_events"];
@@ -415,7 +417,14 @@ void FastEventEngine::restore(const EngineSnapshot& snapshot) {
     const auto& key = snapshot_io::array(snapshot.reals, "key", node_.size(), snapshot);
     for (std::size_t s = 0; s < node_.size(); ++s) node_[s].key = key[s];
     const auto& scalars = snapshot_io::array(snapshot.reals, "scalars", 5, snapshot);
-    const auto& counters = snapshot_io::array(snapshot.integers, "counters", 5, snapshot);
+    // Six counters; checkpoints written before the inelastic count was kept
+    // have five (the count then restarts at 0: it only steers HybridEngine,
+    // whose checkpoints always have six).
+    const auto counters_it = snapshot.integers.find("counters");
+    const std::size_t counter_count =
+        counters_it != snapshot.integers.end() && counters_it->second.size() == 5 ? 5 : 6;
+    const auto& counters = snapshot_io::array(snapshot.integers, "counters", counter_count, snapshot);
+    inelastic_ = counter_count == 6 ? static_cast<std::uint64_t>(counters[5]) : 0;
     now_ = scalars[0];
     anchor_position_ = scalars[1];
     window_length_ = scalars[2];
@@ -435,6 +444,32 @@ void FastEventEngine::restore(const EngineSnapshot& snapshot) {
     recent_windows_.clear();
     for (std::size_t w = 0; w < windows; ++w)
         recent_windows_.push_back({recent_end[w], recent_span[w], static_cast<std::uint64_t>(recent_events[w])});
+}
+
+MidRunState FastEventEngine::mid_run_state() const {
+    if (alive_ != particles_) throw std::logic_error("FastEventEngine::mid_run_state: clusters have merged");
+    MidRunState out;
+    out.ring_length = ring_length_;
+    out.time = now_;
+    out.collisions = collisions_;
+    out.inelastic_collisions = inelastic_;
+    std::vector<double> walk_position;
+    std::vector<std::int32_t> walk_slot;
+    const std::size_t first = walk_positions(
+        node_, anchor_, anchor_position_, now_, alive_, [this](std::int32_t slot, double t) { return gap_at(slot, t); },
+        walk_position, walk_slot);
+    // From particle 0 on (the anchor is particle 0 unless a merge moved it, so
+    // normally first = 0 and no position is shifted): the part of the walk
+    // before it comes one ring length later.
+    const std::size_t n = walk_position.size();
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t w = (first + k) % n;
+        const Node& c = node_[static_cast<std::size_t>(walk_slot[w])];
+        out.position.push_back(w < first ? walk_position[w] + ring_length_ : walk_position[w]);
+        out.velocity.push_back(c.velocity);
+        out.mass.push_back(c.mass);
+    }
+    return out;
 }
 
 void FastEventEngine::clusters(ClusterState& out) const {

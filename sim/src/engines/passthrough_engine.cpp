@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -63,9 +64,37 @@ PassThroughEngine::PassThroughEngine(const InitialCondition& initial, const Coll
     const auto n = static_cast<std::size_t>(initial.size());
     mass_ = initial.mass.front();
     line_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) line_[k] = {initial.position[k], initial.velocity[k], 0.0, 0, 0};
+    start_lines();
+}
+
+PassThroughEngine::PassThroughEngine(const MidRunState& state, const CollisionModel& model, LiveStatus* live)
+    : model_(model), live_(live), ring_length_(state.ring_length) {
+    const std::size_t n = state.position.size();
+    if (n == 0 || state.velocity.size() != n || state.mass.size() != n || !(state.ring_length > 0.0))
+        throw std::invalid_argument("PassThroughEngine: a mid-run state needs as many velocities and masses as positions");
+    // Positions may be out of order by contact rounding (|gap| ~ ulp(t));
+    // anything more is not a ring in order.
+    const double tolerance = 1e-6 * state.ring_length / static_cast<double>(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const double next = k + 1 < n ? state.position[k + 1] : state.position[0] + state.ring_length;
+        if (!(next - state.position[k] >= -tolerance) || !std::isfinite(state.velocity[k]))
+            throw std::invalid_argument("PassThroughEngine: the mid-run state is not one ring in order");
+    }
+    mass_ = state.mass.front();
+    line_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) line_[k] = {state.position[k], state.velocity[k], state.time, 0, 0};
+    now_ = state.time;
+    collisions_ = state.collisions;
+    inelastic_ = state.inelastic_collisions;
+    start_lines();
+}
+
+void PassThroughEngine::start_lines() {
+    const std::size_t n = line_.size();
     where_.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
-        line_[k] = {initial.position[k], initial.velocity[k], 0.0, static_cast<std::uint32_t>(k), 0};
+        line_[k].id = static_cast<std::uint32_t>(k);
         where_[k] = static_cast<std::int32_t>(k);
     }
     const std::size_t chunks = (n >> chunk_shift) + 1;
