@@ -502,4 +502,16 @@ TEST(HybridEngine, RefusesWhatThePassThroughEngineRefuses) {
     EXPECT_NO_THROW(shockgas::validate(p));
 }
 
+// auto does not pick the hybrid engine: measured, it is not faster everywhere
+// it applies (engine.cpp, resolve_engine_name; docs/passthrough-engine.md).
+TEST(HybridEngine, AutoKeepsTheEventEngine) {
+    shockgas::SimulationParameters p;
+    p.engine = "auto";
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    EXPECT_EQ(shockgas::resolve_engine_name(p), "event");
+    const InitialCondition start = random_ring(100, 1);
+    p.engine = "hybrid";
+    EXPECT_EQ(shockgas::make_engine(p, start, nullptr)->name(), "hybrid");
+}
+
 }  // namespace

@@ -17,8 +17,15 @@ namespace shockgas {
 // as measured (docs/passthrough-engine.md) it is faster than the windowed
 // event engine only late in a run, when nearly all collisions are elastic,
 // and several times slower in the inelastic early phase, so it is asked for
-// by name. Called on the main thread before any realization starts, so an
-// impossible choice is one InputError.
+// by name. Nor the hybrid engine (event engine, then pass-through; same
+// domain): measured 2026-11-23 (docs/passthrough-engine.md, "Hybrid") it is
+// 1.05-1.10x faster than the event engine at r = 0.9, delta = 1e-2,
+// N = 1e5 to t = 1e4 and 1.55x to t = 1e5, but where it never switches
+// (Fig. 5's r = 0.99, delta = 1e-4, N = 2e4 to t = 1e4) its checks cost
+// 0.7-2%, and in Fig. 5's setting the pass-through engine was measured 4.7x
+// slower on a stretch at 2.2% inelastic collisions, just above the rule's 2%;
+// auto must never be slower, so the hybrid engine too is asked for by name. Called on the main thread before
+// any realization starts, so an impossible choice is one InputError.
 std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial) {
     const bool sticky_gas = parameters.collision.restitution == 0.0;
     if (parameters.engine == "auto") return sticky_gas ? "exact" : "event";
