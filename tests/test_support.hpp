@@ -59,4 +59,21 @@ inline CheckpointOptions frequent_checkpoints(const std::string& name, std::atom
     return options;
 }
 
+// The ensemble run of `p` with checkpoints every 20 ms (named `name`) against
+// the same run without: pausing a realization to deposit its state must change
+// nothing, bit for bit. Returns both results for further checks.
+inline std::pair<EnsembleResult, EnsembleResult> run_with_and_without_checkpoint_pauses(
+    const SimulationParameters& p, const std::string& name) {
+    EnsembleResult reference = run_ensemble(p, nullptr);
+    std::atomic<int> written{0};
+    const CheckpointOptions options = frequent_checkpoints(name, written);
+    EnsembleResult paused = run_ensemble(p, nullptr, nullptr, {}, options);
+    EXPECT_GE(written.load(), 2) << "the run ended before checkpoints were taken: the test did not test";
+    EXPECT_EQ(paused.temperature, reference.temperature);
+    EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
+    std::filesystem::remove(options.path);
+    std::filesystem::remove(options.path + ".previous");
+    return {std::move(reference), std::move(paused)};
+}
+
 }  // namespace shockgas::testing

@@ -274,16 +274,8 @@ TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
     p.realizations = 2;
     p.threads = 2;
     p.engine = "passthrough";
-    const auto reference = shockgas::run_ensemble(p, nullptr);
-    std::atomic<int> written{0};
-    const auto options = shockgas::testing::frequent_checkpoints("passthrough", written);
-    const auto paused = shockgas::run_ensemble(p, nullptr, nullptr, {}, options);
-    EXPECT_GE(written.load(), 2) << "the run ended before checkpoints were taken: the test did not test";
+    const auto [reference, paused] = shockgas::testing::run_with_and_without_checkpoint_pauses(p, "passthrough");
     EXPECT_EQ(reference.engine, "passthrough");
-    EXPECT_EQ(paused.temperature, reference.temperature);
-    EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
-    std::filesystem::remove(options.path);
-    std::filesystem::remove(options.path + ".previous");
 }
 
 TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
@@ -462,16 +454,8 @@ TEST(HybridEngine, CheckpointPausesChangeNothing) {
         ASSERT_TRUE(probe.switched());
         ASSERT_LT(probe.switch_time(), 0.8 * p.t_max);
     }
-    const auto reference = shockgas::run_ensemble(p, nullptr);
-    std::atomic<int> written{0};
-    const auto options = shockgas::testing::frequent_checkpoints("hybrid", written);
-    const auto paused = shockgas::run_ensemble(p, nullptr, nullptr, {}, options);
-    EXPECT_GE(written.load(), 2) << "the run ended before checkpoints were taken: the test did not test";
+    const auto [reference, paused] = shockgas::testing::run_with_and_without_checkpoint_pauses(p, "hybrid");
     EXPECT_EQ(reference.engine, "hybrid");
-    EXPECT_EQ(paused.temperature, reference.temperature);
-    EXPECT_EQ(paused.collisions_per_particle, reference.collisions_per_particle);
-    std::filesystem::remove(options.path);
-    std::filesystem::remove(options.path + ".previous");
 }
 
 // Refused exactly where the pass-through engine is, with one line naming the
