@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "shockgas/engine.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/observables.hpp"
 #include "shockgas/state.hpp"
@@ -42,6 +43,16 @@ inline void expect_identical(const ClusterState& a, const ClusterState& b, const
     const auto moments_a = velocity_moments(a.velocity, a.mass);
     const auto moments_b = velocity_moments(b.velocity, b.mass);
     ASSERT_EQ(moments_a.temperature, moments_b.temperature) << where;
+}
+
+// The same for two engines' current states and collision counts.
+inline void expect_identical(const Engine& a, const Engine& b, const std::string& where) {
+    ClusterState state_a;
+    ClusterState state_b;
+    a.clusters(state_a);
+    b.clusters(state_b);
+    expect_identical(state_a, state_b, where);
+    EXPECT_EQ(a.collisions(), b.collisions()) << where;
 }
 
 // Checkpoints every 20 ms into a fresh file <name>.checkpoint, counting them

@@ -332,11 +332,7 @@ TEST(HybridEngine, IsTheEventEngineBeforeTheSwitch) {
             event.advance_to(t);
             hybrid.advance_to(t);
             ASSERT_FALSE(hybrid.switched()) << "t = " << t;
-            ClusterState a;
-            ClusterState b;
-            event.clusters(a);
-            hybrid.clusters(b);
-            shockgas::testing::expect_identical(a, b, "t = " + std::to_string(t));
+            shockgas::testing::expect_identical(event, hybrid, "t = " + std::to_string(t));
             ASSERT_EQ(hybrid.collisions(), event.collisions()) << "t = " << t;
             ASSERT_EQ(hybrid.inelastic_collisions(), event.inelastic_collisions()) << "t = " << t;
         }
@@ -356,11 +352,7 @@ TEST(HybridEngine, HandsOverTheWholeState) {
         hybrid.advance_to(at);
         ASSERT_TRUE(hybrid.switched());
         EXPECT_EQ(hybrid.switch_time(), at);
-        ClusterState a;
-        ClusterState b;
-        event.clusters(a);
-        hybrid.clusters(b);
-        shockgas::testing::expect_identical(a, b, "hand-over at t = " + std::to_string(at));
+        shockgas::testing::expect_identical(event, hybrid, "hand-over at t = " + std::to_string(at));
         EXPECT_EQ(hybrid.collisions(), event.collisions());
         EXPECT_EQ(hybrid.inelastic_collisions(), event.inelastic_collisions());
         EXPECT_EQ(hybrid.cluster_count(), event.cluster_count());
@@ -422,11 +414,7 @@ TEST(HybridEngine, SnapshotResumesBitForBitBeforeAndAfterTheSwitch) {
         HybridEngine resumed(start, model, {}, nullptr, rule);
         resumed.restore(*snapshot);
         resumed.advance_to(3000.0);
-        ClusterState a;
-        ClusterState b;
-        straight.clusters(a);
-        resumed.clusters(b);
-        shockgas::testing::expect_identical(a, b, "paused at t = " + std::to_string(pause));
+        shockgas::testing::expect_identical(straight, resumed, "paused at t = " + std::to_string(pause));
         EXPECT_EQ(straight.collisions(), resumed.collisions());
         EXPECT_EQ(straight.switch_time(), resumed.switch_time());
     }
