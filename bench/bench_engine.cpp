@@ -198,6 +198,13 @@ void BM_hybrid(benchmark::State& state) {
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
+// CPU seconds an engine takes to advance to t.
+double seconds_to(shockgas::Engine& engine, double t) {
+    const double start = cpu_seconds();
+    engine.advance_to(t);
+    return cpu_seconds() - start;
+}
+
 // One long workload, the engines from the same start: CPU seconds each.
 struct LongWorkload {
     const char* name;
@@ -221,18 +228,12 @@ std::map<std::string, LongSeconds>& long_seconds() {
 void run_long(benchmark::State& state, const LongWorkload& w) {
     for (auto _ : state) {
         const auto initial = shockgas::generate_initial_condition(w.particles, static_cast<double>(w.particles), 1, 0);
-        double start = cpu_seconds();
         shockgas::FastEventEngine fast(initial, w.model, {});
-        fast.advance_to(w.t_end);
-        const double fast_seconds = cpu_seconds() - start;
-        start = cpu_seconds();
+        const double fast_seconds = seconds_to(fast, w.t_end);
         shockgas::PassThroughEngine pass(initial, w.model);
-        pass.advance_to(w.t_end);
-        const double pass_seconds = cpu_seconds() - start;
-        start = cpu_seconds();
+        const double pass_seconds = seconds_to(pass, w.t_end);
         shockgas::HybridEngine hybrid(initial, w.model, {});
-        hybrid.advance_to(w.t_end);
-        const double hybrid_seconds = cpu_seconds() - start;
+        const double hybrid_seconds = seconds_to(hybrid, w.t_end);
         long_seconds()[w.name] = {fast_seconds, pass_seconds, hybrid_seconds, hybrid.switch_time()};
         state.counters["fast_s"] = fast_seconds;
         state.counters["passthrough_s"] = pass_seconds;
@@ -270,17 +271,13 @@ void crossover(const LongWorkload& w) {
          from = to, to *= rule.check_factor) {
         fast.advance_to(from);
         const shockgas::MidRunState state = fast.mid_run_state();
-        const double start = cpu_seconds();
-        fast.advance_to(to);
-        const double fast_seconds = cpu_seconds() - start;
+        const double fast_seconds = seconds_to(fast, to);
         const double share = static_cast<double>(fast.inelastic_collisions() - state.inelastic_collisions) /
                              static_cast<double>(fast.collisions() - state.collisions);
         double pass_seconds = std::nan("");
-        if (from >= 0.1 * w.t_end / 100.0) {  // early stretches: the pass-through engine is far slower
-            const double pass_start = cpu_seconds();
+        if (from >= w.t_end / 1000.0) {  // early stretches: the pass-through engine is far slower
             shockgas::PassThroughEngine pass(state, w.model);
-            pass.advance_to(to);
-            pass_seconds = cpu_seconds() - pass_start;
+            pass_seconds = seconds_to(pass, to);
         }
         std::printf("%12.4g %12.4g %14.4f %12.4f %12.4f %10.3f\n", from, to, 100.0 * share, fast_seconds,
                     pass_seconds, fast_seconds / pass_seconds);

@@ -24,8 +24,9 @@ namespace shockgas {
 // (Fig. 5's r = 0.99, delta = 1e-4, N = 2e4 to t = 1e4) its checks cost
 // 0.7-2%, and in Fig. 5's setting the pass-through engine was measured 4.7x
 // slower on a stretch at 2.2% inelastic collisions, just above the rule's 2%;
-// auto must never be slower, so the hybrid engine too is asked for by name. Called on the main thread before
-// any realization starts, so an impossible choice is one InputError.
+// auto must never be slower, so the hybrid engine too is asked for by name.
+// Called on the main thread before any realization starts, so an impossible
+// choice is one InputError.
 std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial) {
     const bool sticky_gas = parameters.collision.restitution == 0.0;
     if (parameters.engine == "auto") return sticky_gas ? "exact" : "event";
