@@ -24,7 +24,8 @@
 // cut, short enough that no pair can meet twice). In a step:
 //  1. From the order at s, each line's earliest inelastic crossing, if all
 //     lines stayed straight, is found by scanning ahead within its reach
-//     ((v - v_min) h), passing over 16-line chunks whose velocity bounds rule
+//     ((v - v_min) h), passing over lines that do not end the step behind it
+//     and 16-line chunks whose velocity or end-position bounds rule
 //     out an inelastic meeting; each line with one goes on a heap once.
 //  2. The candidates run in (time, line, line) order. Before a bend at t_e, the
 //     stretch of the array around the pair is re-sorted by position at t_e,
@@ -96,8 +97,11 @@ public:
     // particle 0; they sum to L up to rounding and are never negative beyond it.
     std::vector<double> gaps() const;
 
-    // The line record; the heap entries are transient (one step's candidates).
-    static constexpr std::size_t bytes_per_particle() { return sizeof(Line) + sizeof(std::int32_t); }
+    // The line record, its index and its position at the step's end; the heap
+    // entries are transient (one step's candidates).
+    static constexpr std::size_t bytes_per_particle() {
+        return sizeof(Line) + sizeof(std::int32_t) + sizeof(double);
+    }
 
     // Crossings per line per step the step length aims at: few enough that a
     // step's scan looks at few lines, many enough that its O(N) sweep is shared
@@ -185,6 +189,16 @@ private:
     static constexpr int chunk_shift = 4;
     std::vector<double> chunk_min_;
     std::vector<double> chunk_max_;
+    // The same for the lines' positions at the step's end, in the frame of
+    // index 0..N-1, with end_ holding each line's: a line meets in the rest of
+    // the step only lines ahead of it that end it behind it, or behind it that
+    // end it ahead, so a scan passes over lines and chunks that do not.
+    std::vector<double> chunk_end_min_;
+    std::vector<double> chunk_end_max_;
+    std::vector<double> end_;
+    // end_ of logical index i (any integer), shifted by L per turn, as
+    // unwrapped_position.
+    double unwrapped_end(std::int64_t i) const;
     void reset_chunk_bounds(std::int64_t lo, std::int64_t hi);
     double step_start_ = 0.0;
     double step_end_ = 0.0;

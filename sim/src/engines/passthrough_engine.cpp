@@ -100,6 +100,9 @@ void PassThroughEngine::start_lines() {
     const std::size_t chunks = (n >> chunk_shift) + 1;
     chunk_min_.assign(chunks, 0.0);
     chunk_max_.assign(chunks, 0.0);
+    chunk_end_min_.assign(chunks, 0.0);
+    chunk_end_max_.assign(chunks, 0.0);
+    end_.assign(n, 0.0);
     update_velocity_bounds();
     // First window: about the target number of crossings for a line moving
     // at the full velocity spread through the mean spacing; adapt_window then
@@ -126,6 +129,12 @@ double PassThroughEngine::unwrapped_position(std::int64_t i, double t) const {
     const std::int64_t k = wrap_index(i);
     const auto wraps = (i - k) / n;
     return position_at(line_[static_cast<std::size_t>(k)], t) + static_cast<double>(wraps) * ring_length_;
+}
+
+double PassThroughEngine::unwrapped_end(std::int64_t i) const {
+    const std::int64_t k = wrap_index(i);
+    const auto wraps = (i - k) / static_cast<std::int64_t>(line_.size());
+    return end_[static_cast<std::size_t>(k)] + static_cast<double>(wraps) * ring_length_;
 }
 
 void PassThroughEngine::update_velocity_bounds() {
@@ -234,14 +243,24 @@ void PassThroughEngine::reset_chunk_bounds(std::int64_t lo, std::int64_t hi) {
         const std::int64_t k = wrap_index(i);
         const std::int64_t chunk_begin = (k >> chunk_shift) << chunk_shift;
         const std::int64_t chunk_end = std::min(chunk_begin + (std::int64_t{1} << chunk_shift), n);
-        double v_lo = line_[static_cast<std::size_t>(chunk_begin)].v;
-        double v_hi = v_lo;
-        for (std::int64_t m = chunk_begin + 1; m < chunk_end; ++m) {
-            v_lo = std::min(v_lo, line_[static_cast<std::size_t>(m)].v);
-            v_hi = std::max(v_hi, line_[static_cast<std::size_t>(m)].v);
+        double v_lo = never;
+        double v_hi = -never;
+        double end_lo = never;
+        double end_hi = -never;
+        for (std::int64_t m = chunk_begin; m < chunk_end; ++m) {
+            const Line& line = line_[static_cast<std::size_t>(m)];
+            const double end = position_at(line, step_end_);
+            end_[static_cast<std::size_t>(m)] = end;
+            v_lo = std::min(v_lo, line.v);
+            v_hi = std::max(v_hi, line.v);
+            end_lo = std::min(end_lo, end);
+            end_hi = std::max(end_hi, end);
         }
-        chunk_min_[static_cast<std::size_t>(k >> chunk_shift)] = v_lo;
-        chunk_max_[static_cast<std::size_t>(k >> chunk_shift)] = v_hi;
+        const auto c = static_cast<std::size_t>(k >> chunk_shift);
+        chunk_min_[c] = v_lo;
+        chunk_max_[c] = v_hi;
+        chunk_end_min_[c] = end_lo;
+        chunk_end_max_[c] = end_hi;
         i += chunk_end - k;
     }
 }
@@ -313,6 +332,8 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
         }
         if (classify(model_, a.v - v_min_) != CollisionKind::inelastic) continue;  // can catch nobody
         const double slack = reach_slack * (std::abs(keys_[ms]) + (a.v - v_min_) * h);
+        // a meets only lines that end the step at or behind it.
+        const double end_bound = unwrapped_end(lo + m) + slack;
         const std::int64_t last = ring_block_ ? m + n - 1 : size - 1;
         for (std::int64_t j = m + 1; j <= last;) {
             const std::size_t js = block_slot(j);
@@ -321,10 +342,16 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
             const double horizon = std::min(earliest_[ms].time, step_end) - step_start;
             if (distance > (a.v - v_min_) * horizon + slack) break;
             const std::int64_t index = wrap_index(lo + j);
-            const double chunk_min = chunk_min_[static_cast<std::size_t>(index >> chunk_shift)];
+            const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
+            const double turn = static_cast<double>((lo + j - index) / n) * ring_length_;
+            const double chunk_min = chunk_min_[chunk];
             if (classify(model_, a.v - chunk_min) != CollisionKind::inelastic ||
-                distance > (a.v - chunk_min) * horizon + slack) {
+                distance > (a.v - chunk_min) * horizon + slack || chunk_end_min_[chunk] + turn > end_bound) {
                 j += std::min<std::int64_t>(((index >> chunk_shift) + 1) << chunk_shift, n) - index;
+                continue;
+            }
+            if (end_[static_cast<std::size_t>(index)] + turn > end_bound) {
+                ++j;
                 continue;
             }
             const Line& b = line_[static_cast<std::size_t>(index)];
@@ -372,6 +399,10 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
     const double here = unwrapped_position(at, t);
     const double disorder = (v_max_ - v_min_) * (t - step_start_);  // drift since the lines were last sorted
     const double slack = reach_slack * (std::abs(here) + disorder);
+    // It meets only lines ahead that end the step at or behind it, and lines
+    // behind that end at or ahead of it.
+    const double end_here = unwrapped_end(at);
+    const double end_slack = reach_slack * (std::abs(end_here) + (v_max_ - v_min_) * (step_end - t));
     Candidate best{never, 0, 0, 0, 0, false};
     // Only the earliest crossing is wanted, so the search ends sooner once
     // one is found: nothing beyond (speed) (best - t) can be met before it.
@@ -385,9 +416,15 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         if (distance > (line.v - v_min_) * horizon() + disorder + slack) break;
         // Pass over the rest of the chunk if none of it is slow enough to be
         // caught inelastically, or near enough to be caught at all.
+        const double turn = static_cast<double>((j - index) / n) * ring_length_;
         if (classify(model_, line.v - chunk_min_[chunk]) != CollisionKind::inelastic ||
-            distance > (line.v - chunk_min_[chunk]) * horizon() + 2.0 * disorder + slack) {
+            distance > (line.v - chunk_min_[chunk]) * horizon() + 2.0 * disorder + slack ||
+            chunk_end_min_[chunk] + turn > end_here + end_slack) {
             j += chunk_rest;
+            continue;
+        }
+        if (end_[static_cast<std::size_t>(index)] + turn > end_here + end_slack) {
+            ++j;
             continue;
         }
         const Line& other = line_[static_cast<std::size_t>(index)];
@@ -401,9 +438,15 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         const std::int64_t chunk_rest = index - ((index >> chunk_shift) << chunk_shift) + 1;
         const double distance = here - unwrapped_position(j, t);
         if (distance > (v_max_ - line.v) * horizon() + disorder + slack) break;
+        const double turn = static_cast<double>((j - index) / n) * ring_length_;
         if (classify(model_, chunk_max_[chunk] - line.v) != CollisionKind::inelastic ||
-            distance > (chunk_max_[chunk] - line.v) * horizon() + 2.0 * disorder + slack) {
+            distance > (chunk_max_[chunk] - line.v) * horizon() + 2.0 * disorder + slack ||
+            chunk_end_max_[chunk] + turn < end_here - end_slack) {
             j -= chunk_rest;
+            continue;
+        }
+        if (end_[static_cast<std::size_t>(index)] + turn < end_here - end_slack) {
+            --j;
             continue;
         }
         const Line& other = line_[static_cast<std::size_t>(index)];
@@ -628,8 +671,12 @@ void PassThroughEngine::write_back(const std::vector<Sorted>& buffer, std::int64
         line_[static_cast<std::size_t>(k)] = line;
         where_[line.id] = static_cast<std::int32_t>(k);
         const auto c = static_cast<std::size_t>(k >> chunk_shift);
+        const double end = position_at(line, step_end_);
+        end_[static_cast<std::size_t>(k)] = end;
         chunk_min_[c] = std::min(chunk_min_[c], line.v);
         chunk_max_[c] = std::max(chunk_max_[c], line.v);
+        chunk_end_min_[c] = std::min(chunk_end_min_[c], end);
+        chunk_end_max_[c] = std::max(chunk_end_max_[c], end);
     }
 }
 
