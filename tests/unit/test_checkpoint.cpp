@@ -167,14 +167,17 @@ TEST(Checkpoint, StoppedRunResumedFromItsFileEqualsUninterruptedRun) {
     const EnsembleResult reference = shockgas::run_ensemble(p, nullptr);
 
     std::atomic<int> written{0};
-    const CheckpointOptions options = shockgas::testing::frequent_checkpoints("stopped", written);
+    CheckpointOptions options = shockgas::testing::frequent_checkpoints("stopped", written);
     std::atomic<bool> stop{false};
-    std::thread stopper([&] {
-        while (written.load() < 2) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        stop.store(true);  // as Ctrl-C does
-    });
+    // Stopped (as Ctrl-C does) from the note of the first periodic
+    // checkpoint, in the thread that wrote it, so that most of the run is
+    // still ahead: a polling thread waiting for a later one could be scheduled
+    // after the run had ended on a loaded machine (1 run in 24 failed so).
+    options.note = [&written, &stop, count = options.note](const std::string& text) {
+        count(text);
+        if (written.load() >= 1) stop.store(true);
+    };
     const EnsembleResult stopped = shockgas::run_ensemble(p, nullptr, &stop, {}, options);
-    stopper.join();
     ASSERT_EQ(stopped.status, "interrupted") << "the run ended before it was stopped: the test did not test";
     ASSERT_TRUE(std::filesystem::exists(options.path));
     const auto checkpoint = shockgas::read_checkpoint(options.path);
