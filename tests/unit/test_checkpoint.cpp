@@ -8,13 +8,11 @@
 // same arithmetic must give the same doubles, so no tolerance is needed and
 // any difference is a bug.
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
