@@ -103,12 +103,25 @@ public:
         return sizeof(Line) + sizeof(std::int32_t) + sizeof(double);
     }
 
-    // Crossings per line per step the step length aims at: few enough that a
-    // step's scan looks at few lines, many enough that its O(N) sweep is shared
-    // by several crossings (docs/passthrough-engine.md, "How it finds only the
-    // inelastic crossings"; 0.5 was the fastest of 2, 1, 0.5 and 0.25 measured
-    // on 2026-11-23).
+    // Crossings per line per step the step length aims at. Few enough that a
+    // bend's rescans and re-sort, which grow with the step, stay short; many
+    // enough that a step's O(N) sweeps are shared by several crossings
+    // (docs/passthrough-engine.md, "How it finds only the inelastic
+    // crossings"). Where many crossings are inelastic the first matters
+    // most, so the target is crossings_per_step_target; where few are, the
+    // second, so it grows as the block's last step's inelastic share falls
+    // below inelastic_share_for_longer_steps, up to longest_step_target
+    // (step_target()). Measured 2026-11-23 (SHOCKGAS_BENCH_CROSSOVER=paper,
+    // r = 0.9, delta = 1e-2, N = 1e5, pass-through CPU seconds for the
+    // stretches from t = 9.4e3 to 1.1e5, 0.3-1.5% inelastic): a fixed 0.5 took
+    // 12.3 s, a fixed 2 8.9 s, this rule 8.5 s (8.3 s with 0.02 for 0.04, 8.5 s
+    // with 8 for 4); in Fig. 5's setting to t = 1e4, where nearly every
+    // crossing is inelastic, a fixed 0.5 was fastest of 0.25-2 (2.75 s; 3.71 s
+    // at 2).
     static constexpr double crossings_per_step_target = 0.5;
+    static constexpr double longest_step_target = 4.0;
+    static constexpr double inelastic_share_for_longer_steps = 0.04;
+    static double step_target(std::uint64_t crossings, std::uint64_t inelastic);
     // Crossings per line per window, on average over the ring: a window costs
     // an O(N) sweep to find its cuts, shared by this many crossings.
     static constexpr double crossings_per_window_target = 8.0;
@@ -170,6 +183,9 @@ private:
     void close_ring();
     void swap_across_seam(bool sink);
     std::uint64_t insertion_sort(std::vector<Sorted>& buffer) const;
+    void sort_in_place(std::int64_t lo, std::int64_t hi);
+    void place(Line line, std::int64_t from, std::int64_t to);
+    std::vector<double> sorted_end_;  // sort_in_place's positions, by axis index
     void write_back(const std::vector<Sorted>& buffer, std::int64_t lo);
     void update_velocity_bounds();
     // The rest of both constructors once line_ holds the lines: identities,
@@ -182,6 +198,7 @@ private:
     std::vector<Sorted> buffer_;
     std::vector<double> keys_;  // positions at the step's start, on the block's axis
     std::vector<Candidate> earliest_;  // per line of the block, during the step's scan
+    std::vector<double> lowest_end_ahead_;  // per slot of the block, during the step's scan
     // Velocity bounds of the lines at logical indices [16 c, 16 c + 15]: set at
     // each step's start, widened whenever a line is written into the chunk, so
     // that a scan can pass over a chunk none of whose lines it could meet

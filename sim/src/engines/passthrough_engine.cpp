@@ -196,8 +196,18 @@ void PassThroughEngine::run_window(double window_end) {
                                static_cast<double>(n), crossings_per_window_target);
 }
 
+// Crossings per line the next step aims at, after a step with these counts:
+// crossings_per_step_target, or more in proportion as the share of inelastic
+// crossings falls below inelastic_share_for_longer_steps (see the header).
+double PassThroughEngine::step_target(std::uint64_t crossings, std::uint64_t inelastic) {
+    if (inelastic == 0) return longest_step_target;
+    const double share = static_cast<double>(inelastic) / static_cast<double>(crossings);
+    return std::clamp(crossings_per_step_target * inelastic_share_for_longer_steps / share,
+                      crossings_per_step_target, longest_step_target);
+}
+
 // Block [lo, hi] of logical indices from `start` to `end`, in steps of about
-// crossings_per_step_target crossings per line. `ring`: the block is the
+// step_target() crossings per line. `ring`: the block is the
 // whole ring with nothing to cut it.
 void PassThroughEngine::run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end) {
     if (hi == lo && !ring) return;  // a lone line crosses nobody
@@ -226,8 +236,11 @@ void PassThroughEngine::run_block(std::int64_t lo, std::int64_t hi, bool ring, d
         step = std::min(step, longest);
         const double step_end = t + step < end ? t + step : end;
         const std::uint64_t before = collisions_;
+        const std::uint64_t inelastic_before = inelastic_;
         run_step(t, step_end);
-        step = adapted_length(step, step_end - t, collisions_ - before, lines, crossings_per_step_target);
+        const std::uint64_t crossings = collisions_ - before;
+        step = adapted_length(step, step_end - t, crossings, lines,
+                              step_target(crossings, inelastic_ - inelastic_before));
         t = step_end;
     }
 }
@@ -299,9 +312,62 @@ void PassThroughEngine::run_step(double step_start, double step_end) {
         hi = lo + static_cast<std::int64_t>(line_.size()) - 1;
         linear = widest_gap_ > (v_max_ - v_min_) * (step_end - step_start) * (1.0 + reach_slack);
     }
-    sort_stretch(lo, hi, step_end, linear);
-    write_back(buffer_, lo);
+    if (linear) {
+        sort_in_place(lo, hi);
+    } else {
+        sort_stretch(lo, hi, step_end, false);
+        write_back(buffer_, lo);
+    }
     ++steps_;
+}
+
+// Indices [lo, hi] (axis), which no line crosses into or out of in the step,
+// re-sorted in place by position at the step's end as insertion_sort would
+// sort them: one swap per crossing, counted as a collision, and a closing
+// inelastic pair left as it is. Most lines are in order already, so only the
+// ones out of order are moved; each moved line is shifted by L per turn of the
+// ring between its old and new index, as write_back does.
+void PassThroughEngine::sort_in_place(std::int64_t lo, std::int64_t hi) {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    const auto turn = [n, this](std::int64_t i) { return static_cast<double>((i - wrap_index(i)) / n); };
+    // Positions at the step's end on the axis, as load() computes them.
+    sorted_end_.resize(static_cast<std::size_t>(hi - lo + 1));
+    for (std::int64_t i = lo; i <= hi; ++i)
+        sorted_end_[static_cast<std::size_t>(i - lo)] =
+            position_at(line_[static_cast<std::size_t>(wrap_index(i))], step_end_) + turn(i) * ring_length_;
+    std::uint64_t swaps = 0;
+    for (std::int64_t i = lo + 1; i <= hi; ++i) {
+        const auto m = static_cast<std::size_t>(i - lo);
+        const double item_end = sorted_end_[m];
+        if (!(sorted_end_[m - 1] > item_end)) continue;
+        const Line item = line_[static_cast<std::size_t>(wrap_index(i))];
+        std::int64_t j = i;
+        for (; j > lo; --j) {
+            const auto before = static_cast<std::size_t>(j - 1 - lo);
+            const Line& previous = line_[static_cast<std::size_t>(wrap_index(j - 1))];
+            if (!(sorted_end_[before] > item_end) ||
+                classify(model_, previous.v - item.v) == CollisionKind::inelastic)
+                break;
+            place(previous, j - 1, j);
+            sorted_end_[before + 1] = sorted_end_[before];
+            ++swaps;
+        }
+        if (j != i) {
+            place(item, i, j);
+            sorted_end_[static_cast<std::size_t>(j - lo)] = item_end;
+        }
+    }
+    collisions_ += swaps;
+}
+
+// A copy of `line`, taken from axis index `from`, written to axis index `to`.
+void PassThroughEngine::place(Line line, std::int64_t from, std::int64_t to) {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    const std::int64_t k = wrap_index(to);
+    const std::int64_t turns = (from - wrap_index(from)) / n - (to - k) / n;
+    if (turns != 0) line.x += static_cast<double>(turns) * ring_length_;
+    line_[static_cast<std::size_t>(k)] = line;
+    where_[line.id] = static_cast<std::int32_t>(k);
 }
 
 // Every line's earliest inelastic crossing in the step, if all lines stayed
@@ -320,6 +386,16 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
     earliest_.assign(static_cast<std::size_t>(size), Candidate{never, 0, 0, 0, 0, false});
     widest_gap_ = -std::numeric_limits<double>::infinity();
     widest_gap_end_ = lo;
+    // lowest_end_ahead_[m]: the lowest end position of the block's lines from
+    // slot m on, so that a line overtaking none of them costs one compare (not
+    // kept on a ring block, where lines past the seam are ahead too).
+    if (!ring_block_) {
+        lowest_end_ahead_.resize(static_cast<std::size_t>(size) + 1);
+        lowest_end_ahead_[static_cast<std::size_t>(size)] = never;
+        for (std::int64_t m = size - 1; m >= 0; --m)
+            lowest_end_ahead_[static_cast<std::size_t>(m)] =
+                std::min(lowest_end_ahead_[static_cast<std::size_t>(m) + 1], unwrapped_end(lo + m));
+    }
     for (std::int64_t m = 0; m < size; ++m) {
         const auto ms = static_cast<std::size_t>(m);
         const Line& a = line_[static_cast<std::size_t>(wrap_index(lo + m))];
@@ -334,6 +410,7 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
         const double slack = reach_slack * (std::abs(keys_[ms]) + (a.v - v_min_) * h);
         // a meets only lines that end the step at or behind it.
         const double end_bound = unwrapped_end(lo + m) + slack;
+        if (!ring_block_ && lowest_end_ahead_[ms + 1] > end_bound) continue;  // overtakes nobody
         const std::int64_t last = ring_block_ ? m + n - 1 : size - 1;
         for (std::int64_t j = m + 1; j <= last;) {
             const std::size_t js = block_slot(j);
