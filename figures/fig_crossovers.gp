@@ -9,8 +9,11 @@ set logscale xy
 @decades
 set xlabel 'inelasticity ε'
 set ylabel 'time  /  temperature'
-set key top right
+# The key below every curve: at the top right it hid two t_stick points at
+# paper fidelity, and at the bottom right of [1e-4, 1e4] a T(t_stick) point.
+set key bottom right
 set xrange [0.004:0.15]
+set yrange [1e-5:1e4]
 f_dissip(x) = fit_t_dissip_prefactor * x**fit_t_dissip_exponent
 f_stick(x) = fit_t_stick_prefactor * x**fit_t_stick_exponent
 f_temperature(x) = fit_temperature_at_stick_prefactor * x**fit_temperature_at_stick_exponent
