@@ -164,6 +164,9 @@ private:
     // L for each time i wraps round the ring.
     double unwrapped_position(std::int64_t i, double t) const;
     std::int64_t wrap_index(std::int64_t i) const;
+    // Turns of the ring logical index i lies from [0, N): the L-shifts of
+    // unwrapped_position, load and write_back.
+    std::int64_t turn_of(std::int64_t i) const;
     void run_window(double window_end);
     void run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end);
     void run_step(double step_start, double step_end);

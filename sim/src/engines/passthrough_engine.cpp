@@ -123,18 +123,19 @@ std::int64_t PassThroughEngine::wrap_index(std::int64_t i) const {
     return k < 0 ? k + n : k;
 }
 
+std::int64_t PassThroughEngine::turn_of(std::int64_t i) const {
+    return (i - wrap_index(i)) / static_cast<std::int64_t>(line_.size());
+}
+
 double PassThroughEngine::unwrapped_position(std::int64_t i, double t) const {
     const auto n = static_cast<std::int64_t>(line_.size());
     if (i >= 0 && i < n) return position_at(line_[static_cast<std::size_t>(i)], t);
-    const std::int64_t k = wrap_index(i);
-    const auto wraps = (i - k) / n;
-    return position_at(line_[static_cast<std::size_t>(k)], t) + static_cast<double>(wraps) * ring_length_;
+    return position_at(line_[static_cast<std::size_t>(wrap_index(i))], t) +
+           static_cast<double>(turn_of(i)) * ring_length_;
 }
 
 double PassThroughEngine::unwrapped_end(std::int64_t i) const {
-    const std::int64_t k = wrap_index(i);
-    const auto wraps = (i - k) / static_cast<std::int64_t>(line_.size());
-    return end_[static_cast<std::size_t>(k)] + static_cast<double>(wraps) * ring_length_;
+    return end_[static_cast<std::size_t>(wrap_index(i))] + static_cast<double>(turn_of(i)) * ring_length_;
 }
 
 void PassThroughEngine::update_velocity_bounds() {
@@ -328,13 +329,11 @@ void PassThroughEngine::run_step(double step_start, double step_end) {
 // ones out of order are moved; each moved line is shifted by L per turn of the
 // ring between its old and new index, as write_back does.
 void PassThroughEngine::sort_in_place(std::int64_t lo, std::int64_t hi) {
-    const auto n = static_cast<std::int64_t>(line_.size());
-    const auto turn = [n, this](std::int64_t i) { return static_cast<double>((i - wrap_index(i)) / n); };
-    // Positions at the step's end on the axis, as load() computes them.
+    // Positions at the step's end on the axis: end_, kept current through the
+    // step's bends, holds them (the same doubles load() computes); copied,
+    // since the sort moves them with their lines.
     sorted_end_.resize(static_cast<std::size_t>(hi - lo + 1));
-    for (std::int64_t i = lo; i <= hi; ++i)
-        sorted_end_[static_cast<std::size_t>(i - lo)] =
-            position_at(line_[static_cast<std::size_t>(wrap_index(i))], step_end_) + turn(i) * ring_length_;
+    for (std::int64_t i = lo; i <= hi; ++i) sorted_end_[static_cast<std::size_t>(i - lo)] = unwrapped_end(i);
     std::uint64_t swaps = 0;
     for (std::int64_t i = lo + 1; i <= hi; ++i) {
         const auto m = static_cast<std::size_t>(i - lo);
@@ -362,9 +361,8 @@ void PassThroughEngine::sort_in_place(std::int64_t lo, std::int64_t hi) {
 
 // A copy of `line`, taken from axis index `from`, written to axis index `to`.
 void PassThroughEngine::place(Line line, std::int64_t from, std::int64_t to) {
-    const auto n = static_cast<std::int64_t>(line_.size());
     const std::int64_t k = wrap_index(to);
-    const std::int64_t turns = (from - wrap_index(from)) / n - (to - k) / n;
+    const std::int64_t turns = turn_of(from) - turn_of(to);
     if (turns != 0) line.x += static_cast<double>(turns) * ring_length_;
     line_[static_cast<std::size_t>(k)] = line;
     where_[line.id] = static_cast<std::int32_t>(k);
@@ -420,7 +418,7 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
             if (distance > (a.v - v_min_) * horizon + slack) break;
             const std::int64_t index = wrap_index(lo + j);
             const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
-            const double turn = static_cast<double>((lo + j - index) / n) * ring_length_;
+            const double turn = static_cast<double>(turn_of(lo + j)) * ring_length_;
             const double chunk_min = chunk_min_[chunk];
             if (classify(model_, a.v - chunk_min) != CollisionKind::inelastic ||
                 distance > (a.v - chunk_min) * horizon + slack || chunk_end_min_[chunk] + turn > end_bound) {
@@ -493,7 +491,7 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         if (distance > (line.v - v_min_) * horizon() + disorder + slack) break;
         // Pass over the rest of the chunk if none of it is slow enough to be
         // caught inelastically, or near enough to be caught at all.
-        const double turn = static_cast<double>((j - index) / n) * ring_length_;
+        const double turn = static_cast<double>(turn_of(j)) * ring_length_;
         if (classify(model_, line.v - chunk_min_[chunk]) != CollisionKind::inelastic ||
             distance > (line.v - chunk_min_[chunk]) * horizon() + 2.0 * disorder + slack ||
             chunk_end_min_[chunk] + turn > end_here + end_slack) {
@@ -515,7 +513,7 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         const std::int64_t chunk_rest = index - ((index >> chunk_shift) << chunk_shift) + 1;
         const double distance = here - unwrapped_position(j, t);
         if (distance > (v_max_ - line.v) * horizon() + disorder + slack) break;
-        const double turn = static_cast<double>((j - index) / n) * ring_length_;
+        const double turn = static_cast<double>(turn_of(j)) * ring_length_;
         if (classify(model_, chunk_max_[chunk] - line.v) != CollisionKind::inelastic ||
             distance > (chunk_max_[chunk] - line.v) * horizon() + 2.0 * disorder + slack ||
             chunk_end_max_[chunk] + turn < end_here - end_slack) {
@@ -610,9 +608,8 @@ void PassThroughEngine::bend(const Candidate& candidate, double step_end) {
 }
 
 PassThroughEngine::Sorted PassThroughEngine::load(std::int64_t i, double t) const {
-    const std::int64_t k = wrap_index(i);
-    const auto frame = (i - k) / static_cast<std::int64_t>(line_.size());
-    const Line& line = line_[static_cast<std::size_t>(k)];
+    const std::int64_t frame = turn_of(i);
+    const Line& line = line_[static_cast<std::size_t>(wrap_index(i))];
     return {position_at(line, t) + static_cast<double>(frame) * ring_length_, frame, line};
 }
 
@@ -738,11 +735,10 @@ void PassThroughEngine::swap_across_seam(bool sink) {
 // stored position is relative to its index's turn of the ring, so a line that
 // moved across the seam is shifted by the ring length.
 void PassThroughEngine::write_back(const std::vector<Sorted>& buffer, std::int64_t lo) {
-    const auto n = static_cast<std::int64_t>(line_.size());
     for (std::size_t m = 0; m < buffer.size(); ++m) {
         const std::int64_t i = lo + static_cast<std::int64_t>(m);
         const std::int64_t k = wrap_index(i);
-        const std::int64_t frame = (i - k) / n;
+        const std::int64_t frame = turn_of(i);
         Line line = buffer[m].line;
         if (buffer[m].frame != frame) line.x += static_cast<double>(buffer[m].frame - frame) * ring_length_;
         line_[static_cast<std::size_t>(k)] = line;
