@@ -163,10 +163,26 @@ private:
     // Position at t of logical index i (any integer): line i mod N, shifted by
     // L for each time i wraps round the ring.
     double unwrapped_position(std::int64_t i, double t) const;
-    std::int64_t wrap_index(std::int64_t i) const;
-    // Turns of the ring logical index i lies from [0, N): the L-shifts of
-    // unwrapped_position, load and write_back.
-    std::int64_t turn_of(std::int64_t i) const;
+    // Logical index i (any integer) as line_'s index in [0, N) and the turns
+    // of the ring it lies from there (i = index + turn N): the L-shifts of
+    // unwrapped_position, load and write_back. One helper for both, since the
+    // hot scans need both for every index they pass.
+    struct Wrapped {
+        std::int64_t index;
+        std::int64_t turn;
+    };
+    // Indices stay within one turn of [0, N) (blocks and stretches span less
+    // than two turns), so a compare or two replaces the division; inline,
+    // since the scans call it for every index they pass.
+    Wrapped wrap(std::int64_t i) const {
+        const auto n = static_cast<std::int64_t>(line_.size());
+        if (i >= 0 && i < n) return {i, 0};
+        if (i >= n && i < 2 * n) return {i - n, 1};
+        if (i < 0 && i >= -n) return {i + n, -1};
+        return wrap_far(i);
+    }
+    Wrapped wrap_far(std::int64_t i) const;
+    std::int64_t wrap_index(std::int64_t i) const { return wrap(i).index; }
     void run_window(double window_end);
     void run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end);
     void run_step(double step_start, double step_end);

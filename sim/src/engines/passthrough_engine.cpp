@@ -112,30 +112,23 @@ void PassThroughEngine::start_lines() {
     step_ = spread > 0.0 ? crossings_per_window_target * spacing / spread : std::numeric_limits<double>::infinity();
 }
 
-// Indices stay within one turn of [0, N) (blocks and stretches span less
-// than two turns), so a compare or two replaces the division.
-std::int64_t PassThroughEngine::wrap_index(std::int64_t i) const {
+// wrap() beyond one turn of [0, N) (not reached by blocks and stretches).
+PassThroughEngine::Wrapped PassThroughEngine::wrap_far(std::int64_t i) const {
     const auto n = static_cast<std::int64_t>(line_.size());
-    if (i >= 0 && i < n) return i;
-    if (i >= n && i < 2 * n) return i - n;
-    if (i < 0 && i >= -n) return i + n;
     const std::int64_t k = i % n;
-    return k < 0 ? k + n : k;
-}
-
-std::int64_t PassThroughEngine::turn_of(std::int64_t i) const {
-    return (i - wrap_index(i)) / static_cast<std::int64_t>(line_.size());
+    const std::int64_t index = k < 0 ? k + n : k;
+    return {index, (i - index) / n};
 }
 
 double PassThroughEngine::unwrapped_position(std::int64_t i, double t) const {
-    const auto n = static_cast<std::int64_t>(line_.size());
-    if (i >= 0 && i < n) return position_at(line_[static_cast<std::size_t>(i)], t);
-    return position_at(line_[static_cast<std::size_t>(wrap_index(i))], t) +
-           static_cast<double>(turn_of(i)) * ring_length_;
+    const auto [k, turn] = wrap(i);
+    const double x = position_at(line_[static_cast<std::size_t>(k)], t);
+    return turn == 0 ? x : x + static_cast<double>(turn) * ring_length_;
 }
 
 double PassThroughEngine::unwrapped_end(std::int64_t i) const {
-    return end_[static_cast<std::size_t>(wrap_index(i))] + static_cast<double>(turn_of(i)) * ring_length_;
+    const auto [k, turn] = wrap(i);
+    return end_[static_cast<std::size_t>(k)] + static_cast<double>(turn) * ring_length_;
 }
 
 void PassThroughEngine::update_velocity_bounds() {
@@ -361,8 +354,8 @@ void PassThroughEngine::sort_in_place(std::int64_t lo, std::int64_t hi) {
 
 // A copy of `line`, taken from axis index `from`, written to axis index `to`.
 void PassThroughEngine::place(Line line, std::int64_t from, std::int64_t to) {
-    const std::int64_t k = wrap_index(to);
-    const std::int64_t turns = turn_of(from) - turn_of(to);
+    const auto [k, to_turn] = wrap(to);
+    const std::int64_t turns = wrap(from).turn - to_turn;
     if (turns != 0) line.x += static_cast<double>(turns) * ring_length_;
     line_[static_cast<std::size_t>(k)] = line;
     where_[line.id] = static_cast<std::int32_t>(k);
@@ -416,9 +409,9 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
             // Beyond what a can reach before its earliest crossing so far.
             const double horizon = std::min(earliest_[ms].time, step_end) - step_start;
             if (distance > (a.v - v_min_) * horizon + slack) break;
-            const std::int64_t index = wrap_index(lo + j);
+            const auto [index, turns] = wrap(lo + j);
             const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
-            const double turn = static_cast<double>(turn_of(lo + j)) * ring_length_;
+            const double turn = static_cast<double>(turns) * ring_length_;
             const double chunk_min = chunk_min_[chunk];
             if (classify(model_, a.v - chunk_min) != CollisionKind::inelastic ||
                 distance > (a.v - chunk_min) * horizon + slack || chunk_end_min_[chunk] + turn > end_bound) {
@@ -483,15 +476,16 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
     // one is found: nothing beyond (speed) (best - t) can be met before it.
     const auto horizon = [&] { return std::min(best.time, step_end) - t; };
     for (std::int64_t j = at + 1; j <= last_ahead;) {
-        const std::int64_t index = wrap_index(j);
+        const auto [index, turns] = wrap(j);
         const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
         const std::int64_t chunk_rest =
             std::min<std::int64_t>(((index >> chunk_shift) + 1) << chunk_shift, n) - index;  // indices left in it
-        const double distance = unwrapped_position(j, t) - here;
+        const double turn = static_cast<double>(turns) * ring_length_;
+        const Line& other = line_[static_cast<std::size_t>(index)];
+        const double distance = position_at(other, t) + turn - here;
         if (distance > (line.v - v_min_) * horizon() + disorder + slack) break;
         // Pass over the rest of the chunk if none of it is slow enough to be
         // caught inelastically, or near enough to be caught at all.
-        const double turn = static_cast<double>(turn_of(j)) * ring_length_;
         if (classify(model_, line.v - chunk_min_[chunk]) != CollisionKind::inelastic ||
             distance > (line.v - chunk_min_[chunk]) * horizon() + 2.0 * disorder + slack ||
             chunk_end_min_[chunk] + turn > end_here + end_slack) {
@@ -502,18 +496,18 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
             ++j;
             continue;
         }
-        const Line& other = line_[static_cast<std::size_t>(index)];
         const double meeting = meeting_time(line, other, distance, t, step_end);
         if (meeting != never) keep_earliest(best, {meeting, line.id, other.id, line.version, other.version, true});
         ++j;
     }
     for (std::int64_t j = at - 1; j >= last_behind;) {
-        const std::int64_t index = wrap_index(j);
+        const auto [index, turns] = wrap(j);
         const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
         const std::int64_t chunk_rest = index - ((index >> chunk_shift) << chunk_shift) + 1;
-        const double distance = here - unwrapped_position(j, t);
+        const double turn = static_cast<double>(turns) * ring_length_;
+        const Line& other = line_[static_cast<std::size_t>(index)];
+        const double distance = here - (position_at(other, t) + turn);
         if (distance > (v_max_ - line.v) * horizon() + disorder + slack) break;
-        const double turn = static_cast<double>(turn_of(j)) * ring_length_;
         if (classify(model_, chunk_max_[chunk] - line.v) != CollisionKind::inelastic ||
             distance > (chunk_max_[chunk] - line.v) * horizon() + 2.0 * disorder + slack ||
             chunk_end_max_[chunk] + turn < end_here - end_slack) {
@@ -524,7 +518,6 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
             --j;
             continue;
         }
-        const Line& other = line_[static_cast<std::size_t>(index)];
         const double meeting = meeting_time(other, line, distance, t, step_end);
         if (meeting != never) keep_earliest(best, {meeting, other.id, line.id, other.version, line.version, false});
         --j;
@@ -608,8 +601,8 @@ void PassThroughEngine::bend(const Candidate& candidate, double step_end) {
 }
 
 PassThroughEngine::Sorted PassThroughEngine::load(std::int64_t i, double t) const {
-    const std::int64_t frame = turn_of(i);
-    const Line& line = line_[static_cast<std::size_t>(wrap_index(i))];
+    const auto [k, frame] = wrap(i);
+    const Line& line = line_[static_cast<std::size_t>(k)];
     return {position_at(line, t) + static_cast<double>(frame) * ring_length_, frame, line};
 }
 
@@ -737,8 +730,7 @@ void PassThroughEngine::swap_across_seam(bool sink) {
 void PassThroughEngine::write_back(const std::vector<Sorted>& buffer, std::int64_t lo) {
     for (std::size_t m = 0; m < buffer.size(); ++m) {
         const std::int64_t i = lo + static_cast<std::int64_t>(m);
-        const std::int64_t k = wrap_index(i);
-        const std::int64_t frame = turn_of(i);
+        const auto [k, frame] = wrap(i);
         Line line = buffer[m].line;
         if (buffer[m].frame != frame) line.x += static_cast<double>(buffer[m].frame - frame) * ring_length_;
         line_[static_cast<std::size_t>(k)] = line;
