@@ -52,6 +52,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <queue>
 #include <string>
@@ -93,14 +94,17 @@ public:
     std::uint64_t inelastic_collisions() const { return inelastic_; }
     std::uint64_t steps() const { return steps_; }
     std::uint64_t windows() const { return windows_; }
+    // Stale candidates followed by their owner's spare instead of a new look
+    // (run_step).
+    std::uint64_t spares_taken() const { return spares_taken_; }
     // Gaps between physical neighbours at the current time, in ring order from
     // particle 0; they sum to L up to rounding and are never negative beyond it.
     std::vector<double> gaps() const;
 
-    // The line record, its index and its position at the step's end; the heap
-    // entries are transient (one step's candidates).
+    // The line record, its index, its position at the step's end and its
+    // spare; the heap entries are transient (one step's candidates).
     static constexpr std::size_t bytes_per_particle() {
-        return sizeof(Line) + sizeof(std::int32_t) + sizeof(double);
+        return sizeof(Line) + sizeof(std::int32_t) + sizeof(double) + sizeof(Spare);
     }
 
     // Crossings per line per step the step length aims at. Few enough that a
@@ -150,6 +154,15 @@ private:
             if (behind != o.behind) return behind > o.behind;
             return ahead > o.ahead;
         }
+    };
+    // A line's second earliest crossing from its last scan_line_candidates,
+    // by line id. Valid in the step it was found in (step == steps_ + 1, 0:
+    // none or used) while the line is at owner_version; a candidate time of
+    // infinity means the look found no second crossing before the step's end.
+    struct Spare {
+        Candidate candidate{std::numeric_limits<double>::infinity(), 0, 0, 0, 0, false};
+        std::uint64_t step = 0;
+        std::uint32_t owner_version = 0;
     };
     // A line taken out of the array for sorting, with its position at the
     // sort's time on the unwrapped axis of the stretch being sorted.
@@ -217,6 +230,7 @@ private:
     std::vector<Sorted> buffer_;
     std::vector<double> keys_;  // positions at the step's start, on the block's axis
     std::vector<Candidate> earliest_;  // per line of the block, during the step's scan
+    std::vector<Spare> spare_;         // by line id, see Spare
     std::vector<double> lowest_end_ahead_;  // per slot of the block, during the step's scan
     // Velocity bounds of the lines at logical indices [16 c, 16 c + 15]: set at
     // each step's start, widened whenever a line is written into the chunk, so
@@ -258,6 +272,7 @@ private:
     std::uint64_t collisions_ = 0;
     std::uint64_t inelastic_ = 0;
     std::uint64_t steps_ = 0;
+    std::uint64_t spares_taken_ = 0;
     std::optional<CollapseReport> no_collapse_;
 };
 

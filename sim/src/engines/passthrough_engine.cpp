@@ -103,6 +103,7 @@ void PassThroughEngine::start_lines() {
     chunk_end_min_.assign(chunks, 0.0);
     chunk_end_max_.assign(chunks, 0.0);
     end_.assign(n, 0.0);
+    spare_.assign(n, Spare{});
     update_velocity_bounds();
     // First window: about the target number of crossings for a line moving
     // at the full velocity spread through the mean spacing; adapt_window then
@@ -288,11 +289,23 @@ void PassThroughEngine::run_step(double step_start, double step_end) {
         if (behind_current && ahead_current) {
             bend(candidate, step_end);
         } else if (candidate.owner_is_behind ? behind_current : ahead_current) {
-            // The other line bent since the owner looked: the owner looks
-            // again from now (crossings it has before now with lines that
-            // changed later were found by those lines when they changed).
-            scan_line_candidates(where_[candidate.owner_is_behind ? candidate.behind : candidate.ahead],
-                                 candidate.time, step_end);
+            // The other line bent since the owner looked. Its crossings with
+            // lines that changed since were found by those lines when they
+            // changed; with the others it meets none before its spare, the
+            // second earliest of that look (none: none before step_end). So
+            // the spare goes on the heap (checked like any candidate when it
+            // comes up); without one, the owner looks again from now.
+            const std::uint32_t owner = candidate.owner_is_behind ? candidate.behind : candidate.ahead;
+            Spare& spare = spare_[owner];
+            const std::uint32_t owner_version =
+                candidate.owner_is_behind ? candidate.behind_version : candidate.ahead_version;
+            if (spare.step == steps_ + 1 && spare.owner_version == owner_version) {
+                spare.step = 0;  // once: the spare's own successor is not known
+                ++spares_taken_;
+                if (spare.candidate.time != never) heap_.push(spare.candidate);
+            } else {
+                scan_line_candidates(where_[owner], candidate.time, step_end);
+            }
         }
     }
     // The block to step_end. A whole ring is cut after its widest gap at the
@@ -471,10 +484,23 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
     // behind that end at or ahead of it.
     const double end_here = unwrapped_end(at);
     const double end_slack = reach_slack * (std::abs(end_here) + (v_max_ - v_min_) * (step_end - t));
+    // The earliest crossing goes on the heap; the second earliest (with
+    // another line) is kept as the line's spare, so that if the first one's
+    // other line bends before it, run_step can go on to the second without
+    // scanning again. The search ends sooner once both are found: nothing
+    // beyond (speed) (second - t) can be met before the second.
     Candidate best{never, 0, 0, 0, 0, false};
-    // Only the earliest crossing is wanted, so the search ends sooner once
-    // one is found: nothing beyond (speed) (best - t) can be met before it.
-    const auto horizon = [&] { return std::min(best.time, step_end) - t; };
+    Candidate second{never, 0, 0, 0, 0, false};
+    const auto offer = [&](const Candidate& found) {
+        if (best.time == never || best > found) {
+            if (best.time != never && (best.behind != found.behind || best.ahead != found.ahead)) second = best;
+            best = found;
+        } else if ((found.behind != best.behind || found.ahead != best.ahead) &&
+                   (second.time == never || second > found)) {
+            second = found;
+        }
+    };
+    const auto horizon = [&] { return std::min(second.time, step_end) - t; };
     for (std::int64_t j = at + 1; j <= last_ahead;) {
         const auto [index, turns] = wrap(j);
         const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
@@ -497,7 +523,7 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
             continue;
         }
         const double meeting = meeting_time(line, other, distance, t, step_end);
-        if (meeting != never) keep_earliest(best, {meeting, line.id, other.id, line.version, other.version, true});
+        if (meeting != never) offer({meeting, line.id, other.id, line.version, other.version, true});
         ++j;
     }
     for (std::int64_t j = at - 1; j >= last_behind;) {
@@ -519,10 +545,12 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
             continue;
         }
         const double meeting = meeting_time(other, line, distance, t, step_end);
-        if (meeting != never) keep_earliest(best, {meeting, other.id, line.id, other.version, line.version, false});
+        if (meeting != never) offer({meeting, other.id, line.id, other.version, line.version, false});
         --j;
     }
-    if (best.time != never) heap_.push(best);
+    if (best.time == never) return;
+    heap_.push(best);
+    spare_[line.id] = {second, steps_ + 1, line.version};
 }
 
 // The inelastic collision of a candidate, at its time t_e.
@@ -807,6 +835,8 @@ void PassThroughEngine::restore(const EngineSnapshot& snapshot) {
         line_[k] = {x[k], v[k], clock[k], static_cast<std::uint32_t>(id[k]), 0};
         where_[static_cast<std::size_t>(id[k])] = static_cast<std::int32_t>(k);
     }
+    // Spares belong to the step they were found in, and versions restart.
+    spare_.assign(n, Spare{});
     now_ = scalars[0];
     step_ = scalars[1];
     collisions_ = static_cast<std::uint64_t>(counters[0]);
