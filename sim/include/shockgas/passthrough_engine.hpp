@@ -51,6 +51,7 @@
 // collapse() is always empty.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -104,7 +105,7 @@ public:
     // The line record, its index, its position at the step's end and its
     // spare; the heap entries are transient (one step's candidates).
     static constexpr std::size_t bytes_per_particle() {
-        return sizeof(Line) + sizeof(std::int32_t) + sizeof(double) + sizeof(Spare);
+        return sizeof(Line) + sizeof(std::int32_t) + sizeof(double) + sizeof(Spares);
     }
 
     // Crossings per line per step the step length aims at. Few enough that a
@@ -129,6 +130,9 @@ public:
     // Crossings per line per window, on average over the ring: a window costs
     // an O(N) sweep to find its cuts, shared by this many crossings.
     static constexpr double crossings_per_window_target = 8.0;
+    // Crossings each look keeps beyond its earliest (Spares). More spares
+    // save more looks but make each look search further.
+    static constexpr std::size_t spares_per_line = 2;
 
 private:
     struct Line {
@@ -142,12 +146,13 @@ private:
     // line (the owner) last looked. If the owner has bent since, a newer one
     // replaced it; if only the other line has, the owner looks again.
     struct Candidate {
-        double time;
-        std::uint32_t behind;  // the catching line
-        std::uint32_t ahead;
-        std::uint32_t behind_version;
-        std::uint32_t ahead_version;
-        bool owner_is_behind;
+        double time = std::numeric_limits<double>::infinity();  // infinity: none
+        std::uint32_t behind = 0;  // the catching line
+        std::uint32_t ahead = 0;
+        std::uint32_t behind_version = 0;
+        std::uint32_t ahead_version = 0;
+        bool owner_is_behind = false;
+        bool same_pair(const Candidate& o) const { return behind == o.behind && ahead == o.ahead; }
         // Earliest first; ties by line ids, so the order is a total order.
         bool operator>(const Candidate& o) const {
             if (time != o.time) return time > o.time;
@@ -155,14 +160,17 @@ private:
             return ahead > o.ahead;
         }
     };
-    // A line's second earliest crossing from its last scan_line_candidates,
-    // by line id. Valid in the step it was found in (step == steps_ + 1, 0:
-    // none or used) while the line is at owner_version; a candidate time of
-    // infinity means the look found no second crossing before the step's end.
-    struct Spare {
-        Candidate candidate{std::numeric_limits<double>::infinity(), 0, 0, 0, 0, false};
+    // A line's next earliest crossings (with other lines) from its last
+    // scan_line_candidates, after the one on the heap, by line id: run_step
+    // takes them one by one when the heap's goes stale. Valid in the step
+    // they were found in (step == steps_ + 1; 0: none) while the line is at
+    // owner_version; a time of infinity means no further crossing before the
+    // step's end.
+    struct Spares {
+        std::array<Candidate, spares_per_line> candidate{};
         std::uint64_t step = 0;
         std::uint32_t owner_version = 0;
+        std::uint32_t next = 0;  // the next one to take
     };
     // A line taken out of the array for sorting, with its position at the
     // sort's time on the unwrapped axis of the stretch being sorted.
@@ -230,7 +238,7 @@ private:
     std::vector<Sorted> buffer_;
     std::vector<double> keys_;  // positions at the step's start, on the block's axis
     std::vector<Candidate> earliest_;  // per line of the block, during the step's scan
-    std::vector<Spare> spare_;         // by line id, see Spare
+    std::vector<Spares> spares_;       // by line id, see Spares
     std::vector<double> lowest_end_ahead_;  // per slot of the block, during the step's scan
     // Velocity bounds of the lines at logical indices [16 c, 16 c + 15]: set at
     // each step's start, widened whenever a line is written into the chunk, so

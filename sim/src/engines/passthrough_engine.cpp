@@ -103,7 +103,7 @@ void PassThroughEngine::start_lines() {
     chunk_end_min_.assign(chunks, 0.0);
     chunk_end_max_.assign(chunks, 0.0);
     end_.assign(n, 0.0);
-    spare_.assign(n, Spare{});
+    spares_.assign(n, Spares{});
     update_velocity_bounds();
     // First window: about the target number of crossings for a line moving
     // at the full velocity spread through the mean spacing; adapt_window then
@@ -291,18 +291,20 @@ void PassThroughEngine::run_step(double step_start, double step_end) {
         } else if (candidate.owner_is_behind ? behind_current : ahead_current) {
             // The other line bent since the owner looked. Its crossings with
             // lines that changed since were found by those lines when they
-            // changed; with the others it meets none before its spare, the
-            // second earliest of that look (none: none before step_end). So
-            // the spare goes on the heap (checked like any candidate when it
-            // comes up); without one, the owner looks again from now.
+            // changed; with the others it meets none before its next spare,
+            // the next earliest crossing of that look with another line
+            // (infinity: none before step_end). So that spare goes on the
+            // heap, checked like any candidate when it comes up; with none
+            // left, the owner looks again from now.
             const std::uint32_t owner = candidate.owner_is_behind ? candidate.behind : candidate.ahead;
-            Spare& spare = spare_[owner];
+            Spares& spares = spares_[owner];
             const std::uint32_t owner_version =
                 candidate.owner_is_behind ? candidate.behind_version : candidate.ahead_version;
-            if (spare.step == steps_ + 1 && spare.owner_version == owner_version) {
-                spare.step = 0;  // once: the spare's own successor is not known
+            if (spares.step == steps_ + 1 && spares.owner_version == owner_version &&
+                spares.next < spares_per_line) {
+                const Candidate& spare = spares.candidate[spares.next++];
                 ++spares_taken_;
-                if (spare.candidate.time != never) heap_.push(spare.candidate);
+                if (spare.time != never) heap_.push(spare);
             } else {
                 scan_line_candidates(where_[owner], candidate.time, step_end);
             }
@@ -484,23 +486,27 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
     // behind that end at or ahead of it.
     const double end_here = unwrapped_end(at);
     const double end_slack = reach_slack * (std::abs(end_here) + (v_max_ - v_min_) * (step_end - t));
-    // The earliest crossing goes on the heap; the second earliest (with
-    // another line) is kept as the line's spare, so that if the first one's
-    // other line bends before it, run_step can go on to the second without
-    // scanning again. The search ends sooner once both are found: nothing
-    // beyond (speed) (second - t) can be met before the second.
-    Candidate best{never, 0, 0, 0, 0, false};
-    Candidate second{never, 0, 0, 0, 0, false};
+    // The earliest crossing goes on the heap; the next spares_per_line (with
+    // other lines) are kept as the line's spares, so that if the first one's
+    // other line bends before it, run_step can go on to the next without
+    // scanning again. The search ends sooner once all are found: nothing
+    // beyond (speed) (last kept - t) can be met before the last kept.
+    std::array<Candidate, spares_per_line + 1> kept{};  // earliest first
     const auto offer = [&](const Candidate& found) {
-        if (best.time == never || best > found) {
-            if (best.time != never && (best.behind != found.behind || best.ahead != found.ahead)) second = best;
-            best = found;
-        } else if ((found.behind != best.behind || found.ahead != best.ahead) &&
-                   (second.time == never || second > found)) {
-            second = found;
-        }
+        std::size_t slot = 0;
+        for (; slot < kept.size() && kept[slot].time != never && !(kept[slot] > found); ++slot)
+            if (kept[slot].same_pair(found)) return;  // an earlier crossing of this pair is kept
+        if (slot == kept.size()) return;
+        std::size_t drop = kept.size() - 1;  // a later crossing of the same pair, or the last
+        for (std::size_t i = slot; i < kept.size(); ++i)
+            if (kept[i].time != never && kept[i].same_pair(found)) {
+                drop = i;
+                break;
+            }
+        for (std::size_t i = drop; i > slot; --i) kept[i] = kept[i - 1];
+        kept[slot] = found;
     };
-    const auto horizon = [&] { return std::min(second.time, step_end) - t; };
+    const auto horizon = [&] { return std::min(kept.back().time, step_end) - t; };
     for (std::int64_t j = at + 1; j <= last_ahead;) {
         const auto [index, turns] = wrap(j);
         const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
@@ -548,9 +554,13 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         if (meeting != never) offer({meeting, other.id, line.id, other.version, line.version, false});
         --j;
     }
-    if (best.time == never) return;
-    heap_.push(best);
-    spare_[line.id] = {second, steps_ + 1, line.version};
+    if (kept.front().time == never) return;
+    heap_.push(kept.front());
+    Spares& spares = spares_[line.id];
+    std::copy(kept.begin() + 1, kept.end(), spares.candidate.begin());
+    spares.step = steps_ + 1;
+    spares.owner_version = line.version;
+    spares.next = 0;
 }
 
 // The inelastic collision of a candidate, at its time t_e.
@@ -836,7 +846,7 @@ void PassThroughEngine::restore(const EngineSnapshot& snapshot) {
         where_[static_cast<std::size_t>(id[k])] = static_cast<std::int32_t>(k);
     }
     // Spares belong to the step they were found in, and versions restart.
-    spare_.assign(n, Spare{});
+    spares_.assign(n, Spares{});
     now_ = scalars[0];
     step_ = scalars[1];
     collisions_ = static_cast<std::uint64_t>(counters[0]);
