@@ -144,7 +144,8 @@ private:
     };
     // A line's earliest inelastic crossing in the step, as it was when the
     // line (the owner) last looked. If the owner has bent since, a newer one
-    // replaced it; if only the other line has, the owner looks again.
+    // replaced it; if only the other line has, the owner's next spare
+    // (Spares) takes its place, or with none left the owner looks again.
     struct Candidate {
         double time = std::numeric_limits<double>::infinity();  // infinity: none
         std::uint32_t behind = 0;  // the catching line
@@ -186,15 +187,14 @@ private:
     double unwrapped_position(std::int64_t i, double t) const;
     // Logical index i (any integer) as line_'s index in [0, N) and the turns
     // of the ring it lies from there (i = index + turn N): the L-shifts of
-    // unwrapped_position, load and write_back. One helper for both, since the
-    // hot scans need both for every index they pass.
+    // unwrapped_position, load and write_back. One inline helper for both,
+    // since the hot scans need both for every index they pass. Indices stay
+    // within one turn of [0, N) (blocks and stretches span less than two
+    // turns), so a compare or two replaces the division.
     struct Wrapped {
         std::int64_t index;
         std::int64_t turn;
     };
-    // Indices stay within one turn of [0, N) (blocks and stretches span less
-    // than two turns), so a compare or two replaces the division; inline,
-    // since the scans call it for every index they pass.
     Wrapped wrap(std::int64_t i) const {
         const auto n = static_cast<std::int64_t>(line_.size());
         if (i >= 0 && i < n) return {i, 0};
