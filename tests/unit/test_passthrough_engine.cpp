@@ -161,28 +161,65 @@ ComparisonTotals compare_with_the_reference_loop(Make make, Crossed crossed) {
     return totals;
 }
 
-// Cases of the 54 in which the engine followed a spare (run_step) before
-// the chaos horizon: measured 45 on 2026-11-24; a floor well below that still
-// fails if the spare path stops being taken.
+// Cases of the 54 in which the engine, running in steps only, followed a
+// spare (run_step) before the chaos horizon: measured 45 on 2026-11-24; a
+// floor well below that still fails if the spare path stops being taken.
 constexpr int minimum_cases_with_spares = 30;
+// Cases of the 54 in which the default engine ran blocks both as kinetic lists
+// and in steps before the horizon: measured 48 on 2026-11-25 (the others reach
+// their horizon before any block cools below kinetic_share); the floor fails
+// if either path stops being chosen.
+constexpr int minimum_cases_with_both_paths = 30;
+
+std::unique_ptr<PassThroughEngine> pass_through(const InitialCondition& start, const CollisionModel& model,
+                                                PassThroughEngine::Paths paths) {
+    auto engine = std::make_unique<PassThroughEngine>(start, model);
+    engine->set_paths(paths);
+    return engine;
+}
+
+// The comparison must have substance: many samples and collisions before
+// the horizons (measured 2026-11-23; a regression that made the horizon come
+// at once would otherwise pass silently).
+void expect_substance(const ComparisonTotals& totals, const char* what) {
+    EXPECT_EQ(totals.cases, 54);
+    EXPECT_GT(totals.samples, 54u * 8u);
+    EXPECT_GT(totals.collisions, 100000u);
+    std::printf("%s: compared %zu samples, %llu collisions before the chaos horizons; %d cases crossed\n", what,
+                totals.samples, static_cast<unsigned long long>(totals.collisions), totals.crossed);
+}
 
 TEST(PassThroughEngine, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
     const ComparisonTotals totals = compare_with_the_reference_loop(
         [](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
-            return std::make_unique<PassThroughEngine>(start, model);
+            return pass_through(start, model, PassThroughEngine::Paths::mixed);
+        },
+        // Both ways of running a block were taken before the horizon.
+        [](const PassThroughEngine& engine, double) { return engine.kinetic_runs() > 0 && engine.step_runs() > 0; });
+    EXPECT_GE(totals.crossed, minimum_cases_with_both_paths);
+    expect_substance(totals, "mixed");
+}
+
+TEST(PassThroughEngine, InStepsOnlyAgreesWithTheReferenceLoopUntilTheChaosHorizon) {
+    const ComparisonTotals totals = compare_with_the_reference_loop(
+        [](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
+            return pass_through(start, model, PassThroughEngine::Paths::steps_only);
         },
         // A stale candidate resolved by its owner's spare before the horizon,
         // so the comparison covers that path too.
         [](const PassThroughEngine& engine, double) { return engine.spares_taken() > 0; });
-    EXPECT_EQ(totals.cases, 54);
     EXPECT_GE(totals.crossed, minimum_cases_with_spares);
-    // The comparison must have substance: many samples and collisions before
-    // the horizons (measured 2026-11-23; a regression that made the horizon
-    // come at once would otherwise pass silently).
-    EXPECT_GT(totals.samples, 54u * 8u);
-    EXPECT_GT(totals.collisions, 100000u);
-    std::printf("compared %zu samples, %llu collisions before the chaos horizons; spares taken in %d cases\n",
-                totals.samples, static_cast<unsigned long long>(totals.collisions), totals.crossed);
+    expect_substance(totals, "steps only");
+}
+
+TEST(PassThroughEngine, AsKineticListsOnlyAgreesWithTheReferenceLoopUntilTheChaosHorizon) {
+    const ComparisonTotals totals = compare_with_the_reference_loop(
+        [](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
+            return pass_through(start, model, PassThroughEngine::Paths::kinetic_only);
+        },
+        [](const PassThroughEngine& engine, double) { return engine.kinetic_runs() > 0 && engine.step_runs() == 0; });
+    EXPECT_EQ(totals.crossed, totals.cases);
+    expect_substance(totals, "kinetic only");
 }
 
 // With delta above every relative speed all collisions are elastic: the lines

@@ -35,6 +35,18 @@
 //     (version counters).
 //  3. At s + h the block is re-sorted by position (insertion sort: one swap
 //     per crossing), counting one collision per swap.
+// A block in a burst (a shock compressed nearly to a point: every line within
+// reach of every other, so each bend's looks would visit the whole shock) runs
+// instead as a kinetic sorted list, every crossing an event in the event
+// engine's queue, elastic ones a swap (run_block_kinetic). Which way a block
+// runs is chosen from counts only, so runs stay reproducible and resumable:
+// a block whose lines' inelastic share last window (their heat) is at least
+// kinetic_share starts as a kinetic list; a block in steps turns into one after
+// a step whose scans visited more than kinetic_visits_per_crossing lines per
+// crossing. A ring with no cut and hot lines gets a window short enough for its
+// widest gap to be a cut. Cuts are local (find_cuts): a gap is uncrossable if
+// the lines on its two sides, with their own velocity bounds, cannot close it.
+//
 // Because a pair's lines are straight between their last sort and the next
 // one, and their relative motion in a step is below L, each swap is exactly one
 // crossing: the collision count includes every elastic collision, exactly.
@@ -60,6 +72,7 @@
 #include <vector>
 
 #include "shockgas/engine.hpp"
+#include "shockgas/fast_queue.hpp"
 
 namespace shockgas {
 
@@ -105,7 +118,8 @@ public:
     // The line record, its index, its position at the step's end and its
     // spare; the heap entries are transient (one step's candidates).
     static constexpr std::size_t bytes_per_particle() {
-        return sizeof(Line) + sizeof(std::int32_t) + sizeof(double) + sizeof(Spares);
+        return sizeof(Line) + sizeof(std::int32_t) + sizeof(double) + sizeof(Spares) + sizeof(double) /* heat */ +
+               sizeof(Sorted) + sizeof(QuaternaryHeap::Entry) + sizeof(std::int32_t) /* a kinetic block */;
     }
 
     // Crossings per line per step the step length aims at. Few enough that a
@@ -133,6 +147,24 @@ public:
     // Crossings each look keeps beyond its earliest (Spares). More spares
     // save more looks but make each look search further.
     static constexpr std::size_t spares_per_line = 2;
+    // A block whose lines' last inelastic share (heat) is at least this runs
+    // as a kinetic list: every crossing an event, at about the event engine's
+    // cost per crossing; below it, in steps, where an elastic crossing costs a
+    // swap and an inelastic one scans and re-sorts.
+    static constexpr double kinetic_share = 0.02;
+    // A block running in steps turns into a kinetic list for the rest of the
+    // window after a step whose scans visited more than this many lines per
+    // crossing: a burst, where a bend's looks cover the whole compressed
+    // shock (measured 2026-11-25: see docs/passthrough-engine.md, "Kinetic
+    // blocks").
+    static constexpr double kinetic_visits_per_crossing = 8.0;
+    // Which ways a block may run: both, chosen as above (the default), or one
+    // only (tests, to cover each path, and the benchmark).
+    enum class Paths { mixed, steps_only, kinetic_only };
+    void set_paths(Paths paths) { paths_ = paths; }
+    // Blocks run as kinetic lists and in steps so far (diagnostics).
+    std::uint64_t kinetic_runs() const { return kinetic_runs_; }
+    std::uint64_t step_runs() const { return step_runs_; }
 
 private:
     struct Line {
@@ -205,6 +237,15 @@ private:
     Wrapped wrap_far(std::int64_t i) const;
     std::int64_t wrap_index(std::int64_t i) const { return wrap(i).index; }
     void run_window(double window_end);
+    // Fills cuts_ for the window [start, end]; returns the widest gap at start.
+    double find_cuts(double start, double end);
+    void run_block_steps(std::int64_t lo, std::int64_t hi, bool ring, double start, double end);
+    void run_block_kinetic(std::int64_t lo, std::int64_t hi, double start, double end);
+    bool hot(std::int64_t lo, std::int64_t hi) const;
+    QuaternaryHeap kinetic_queue_;
+    // Per line id: the inelastic share of the crossings in the block it last
+    // ran in (1 at the start, where every collision is inelastic).
+    std::vector<double> heat_;
     void run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end);
     void run_step(double step_start, double step_end);
     void scan_step_candidates(double step_start, double step_end);
@@ -263,6 +304,11 @@ private:
     double widest_gap_ = 0.0;        // at the step's start, and the index after it
     std::int64_t widest_gap_end_ = 0;
     std::vector<std::int64_t> cuts_;  // the window's uncrossable gaps
+    struct Run {
+        std::int64_t lo, hi;
+        double v_min, v_max;
+    };
+    std::vector<Run> runs_;  // find_cuts' stack
     // The block being run: logical indices [block_lo_, block_hi_] (hi may
     // exceed N - 1: the block goes round the seam), or the whole ring.
     std::int64_t block_lo_ = 0;
@@ -281,6 +327,10 @@ private:
     std::uint64_t inelastic_ = 0;
     std::uint64_t steps_ = 0;
     std::uint64_t spares_taken_ = 0;
+    std::uint64_t visits_ = 0;  // lines visited by scans: the steps' work
+    std::uint64_t kinetic_runs_ = 0;
+    std::uint64_t step_runs_ = 0;
+    Paths paths_ = Paths::mixed;
     std::optional<CollapseReport> no_collapse_;
 };
 

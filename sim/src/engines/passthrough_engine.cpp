@@ -104,6 +104,7 @@ void PassThroughEngine::start_lines() {
     chunk_end_max_.assign(chunks, 0.0);
     end_.assign(n, 0.0);
     spares_.assign(n, Spares{});
+    heat_.assign(n, 1.0);
     update_velocity_bounds();
     // First window: about the target number of crossings for a line moving
     // at the full velocity spread through the mean spacing; adapt_window then
@@ -152,6 +153,81 @@ bool PassThroughEngine::advance_to(double t) {
     return true;
 }
 
+// The window's cuts: gaps no line can cross in [start, end], so that the
+// blocks between them run independently. Collisions only form convex
+// combinations of velocities, so while no line has crossed a block's ends its
+// velocities stay within the block's [v_min, v_max]; then no line of the left
+// block gets further than the gap's left end + v_max(left) (t - start), nor
+// any of the right one nearer than its right end + v_min(right) (t - start).
+// A gap wider than (v_max(left) - v_min(right)) W therefore stays uncrossed,
+// and by induction over the first crossing, so do all such gaps together.
+// Blocks are grown from single lines: a stack of runs, the top two merged
+// while the gap between them is crossable with their merged bounds (merging
+// widens the bounds, so the run below is checked again), then the run round
+// the seam likewise. Cuts land between clusters that cannot meet in the
+// window, however fast the lines elsewhere on the ring.
+double PassThroughEngine::find_cuts(double start, double end) {
+    const auto n = static_cast<std::int64_t>(line_.size());
+    const double w = end - start;
+    cuts_.clear();
+    // Start after the widest gap, which is a cut if any gap is.
+    std::int64_t first = 0;
+    double widest = -never;
+    for (std::int64_t k = 0; k < n; ++k) {
+        const double gap = unwrapped_position(k + 1, start) - unwrapped_position(k, start);
+        if (gap > widest) {
+            widest = gap;
+            first = k + 1;
+        }
+    }
+    const auto crossable = [&](const Run& left, const Run& right) {
+        const double gap = unwrapped_position(left.hi + 1, start) - unwrapped_position(left.hi, start);
+        return !(gap > (left.v_max - right.v_min) * w * (1.0 + reach_slack) + reach_slack * ring_length_);
+    };
+    const auto merge = [](Run& left, const Run& right) {
+        left.hi = right.hi;
+        left.v_min = std::min(left.v_min, right.v_min);
+        left.v_max = std::max(left.v_max, right.v_max);
+    };
+    runs_.clear();
+    for (std::int64_t i = first; i < first + n; ++i) {
+        const double v = line_[static_cast<std::size_t>(wrap_index(i))].v;
+        runs_.push_back({i, i, v, v});
+        while (runs_.size() >= 2 && crossable(runs_[runs_.size() - 2], runs_.back())) {
+            merge(runs_[runs_.size() - 2], runs_.back());
+            runs_.pop_back();
+        }
+    }
+    // Round the seam: the last run against the first (one turn on).
+    std::size_t front = 0;
+    for (;;) {
+        if (runs_.size() - front == 1) {
+            // One run round the whole ring: a block cut at its ends if the gap
+            // there (the widest) cannot be crossed even by its own spread.
+            Run itself = runs_.back();
+            itself.lo += n;
+            itself.hi += n;
+            if (!crossable(runs_.back(), itself)) cuts_.push_back(wrap_index(runs_.back().hi));
+            return widest;
+        }
+        Run wrapped = runs_[front];
+        wrapped.lo += n;
+        wrapped.hi += n;
+        if (crossable(runs_.back(), wrapped)) {
+            merge(runs_.back(), wrapped);
+            ++front;
+        } else if (crossable(runs_[runs_.size() - 2], runs_.back())) {
+            merge(runs_[runs_.size() - 2], runs_.back());
+            runs_.pop_back();
+        } else {
+            break;
+        }
+    }
+    for (std::size_t r = front; r < runs_.size(); ++r) cuts_.push_back(wrap_index(runs_[r].hi));
+    std::sort(cuts_.begin(), cuts_.end());
+    return widest;
+}
+
 // One window [now, window_end]. A gap at the window's start wider than the
 // spread's travel in the window, (v_max - v_min) W, cannot be crossed in it:
 // the ring is cut at every such gap, and the blocks between cuts run to the
@@ -163,15 +239,15 @@ void PassThroughEngine::run_window(double window_end) {
     const auto n = static_cast<std::int64_t>(line_.size());
     update_velocity_bounds();
     const std::uint64_t collisions_before = collisions_;
-    const double uncrossable =
-        (v_max_ - v_min_) * (window_end - window_start) * (1.0 + reach_slack) + reach_slack * ring_length_;
-    cuts_.clear();  // indices k whose gap to k + 1 cannot be crossed
-    double previous = position_at(line_[0], window_start);
-    for (std::int64_t k = 0; k < n; ++k) {
-        const double next = k + 1 < n ? position_at(line_[static_cast<std::size_t>(k + 1)], window_start)
-                                      : position_at(line_[0], window_start) + ring_length_;
-        if (next - previous > uncrossable) cuts_.push_back(k);
-        previous = next;
+    const double widest_gap = find_cuts(window_start, window_end);
+    // A hot ring with no cut (the dense early gas) gets a window short enough
+    // for its widest gap to be one, so that its blocks can run as kinetic
+    // lists, which need two ends.
+    const double spread = v_max_ - v_min_;
+    if (cuts_.empty() && spread > 0.0 && paths_ != Paths::steps_only &&
+        (paths_ == Paths::kinetic_only || hot(0, n - 1))) {
+        window_end = std::min(window_end, window_start + 0.5 * widest_gap / spread);
+        find_cuts(window_start, window_end);
     }
     if (cuts_.empty()) {
         run_block(0, n - 1, true, window_start, window_end);
@@ -201,11 +277,37 @@ double PassThroughEngine::step_target(std::uint64_t crossings, std::uint64_t ine
                       crossings_per_step_target, longest_step_target);
 }
 
-// Block [lo, hi] of logical indices from `start` to `end`, in steps of about
-// step_target() crossings per line. `ring`: the block is the
-// whole ring with nothing to cut it.
+// Block [lo, hi] of logical indices from `start` to `end`: as a kinetic list
+// if its lines were hot (hot()), otherwise in steps of about step_target()
+// crossings per line, which turn into a kinetic list at a burst. `ring`: the
+// block is the whole ring with nothing to cut it (steps only). Afterwards
+// every line of the block carries the block's inelastic share as its heat.
 void PassThroughEngine::run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end) {
     if (hi == lo && !ring) return;  // a lone line crosses nobody
+    const std::uint64_t crossings_before = collisions_;
+    const std::uint64_t inelastic_before = inelastic_;
+    if (!ring && paths_ != Paths::steps_only && (paths_ == Paths::kinetic_only || hot(lo, hi)))
+        run_block_kinetic(lo, hi, start, end);
+    else
+        run_block_steps(lo, hi, ring, start, end);
+    const std::uint64_t crossings = collisions_ - crossings_before;
+    if (crossings == 0) return;
+    const double share = static_cast<double>(inelastic_ - inelastic_before) / static_cast<double>(crossings);
+    for (std::int64_t i = lo; i <= hi; ++i) heat_[line_[static_cast<std::size_t>(wrap_index(i))].id] = share;
+}
+
+// Whether the lines at logical indices [lo, hi] crossed inelastically often
+// enough, the last time they ran, for a kinetic list to beat steps: their
+// mean heat against kinetic_share (see the header).
+bool PassThroughEngine::hot(std::int64_t lo, std::int64_t hi) const {
+    double sum = 0.0;
+    for (std::int64_t i = lo; i <= hi; ++i) sum += heat_[line_[static_cast<std::size_t>(wrap_index(i))].id];
+    return sum >= kinetic_share * static_cast<double>(hi - lo + 1);
+}
+
+// Block [lo, hi] in steps (the header's steps 1-3).
+void PassThroughEngine::run_block_steps(std::int64_t lo, std::int64_t hi, bool ring, double start, double end) {
+    ++step_runs_;
     block_lo_ = lo;
     block_hi_ = hi;
     ring_block_ = ring;
@@ -232,12 +334,93 @@ void PassThroughEngine::run_block(std::int64_t lo, std::int64_t hi, bool ring, d
         const double step_end = t + step < end ? t + step : end;
         const std::uint64_t before = collisions_;
         const std::uint64_t inelastic_before = inelastic_;
+        const std::uint64_t visits_before = visits_;
         run_step(t, step_end);
         const std::uint64_t crossings = collisions_ - before;
-        step = adapted_length(step, step_end - t, crossings, lines,
-                              step_target(crossings, inelastic_ - inelastic_before));
+        const std::uint64_t inelastic = inelastic_ - inelastic_before;
+        step = adapted_length(step, step_end - t, crossings, lines, step_target(crossings, inelastic));
         t = step_end;
+        // A burst: the rest of the window as a kinetic list (the lines are in
+        // order at the step's end).
+        if (!ring && t < end && crossings >= 16 &&
+            paths_ != Paths::steps_only &&
+            static_cast<double>(visits_ - visits_before) > kinetic_visits_per_crossing * static_cast<double>(crossings)) {
+            run_block_kinetic(lo, hi, t, end);
+            return;
+        }
     }
+}
+
+// Block [lo, hi] (not the whole ring; in order at `start`) from `start` to
+// `end` as a kinetic sorted list: the lines in their exact order, each
+// adjacent pair's next crossing in the event engine's queue (fast_queue.hpp),
+// every crossing processed in time order. An elastic crossing only swaps two
+// entries (the lines pass through); an inelastic one bends both lines by the
+// one collision rule (Eq. (1), as bend() does) and swaps them. Either way the
+// pair then diverges (an inelastic pair separates at r g), so only the two new
+// neighbour pairs need new crossing times. Every crossing is counted as it
+// happens. This is what a burst needs: a shock compressed to a point, where
+// every line is within reach of every other and a step's scans would visit
+// the whole shock at each bend.
+void PassThroughEngine::run_block_kinetic(std::int64_t lo, std::int64_t hi, double start, double end) {
+    const auto m = static_cast<std::size_t>(hi - lo + 1);
+    ++kinetic_runs_;
+    buffer_.clear();
+    for (std::int64_t i = lo; i <= hi; ++i) {
+        const auto [k, frame] = wrap(i);
+        buffer_.push_back({0.0, frame, line_[static_cast<std::size_t>(k)]});
+    }
+    const double ring = ring_length_;
+    const auto position = [ring](const Sorted& s, double t) {
+        return s.line.x + s.line.v * (t - s.line.clock) + static_cast<double>(s.frame) * ring;
+    };
+    // Only crossings due by `end` are queued, so the heap holds only the
+    // pairs that cross in this window (as the event engine's windows do).
+    // Gap <= 0 (crossed by rounding): meeting now, as in meeting_time().
+    const auto pair_time = [&](std::size_t k, double t) {
+        const Sorted& a = buffer_[k];
+        const Sorted& b = buffer_[k + 1];
+        if (!(a.line.v > b.line.v)) return never;
+        const double gap = position(b, t) - position(a, t);
+        const double meeting = t + std::max(gap, 0.0) / (a.line.v - b.line.v);
+        return meeting <= end ? meeting : never;
+    };
+    kinetic_queue_.reset(static_cast<std::int32_t>(m));
+    for (std::size_t k = 0; k + 1 < m; ++k) {
+        const double t = pair_time(k, start);
+        if (t != never) kinetic_queue_.append_unordered(static_cast<std::int32_t>(k), t);
+    }
+    kinetic_queue_.heapify();
+    std::uint64_t crossings = 0;
+    std::uint64_t inelastic = 0;
+    while (!kinetic_queue_.empty()) {
+        const auto k = static_cast<std::size_t>(kinetic_queue_.top_slot());
+        const double t = kinetic_queue_.top_time();
+        kinetic_queue_.pop_top();
+        Sorted& catching = buffer_[k];
+        Sorted& caught = buffer_[k + 1];
+        if (classify(model_, catching.line.v - caught.line.v) == CollisionKind::inelastic) {
+            const PostCollision after = collide(mass_, catching.line.v, mass_, caught.line.v, model_.restitution);
+            const double at = position(caught, t);
+            catching.line.x = at - static_cast<double>(catching.frame) * ring;
+            caught.line.x = at - static_cast<double>(caught.frame) * ring;
+            catching.line.v = after.right_velocity;
+            caught.line.v = after.left_velocity;
+            catching.line.clock = t;
+            caught.line.clock = t;
+            ++catching.line.version;
+            ++caught.line.version;
+            ++inelastic;
+        }
+        std::swap(catching, caught);
+        ++crossings;
+        if (k > 0) kinetic_queue_.schedule(static_cast<std::int32_t>(k - 1), pair_time(k - 1, t));
+        if (k + 2 < m) kinetic_queue_.schedule(static_cast<std::int32_t>(k + 1), pair_time(k + 1, t));
+    }
+    collisions_ += crossings;
+    inelastic_ += inelastic;
+    step_end_ = end;
+    write_back(buffer_, lo);
 }
 
 // Chunk bounds from the velocities now, for every chunk that holds an index
@@ -419,6 +602,7 @@ void PassThroughEngine::scan_step_candidates(double step_start, double step_end)
         if (!ring_block_ && lowest_end_ahead_[ms + 1] > end_bound) continue;  // overtakes nobody
         const std::int64_t last = ring_block_ ? m + n - 1 : size - 1;
         for (std::int64_t j = m + 1; j <= last;) {
+            ++visits_;
             const std::size_t js = block_slot(j);
             const double distance = keys_[js] + (j >= size ? ring_length_ : 0.0) - keys_[ms];
             // Beyond what a can reach before its earliest crossing so far.
@@ -508,6 +692,7 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
     };
     const auto horizon = [&] { return std::min(kept.back().time, step_end) - t; };
     for (std::int64_t j = at + 1; j <= last_ahead;) {
+        ++visits_;
         const auto [index, turns] = wrap(j);
         const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
         const std::int64_t chunk_rest =
@@ -533,6 +718,7 @@ void PassThroughEngine::scan_line_candidates(std::int64_t k, double t, double st
         ++j;
     }
     for (std::int64_t j = at - 1; j >= last_behind;) {
+        ++visits_;
         const auto [index, turns] = wrap(j);
         const auto chunk = static_cast<std::size_t>(index >> chunk_shift);
         const std::int64_t chunk_rest = index - ((index >> chunk_shift) << chunk_shift) + 1;
@@ -820,6 +1006,7 @@ std::optional<EngineSnapshot> PassThroughEngine::snapshot() const {
         clock.push_back(line.clock);
         id.push_back(line.id);
     }
+    out.reals["heat"] = heat_;  // by line id
     out.reals["scalars"] = {now_, step_};
     out.integers["counters"] = {static_cast<std::int64_t>(collisions_), static_cast<std::int64_t>(inelastic_),
                                 static_cast<std::int64_t>(steps_), static_cast<std::int64_t>(windows_)};
@@ -835,6 +1022,7 @@ void PassThroughEngine::restore(const EngineSnapshot& snapshot) {
     const auto& v = snapshot_io::array(snapshot.reals, "v", n, snapshot);
     const auto& clock = snapshot_io::array(snapshot.reals, "clock", n, snapshot);
     const auto& id = snapshot_io::array(snapshot.integers, "id", n, snapshot);
+    const auto& heat = snapshot_io::array(snapshot.reals, "heat", n, snapshot);
     const auto& scalars = snapshot_io::array(snapshot.reals, "scalars", 2, snapshot);
     const auto& counters = snapshot_io::array(snapshot.integers, "counters", 4, snapshot);
     std::vector<bool> seen(n, false);
@@ -845,6 +1033,7 @@ void PassThroughEngine::restore(const EngineSnapshot& snapshot) {
         line_[k] = {x[k], v[k], clock[k], static_cast<std::uint32_t>(id[k]), 0};
         where_[static_cast<std::size_t>(id[k])] = static_cast<std::int32_t>(k);
     }
+    heat_ = heat;
     // Spares belong to the step they were found in, and versions restart.
     spares_.assign(n, Spares{});
     now_ = scalars[0];
