@@ -178,6 +178,16 @@ std::unique_ptr<PassThroughEngine> pass_through(const InitialCondition& start, c
     return engine;
 }
 
+// The reference-loop comparison of a pass-through engine restricted to `paths`.
+template <class Crossed>
+ComparisonTotals compare_paths(PassThroughEngine::Paths paths, Crossed crossed) {
+    return compare_with_the_reference_loop(
+        [paths](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
+            return pass_through(start, model, paths);
+        },
+        crossed);
+}
+
 // The comparison must have substance: many samples and collisions before
 // the horizons (measured 2026-11-23; a regression that made the horizon come
 // at once would otherwise pass silently).
@@ -190,10 +200,7 @@ void expect_substance(const ComparisonTotals& totals, const char* what) {
 }
 
 TEST(PassThroughEngine, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
-    const ComparisonTotals totals = compare_with_the_reference_loop(
-        [](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
-            return pass_through(start, model, PassThroughEngine::Paths::mixed);
-        },
+    const ComparisonTotals totals = compare_paths(PassThroughEngine::Paths::mixed,
         // Both ways of running a block were taken before the horizon.
         [](const PassThroughEngine& engine, double) { return engine.kinetic_runs() > 0 && engine.step_runs() > 0; });
     EXPECT_GE(totals.crossed, minimum_cases_with_both_paths);
@@ -201,10 +208,7 @@ TEST(PassThroughEngine, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
 }
 
 TEST(PassThroughEngine, InStepsOnlyAgreesWithTheReferenceLoopUntilTheChaosHorizon) {
-    const ComparisonTotals totals = compare_with_the_reference_loop(
-        [](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
-            return pass_through(start, model, PassThroughEngine::Paths::steps_only);
-        },
+    const ComparisonTotals totals = compare_paths(PassThroughEngine::Paths::steps_only,
         // A stale candidate resolved by its owner's spare before the horizon,
         // so the comparison covers that path too.
         [](const PassThroughEngine& engine, double) { return engine.spares_taken() > 0; });
@@ -213,10 +217,7 @@ TEST(PassThroughEngine, InStepsOnlyAgreesWithTheReferenceLoopUntilTheChaosHorizo
 }
 
 TEST(PassThroughEngine, AsKineticListsOnlyAgreesWithTheReferenceLoopUntilTheChaosHorizon) {
-    const ComparisonTotals totals = compare_with_the_reference_loop(
-        [](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
-            return pass_through(start, model, PassThroughEngine::Paths::kinetic_only);
-        },
+    const ComparisonTotals totals = compare_paths(PassThroughEngine::Paths::kinetic_only,
         [](const PassThroughEngine& engine, double) { return engine.kinetic_runs() > 0 && engine.step_runs() == 0; });
     EXPECT_EQ(totals.crossed, totals.cases);
     expect_substance(totals, "kinetic only");
