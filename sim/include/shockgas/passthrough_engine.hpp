@@ -115,8 +115,10 @@ public:
     // particle 0; they sum to L up to rounding and are never negative beyond it.
     std::vector<double> gaps() const;
 
-    // The line record, its index, its position at the step's end and its
-    // spare; the heap entries are transient (one step's candidates).
+    // The line record, its index, its position at the step's end, its spares
+    // and heat, and a kinetic block's copy of it and queue entry (a block can
+    // span nearly the whole ring); the heap entries are transient (one step's
+    // candidates).
     static constexpr std::size_t bytes_per_particle() {
         return sizeof(Line) + sizeof(std::int32_t) + sizeof(double) + sizeof(Spares) + sizeof(double) /* heat */ +
                sizeof(Sorted) + sizeof(QuaternaryHeap::Entry) + sizeof(std::int32_t) /* a kinetic block */;
@@ -155,8 +157,8 @@ public:
     // A block running in steps turns into a kinetic list for the rest of the
     // window after a step whose scans visited more than this many lines per
     // crossing: a burst, where a bend's looks cover the whole compressed
-    // shock (measured 2026-11-25: see docs/passthrough-engine.md, "Kinetic
-    // blocks").
+    // shock (measured 2026-11-25: see docs/passthrough-engine.md, "Bursts:
+    // blocks as kinetic lists").
     static constexpr double kinetic_visits_per_crossing = 8.0;
     // Which ways a block may run: both, chosen as above (the default), or one
     // only (tests, to cover each path, and the benchmark).
@@ -255,6 +257,7 @@ private:
     double meeting_time(const Line& behind, const Line& ahead, double gap, double t, double step_end) const;
     static void keep_earliest(Candidate& best, const Candidate& found);
     void bend(const Candidate& candidate, double step_end);
+    void bend_lines(Sorted& catching, Sorted& caught, double catching_position, double t) const;
     Sorted load(std::int64_t i, double t) const;
     // Re-sorts logical indices [lo, hi] by position at t into buffer_ (stable,
     // closing inelastic pairs never swapped), growing the stretch until nothing

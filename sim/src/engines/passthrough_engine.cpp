@@ -173,12 +173,14 @@ double PassThroughEngine::find_cuts(double start, double end) {
     // Start after the widest gap, which is a cut if any gap is.
     std::int64_t first = 0;
     double widest = -never;
+    double previous = unwrapped_position(0, start);
     for (std::int64_t k = 0; k < n; ++k) {
-        const double gap = unwrapped_position(k + 1, start) - unwrapped_position(k, start);
-        if (gap > widest) {
-            widest = gap;
+        const double next = unwrapped_position(k + 1, start);
+        if (next - previous > widest) {
+            widest = next - previous;
             first = k + 1;
         }
+        previous = next;
     }
     const auto crossable = [&](const Run& left, const Run& right) {
         const double gap = unwrapped_position(left.hi + 1, start) - unwrapped_position(left.hi, start);
@@ -400,16 +402,8 @@ void PassThroughEngine::run_block_kinetic(std::int64_t lo, std::int64_t hi, doub
         Sorted& catching = buffer_[k];
         Sorted& caught = buffer_[k + 1];
         if (classify(model_, catching.line.v - caught.line.v) == CollisionKind::inelastic) {
-            const PostCollision after = collide(mass_, catching.line.v, mass_, caught.line.v, model_.restitution);
-            const double at = position(caught, t);
-            catching.line.x = at - static_cast<double>(catching.frame) * ring;
-            caught.line.x = at - static_cast<double>(caught.frame) * ring;
-            catching.line.v = after.right_velocity;
-            caught.line.v = after.left_velocity;
-            catching.line.clock = t;
-            caught.line.clock = t;
-            ++catching.line.version;
-            ++caught.line.version;
+            caught.position = position(caught, t);
+            bend_lines(catching, caught, caught.position, t);  // from one point, as in bend()
             ++inelastic;
         }
         std::swap(catching, caught);
@@ -803,25 +797,31 @@ void PassThroughEngine::bend(const Candidate& candidate, double step_end) {
     }
     Sorted& catching = buffer_[behind_slot];  // now the physical right particle
     Sorted& caught = buffer_[ahead_slot];     // now the physical left particle
-    // The one collision rule (collision.hpp, Eq. (1)). The physical left
-    // particle (on the catching line) leaves with v_b + eps g, the right one
-    // with v_a - eps g; the catching line keeps going right, so it carries the
-    // right particle's velocity and each line bends by eps g.
+    // Both leave from one point (the caught line's; one ring length apart if
+    // they crossed at the seam), so their order cannot be undone by rounding.
+    bend_lines(catching, caught, caught.position - (behind_slot < ahead_slot ? ring_length_ : 0.0), t);
+    ++inelastic_;
+    write_back(buffer_, lo);
+    scan_line_candidates(where_[candidate.behind], t, step_end);
+    scan_line_candidates(where_[candidate.ahead], t, step_end);
+}
+
+// The inelastic collision of two lines at time t, the catching line leaving
+// from catching_position and the caught one from its own position (both on
+// the sort's axis). The one collision rule (collision.hpp, Eq. (1)): the
+// physical left particle (on the catching line) leaves with v_b + eps g, the
+// right one with v_a - eps g; the catching line keeps going right, so it
+// carries the right particle's velocity and each line bends by eps g.
+void PassThroughEngine::bend_lines(Sorted& catching, Sorted& caught, double catching_position, double t) const {
     const PostCollision after = collide(mass_, catching.line.v, mass_, caught.line.v, model_.restitution);
     catching.line.v = after.right_velocity;
     caught.line.v = after.left_velocity;
-    // Both leave from one point (the caught line's; one ring length apart if
-    // they crossed at the seam), so their order cannot be undone by rounding.
-    catching.position = caught.position - (behind_slot < ahead_slot ? ring_length_ : 0.0);
+    catching.position = catching_position;
     for (Sorted* s : {&catching, &caught}) {
         s->line.x = s->position - static_cast<double>(s->frame) * ring_length_;
         s->line.clock = t;
         ++s->line.version;
     }
-    ++inelastic_;
-    write_back(buffer_, lo);
-    scan_line_candidates(where_[candidate.behind], t, step_end);
-    scan_line_candidates(where_[candidate.ahead], t, step_end);
 }
 
 PassThroughEngine::Sorted PassThroughEngine::load(std::int64_t i, double t) const {
