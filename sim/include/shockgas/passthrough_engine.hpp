@@ -216,6 +216,11 @@ private:
     };
 
     double position_at(const Line& line, double t) const { return line.x + line.v * (t - line.clock); }
+    // Position at t of a line taken out for sorting, on the sort's axis: its
+    // own position shifted by `frame` turns of the ring.
+    double axis_position(const Line& line, std::int64_t frame, double t) const {
+        return position_at(line, t) + static_cast<double>(frame) * ring_length_;
+    }
     // Position at t of logical index i (any integer): line i mod N, shifted by
     // L for each time i wraps round the ring.
     double unwrapped_position(std::int64_t i, double t) const;

@@ -368,14 +368,8 @@ void PassThroughEngine::run_block_kinetic(std::int64_t lo, std::int64_t hi, doub
     const auto m = static_cast<std::size_t>(hi - lo + 1);
     ++kinetic_runs_;
     buffer_.clear();
-    for (std::int64_t i = lo; i <= hi; ++i) {
-        const auto [k, frame] = wrap(i);
-        buffer_.push_back({0.0, frame, line_[static_cast<std::size_t>(k)]});
-    }
-    const double ring = ring_length_;
-    const auto position = [ring](const Sorted& s, double t) {
-        return s.line.x + s.line.v * (t - s.line.clock) + static_cast<double>(s.frame) * ring;
-    };
+    for (std::int64_t i = lo; i <= hi; ++i) buffer_.push_back(load(i, start));
+    const auto position = [this](const Sorted& s, double t) { return axis_position(s.line, s.frame, t); };
     // Only crossings due by `end` are queued, so the heap holds only the
     // pairs that cross in this window (as the event engine's windows do).
     // Gap <= 0 (crossed by rounding): meeting now, as in meeting_time().
@@ -827,7 +821,7 @@ void PassThroughEngine::bend_lines(Sorted& catching, Sorted& caught, double catc
 PassThroughEngine::Sorted PassThroughEngine::load(std::int64_t i, double t) const {
     const auto [k, frame] = wrap(i);
     const Line& line = line_[static_cast<std::size_t>(k)];
-    return {position_at(line, t) + static_cast<double>(frame) * ring_length_, frame, line};
+    return {axis_position(line, frame, t), frame, line};
 }
 
 // Stable insertion sort; one swap per crossing. A pair found
