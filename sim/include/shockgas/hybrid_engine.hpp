@@ -40,7 +40,7 @@ struct HybridSwitchRule {
     double first_check = 1.0;
     double check_factor = 1.25;
     // Hand over when at most this share of the collisions since the previous
-    // check was inelastic. measured() sets the measured crossover (2026-11-23,
+    // check was inelastic. measured() sets the measured crossover (2026-11-25,
     // hybrid_engine.cpp, default_max_inelastic_share); 0 here, so a rule
     // built by hand without it switches only on stretches with no inelastic
     // collision at all.
