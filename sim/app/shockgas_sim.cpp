@@ -118,8 +118,8 @@ int main(int argc, char** argv) {
                    "engine: event (event-driven, any r), exact (the sticky gas r = 0: clusters from the variational "
                    "principle, no event loop), passthrough (equal masses, delta > 0, elastic sub-threshold: "
                    "elastic collisions counted, not processed; pays late in long runs), hybrid (where passthrough "
-                   "applies: event until nearly all collisions are elastic, then passthrough) or auto (exact when "
-                   "r = 0, else event)")
+                   "applies: event until at most 10% of the collisions are inelastic, then passthrough) or auto "
+                   "(exact when r = 0, hybrid where passthrough applies, else event)")
         ->capture_default_str();
     app.add_option("--collapse-speed", p.collapse.collapse_speed,
                    "declare inelastic collapse at an inelastic collision slower than this")

@@ -170,7 +170,12 @@ TEST(ExactEngine, FactoryPicksExactForTheStickyGasAndRefusesItOtherwise) {
     parameters.collision.restitution = 0.5;
     EXPECT_THROW(shockgas::resolve_engine_name(parameters), shockgas::InputError);
     EXPECT_THROW(shockgas::make_engine(parameters, initial, nullptr), shockgas::InputError);
+    // r > 0: auto picks the hybrid engine where the pass-through engine
+    // applies (the default elastic sub-threshold rule), the event engine
+    // elsewhere (HybridEngine.AutoPicksItWherePassThroughApplies).
     parameters.engine = "auto";
+    EXPECT_EQ(shockgas::resolve_engine_name(parameters), "hybrid");
+    parameters.collision.subthreshold = shockgas::Subthreshold::sticky;
     EXPECT_EQ(shockgas::resolve_engine_name(parameters), "event");
 }
 

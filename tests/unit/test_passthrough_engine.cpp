@@ -527,16 +527,25 @@ TEST(HybridEngine, RefusesWhatThePassThroughEngineRefuses) {
     EXPECT_NO_THROW(shockgas::validate(p));
 }
 
-// auto does not pick the hybrid engine: measured, it is not faster everywhere
-// it applies (engine.cpp, resolve_engine_name; docs/passthrough-engine.md).
-TEST(HybridEngine, AutoKeepsTheEventEngine) {
+// auto picks the hybrid engine wherever the pass-through engine applies, and
+// the event engine wherever it does not (engine.cpp, resolve_engine_name;
+// the measurements behind it in docs/passthrough-engine.md, "Hybrid").
+TEST(HybridEngine, AutoPicksItWherePassThroughApplies) {
     shockgas::SimulationParameters p;
     p.engine = "auto";
     p.collision = {0.9, 0.01, Subthreshold::elastic};
-    EXPECT_EQ(shockgas::resolve_engine_name(p), "event");
+    EXPECT_EQ(shockgas::resolve_engine_name(p), "hybrid");
     const InitialCondition start = random_ring(100, 1);
-    p.engine = "hybrid";
     EXPECT_EQ(shockgas::make_engine(p, start, nullptr)->name(), "hybrid");
+    InitialCondition heavy = random_ring(10, 1);
+    heavy.mass[3] = 2.0;
+    EXPECT_EQ(shockgas::resolve_engine_name(p, &heavy), "event");
+    p.collision = {0.9, 0.01, Subthreshold::sticky};
+    EXPECT_EQ(shockgas::resolve_engine_name(p), "event");
+    p.collision = {0.9, 0.0, Subthreshold::elastic};
+    EXPECT_EQ(shockgas::resolve_engine_name(p), "event");
+    p.collision = {0.0, 0.01, Subthreshold::elastic};
+    EXPECT_EQ(shockgas::resolve_engine_name(p), "exact");
 }
 
 }  // namespace

@@ -12,35 +12,39 @@ namespace shockgas {
 
 // auto: the exact engine whenever it applies (r = 0: every collision merges,
 // whatever the threshold), since it gives every observable the event engine
-// gives there; the event engine otherwise. The pass-through engine is not
-// chosen by auto: it is exact wherever PassThroughEngine::unsupported_reason is empty, but
-// as measured (docs/passthrough-engine.md) it is faster than the windowed
-// event engine only late in a run, when nearly all collisions are elastic,
-// and several times slower in the inelastic early phase, so it is asked for
-// by name. Nor the hybrid engine (event engine, then pass-through; same
-// domain): measured 2026-11-23 (docs/passthrough-engine.md, "Hybrid") it is
-// 1.05-1.10x faster than the event engine at r = 0.9, delta = 1e-2,
-// N = 1e5 to t = 1e4 and 1.55x to t = 1e5, but where it never switches
-// (Fig. 5's r = 0.99, delta = 1e-4, N = 2e4 to t = 1e4) its checks cost
-// 0.7-2%, and in Fig. 5's setting the pass-through engine was measured 4.7x
-// slower on a stretch at 2.2% inelastic collisions, just above the rule's 2%;
-// auto must never be slower, so the hybrid engine too is asked for by name.
+// gives there. Where the pass-through engine applies (equal masses, delta > 0,
+// elastic sub-threshold collisions: PassThroughEngine::unsupported_reason is
+// empty), the hybrid engine: the windowed event engine while many collisions
+// are inelastic, the pass-through engine once at most 10% of them are
+// (hybrid_engine.cpp, default_max_inelastic_share). Measured side by side on
+// 2026-11-26 (docs/passthrough-engine.md, "Hybrid"), one thread, CPU s,
+// event / hybrid: r = 0.9, delta = 1e-2, N = 1e5 to t = 1e4 1.2x; Fig. 5's
+// r = 0.99, delta = 1e-4, N = 2e4 to t = 1e5 1.35x; Fig. 4's delta = 1e-3,
+// N = 2e4 to t = 1e5 about 1.3x; where it never switches (short runs) it does
+// the event engine's work plus one window boundary per check. Everywhere
+// else (delta = 0, sticky sub-threshold, unequal masses) the event engine.
 // Called on the main thread before any realization starts, so an impossible
 // choice is one InputError.
 std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial) {
     const bool sticky_gas = parameters.collision.restitution == 0.0;
-    if (parameters.engine == "auto") return sticky_gas ? "exact" : "event";
+    // The init file's masses decide; the generated start has unit masses.
+    static const std::vector<double> unit_mass{1.0};
+    const std::vector<double>& mass = initial != nullptr ? initial->mass : unit_mass;
+    if (parameters.engine == "auto") {
+        if (sticky_gas) return "exact";
+        return PassThroughEngine::unsupported_reason(mass, parameters.collision, parameters.collapse).empty()
+                   ? "hybrid"
+                   : "event";
+    }
     if (parameters.engine == "exact" && !sticky_gas)
         throw InputError(fmt::format("--engine exact solves only the sticky gas r = 0, got r = {}; use --engine "
                                      "event or auto",
                                      parameters.collision.restitution));
     if (parameters.engine == "passthrough" || parameters.engine == "hybrid") {
-        // The init file's masses decide; the generated start has unit masses.
         // The hybrid engine hands over to the pass-through engine, so it
         // applies exactly where that one does.
-        static const std::vector<double> unit_mass{1.0};
-        const std::string refusal = PassThroughEngine::unsupported_reason(
-            initial != nullptr ? initial->mass : unit_mass, parameters.collision, parameters.collapse);
+        const std::string refusal =
+            PassThroughEngine::unsupported_reason(mass, parameters.collision, parameters.collapse);
         if (!refusal.empty()) throw InputError("--engine " + parameters.engine + " cannot run this: " + refusal);
     }
     return parameters.engine;
