@@ -537,6 +537,9 @@ TEST(HybridEngine, AutoPicksItWherePassThroughApplies) {
     EXPECT_EQ(shockgas::resolve_engine_name(p), "hybrid");
     const InitialCondition start = random_ring(100, 1);
     EXPECT_EQ(shockgas::make_engine(p, start, nullptr)->name(), "hybrid");
+    p.engine = "hybrid";
+    EXPECT_EQ(shockgas::make_engine(p, start, nullptr)->name(), "hybrid");
+    p.engine = "auto";
     InitialCondition heavy = random_ring(10, 1);
     heavy.mass[3] = 2.0;
     EXPECT_EQ(shockgas::resolve_engine_name(p, &heavy), "event");

@@ -18,10 +18,10 @@ namespace shockgas {
 // are inelastic, the pass-through engine once at most 10% of them are
 // (hybrid_engine.cpp, default_max_inelastic_share). Measured side by side on
 // 2026-11-26 (docs/passthrough-engine.md, "Hybrid"), one thread, CPU s,
-// event / hybrid: r = 0.9, delta = 1e-2, N = 1e5 to t = 1e4 1.2x; Fig. 5's
-// r = 0.99, delta = 1e-4, N = 2e4 to t = 1e5 1.35x; Fig. 4's delta = 1e-3,
-// N = 2e4 to t = 1e5 about 1.3x; where it never switches (short runs) it does
-// the event engine's work plus one window boundary per check. Everywhere
+// event / hybrid: r = 0.9, delta = 1e-2, N = 1e5 to t = 1e4 1.22x; Fig. 5's
+// r = 0.99, delta = 1e-4, N = 2e4 to t = 1e5 1.41x; Fig. 4's delta = 1e-3,
+// N = 2e4, r = 0.5 to t = 1e5 1.29x; where it never switches (short runs) it
+// does the event engine's work plus one window boundary per check. Everywhere
 // else (delta = 0, sticky sub-threshold, unequal masses) the event engine.
 // Called on the main thread before any realization starts, so an impossible
 // choice is one InputError.
