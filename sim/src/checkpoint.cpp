@@ -40,7 +40,8 @@ std::string layout_problem(const Checkpoint& c, const SimulationParameters& p, c
     if (r.times != times) return "its sample times differ";
     for (const auto* table : {&r.temperature, &r.collisions_per_particle, &r.clusters, &r.kinetic_energy})
         if (table->size() != cells) return "its time series do not match its realizations and times";
-    if (r.realization_status.size() != realizations || c.samples_done.size() != realizations)
+    if (r.realization_status.size() != realizations || r.engine_switch_time.size() != realizations ||
+        c.samples_done.size() != realizations)
         return "its realization records do not match the run's realizations";
     for (const std::int64_t done : c.samples_done)
         if (done < 0 || done > static_cast<std::int64_t>(times.size())) return "impossible samples_done";

@@ -50,6 +50,7 @@ struct RealizationOutput {
     RealizationStatus status = RealizationStatus::not_run;
     std::uint64_t collisions = 0;
     std::int64_t samples_done = 0;  // sample times recorded
+    double engine_switch_time = std::numeric_limits<double>::quiet_NaN();  // Engine::switch_time()
 };
 
 // A running realization's state, handed by its worker to the checkpoint
@@ -263,6 +264,7 @@ private:
             out.collapse.push_back(std::move(record));
         }
         out.collisions = engine.collisions();
+        out.engine_switch_time = engine.switch_time();
         live_[index].collisions.store(out.collisions);
         live_[index].time.store(engine.time());
     }
@@ -394,6 +396,7 @@ private:
             RealizationOutput& out = outputs_[k];
             out.status = status;
             out.samples_done = checkpoint.samples_done[k];
+            out.engine_switch_time = r.engine_switch_time[k];
             const auto row = static_cast<std::ptrdiff_t>(k * samples);
             for (const Table table : tables)
                 std::copy_n((r.*table).begin() + row, samples, (result_.*table).begin() + row);
@@ -482,6 +485,7 @@ private:
         for (std::size_t k = 0; k < outs.size(); ++k) {
             RealizationOutput& out = outs[k];
             into.realization_status.push_back(static_cast<std::int64_t>(out.status));
+            into.engine_switch_time.push_back(out.engine_switch_time);
             collapsed |= out.status == RealizationStatus::collapsed;
             interrupted |= out.status == RealizationStatus::interrupted || out.status == RealizationStatus::not_run;
             into.total_collisions += out.collisions;

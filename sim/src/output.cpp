@@ -1,5 +1,7 @@
 #include "shockgas/output.hpp"
 
+#include <limits>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -82,6 +84,13 @@ void write_result(h5::Group& root, const SimulationParameters& parameters, const
     series.write("kinetic_energy", result.kinetic_energy, {realizations, samples});
     series.write("realization_status", result.realization_status);
     series.set_attribute("realization_status_codes", "0 complete, 1 collapsed, 2 interrupted, 3 not run");
+    // A result assembled by hand (tests, tools) may leave it empty: no switch recorded.
+    series.write("engine_switch_time", result.engine_switch_time.empty()
+                                           ? std::vector<double>(realizations, std::numeric_limits<double>::quiet_NaN())
+                                           : result.engine_switch_time);
+    series.set_attribute("engine_switch_time_definition",
+                         "time at which the hybrid engine handed over to the pass-through engine; inf: not "
+                         "(yet), NaN: an engine that never switches");
     series.set_attribute("temperature_definition", "T = sum m v^2 / M - (sum m v / M)^2, per realization");
     series.set_attribute("kinetic_energy_definition", "sum m v^2 / (2 M), lab frame");
 
@@ -227,6 +236,10 @@ OutputFile read_result(const h5::Group& root) {
     r.clusters = series.read_doubles("clusters");
     r.kinetic_energy = series.read_doubles("kinetic_energy");
     r.realization_status = series.read_integers("realization_status");
+    // Written since 2026-11-26; earlier files did not record it.
+    r.engine_switch_time = series.has("engine_switch_time")
+                               ? series.read_doubles("engine_switch_time")
+                               : std::vector<double>(r.realization_status.size(), std::numeric_limits<double>::quiet_NaN());
     const auto snapshots = root.open_group("snapshots");
     // Groups are numbered (schemas 1-2: 0, 1, ...; schema 3 zero-padded): open them in numeric order.
     for (const auto& name : snapshots.numbered_children()) {
@@ -345,6 +358,7 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
                                   &EnsembleResult::clusters, &EnsembleResult::kinetic_energy})
             (r.*table).insert((r.*table).end(), (p.*table).begin(), (p.*table).end());
         r.realization_status.insert(r.realization_status.end(), p.realization_status.begin(), p.realization_status.end());
+        r.engine_switch_time.insert(r.engine_switch_time.end(), p.engine_switch_time.begin(), p.engine_switch_time.end());
         for (auto snapshot : p.snapshots) {
             snapshot.realization += offset;
             r.snapshots.push_back(std::move(snapshot));

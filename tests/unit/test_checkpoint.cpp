@@ -144,6 +144,7 @@ void expect_same_result(const EnsembleResult& a, const EnsembleResult& b) {
     EXPECT_TRUE(same(a.clusters, b.clusters));
     EXPECT_TRUE(same(a.kinetic_energy, b.kinetic_energy));
     EXPECT_EQ(a.realization_status, b.realization_status);
+    EXPECT_TRUE(same(a.engine_switch_time, b.engine_switch_time));
     EXPECT_EQ(a.total_collisions, b.total_collisions);
     ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
     for (std::size_t s = 0; s < a.snapshots.size(); ++s) {

@@ -27,8 +27,10 @@
 #include "shockgas/ensemble.hpp"
 #include "shockgas/event_engine.hpp"
 #include "shockgas/fast_engine.hpp"
+#include "shockgas/h5.hpp"
 #include "shockgas/hybrid_engine.hpp"
 #include "shockgas/observables.hpp"
+#include "shockgas/output.hpp"
 #include "shockgas/passthrough_engine.hpp"
 
 namespace {
@@ -487,16 +489,88 @@ TEST(HybridEngine, CheckpointPausesChangeNothing) {
     p.realizations = 2;
     p.threads = 2;
     p.engine = "hybrid";
-    {
+    std::vector<double> switch_times;
+    for (std::int64_t k = 0; k < p.realizations; ++k) {
         // The measured rule switches within this run, so pauses fall on both sides.
-        HybridEngine probe(shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), p.seed, 0),
+        HybridEngine probe(shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), p.seed, k),
                            p.collision, p.collapse);
         probe.advance_to(p.t_max);
         ASSERT_TRUE(probe.switched());
         ASSERT_LT(probe.switch_time(), 0.8 * p.t_max);
+        switch_times.push_back(probe.switch_time());
     }
     const auto [reference, paused] = shockgas::testing::run_with_and_without_checkpoint_pauses(p, "hybrid");
     EXPECT_EQ(reference.engine, "hybrid");
+    // Each realization's hand-over is recorded, the same with pauses.
+    EXPECT_EQ(reference.engine_switch_time, switch_times);
+    EXPECT_EQ(paused.engine_switch_time, switch_times);
+}
+
+// The output file says when each realization switched: written, read back and
+// merged from parts as the other per-realization records; NaN for an engine
+// that never switches, infinity for a hybrid that had not yet, NaN from a file
+// written before the record existed (no dataset).
+TEST(HybridEngine, FileRecordsEachRealizationsSwitchTime) {
+    shockgas::SimulationParameters p;
+    p.particles = 2000;
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    p.t_max = 3000.0;
+    p.realizations = 2;
+    p.engine = "hybrid";
+    const shockgas::EnsembleResult whole = shockgas::run_ensemble(p, nullptr);
+    ASSERT_EQ(whole.engine_switch_time.size(), 2u);
+    for (const double t : whole.engine_switch_time) EXPECT_TRUE(t > 0.0 && t < p.t_max) << t;
+
+    std::vector<shockgas::OutputFile> parts;
+    std::vector<std::string> names;
+    for (std::int64_t first = 0; first < 2; ++first) {
+        shockgas::SimulationParameters part = p;
+        part.realizations = 1;
+        part.first_realization = first;
+        names.push_back("switch_part" + std::to_string(first) + ".h5");
+        shockgas::write_output(names.back(), part, shockgas::run_ensemble(part, nullptr));
+        parts.push_back(shockgas::read_output(names.back()));
+        EXPECT_EQ(parts.back().result.engine_switch_time, std::vector<double>{whole.engine_switch_time[first]});
+    }
+    EXPECT_EQ(shockgas::merge_outputs(parts, names).result.engine_switch_time, whole.engine_switch_time);
+
+    // Resumed from a checkpoint in which both realizations had finished: their
+    // records come from the checkpoint, not from an engine.
+    shockgas::Checkpoint finished;
+    finished.parameters = p;
+    finished.result = whole;
+    finished.samples_done.assign(2, static_cast<std::int64_t>(whole.times.size()));
+    const std::string checkpoint = "switch_finished.checkpoint";
+    shockgas::write_checkpoint(checkpoint, finished);
+    shockgas::CheckpointOptions resume;
+    resume.path = checkpoint;
+    resume.resume = true;
+    resume.interval_seconds = 0.0;
+    std::string note;
+    resume.note = [&note](const std::string& text) { note += text; };
+    const shockgas::EnsembleResult resumed = shockgas::run_ensemble(p, nullptr, nullptr, {}, resume);
+    EXPECT_NE(note.find("2 realizations done"), std::string::npos) << note;
+    EXPECT_EQ(resumed.engine_switch_time, whole.engine_switch_time);
+    std::filesystem::remove(checkpoint);
+
+    shockgas::SimulationParameters early = p;
+    early.t_max = 10.0;  // every collision still inelastic: no switch yet
+    EXPECT_EQ(shockgas::run_ensemble(early, nullptr).engine_switch_time,
+              std::vector<double>(2, std::numeric_limits<double>::infinity()));
+    shockgas::SimulationParameters event = early;
+    event.engine = "event";
+    for (const double t : shockgas::run_ensemble(event, nullptr).engine_switch_time) EXPECT_TRUE(std::isnan(t));
+
+    {  // a file from before the record: the dataset removed (HDF5's own call; the project never edits files)
+        const hid_t file = H5Fopen(names[0].c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+        ASSERT_GE(file, 0);
+        EXPECT_GE(H5Ldelete(file, "/timeseries/engine_switch_time", H5P_DEFAULT), 0);
+        H5Fclose(file);
+    }
+    const auto old = shockgas::read_output(names[0]).result.engine_switch_time;
+    ASSERT_EQ(old.size(), 1u);
+    EXPECT_TRUE(std::isnan(old[0]));
+    for (const auto& name : names) std::filesystem::remove(name);
 }
 
 // Refused exactly where the pass-through engine is, with one line naming the

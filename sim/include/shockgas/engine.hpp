@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -67,6 +68,12 @@ public:
     virtual std::int64_t cluster_count() const = 0;
     virtual const std::optional<CollapseReport>& collapse() const = 0;
     virtual std::string name() const = 0;
+    // When an engine that changes method mid-run (the hybrid engine) handed
+    // over: +infinity while it has not; NaN for the engines that run one
+    // method throughout. Written per realization as
+    // /timeseries/engine_switch_time, so a file says which stretch of each
+    // realization which method ran.
+    virtual double switch_time() const { return std::numeric_limits<double>::quiet_NaN(); }
     // The state for a checkpoint, or nothing if this engine is cheap enough to
     // rerun from t = 0 instead (the exact engine).
     virtual std::optional<EngineSnapshot> snapshot() const { return std::nullopt; }

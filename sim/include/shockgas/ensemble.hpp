@@ -51,6 +51,9 @@ struct EnsembleResult {
     std::vector<HistogramRecord> histograms;  // ordered by time
     std::vector<CollapseRecord> collapses;    // ordered by realization
     std::vector<std::int64_t> realization_status;
+    // R: Engine::switch_time() of each realization when it stopped (NaN for
+    // engines that never switch, +infinity for a hybrid that had not).
+    std::vector<double> engine_switch_time;
     std::string status;  // complete | interrupted | collapsed
     std::string engine;
     std::uint64_t total_collisions = 0;

@@ -70,7 +70,7 @@ public:
     // For tests and the benchmark.
     bool switched() const { return passthrough_ != nullptr; }
     // The time of the hand-over (infinity before it).
-    double switch_time() const { return switch_time_; }
+    double switch_time() const override { return switch_time_; }
     std::uint64_t inelastic_collisions() const;
 
 private:
