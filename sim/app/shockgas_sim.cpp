@@ -190,7 +190,18 @@ int main(int argc, char** argv) {
 
         // Each MPI rank keeps its own checkpoint of its own block.
         if (checkpoint_file.empty()) checkpoint_file = shockgas::checkpoint_path_for(output);
-        if (session.ranks() > 1) checkpoint_file += fmt::format(".rank{}", session.rank());
+        const std::string base_checkpoint = checkpoint_file;
+        if (session.ranks() > 1) checkpoint_file = shockgas::rank_checkpoint_path(base_checkpoint, session.rank());
+        // Resumed with another number of ranks (or one process after an MPI
+        // job, or the reverse): the block is gathered from the others' files.
+        std::vector<std::string> gathered_from;
+        if (checkpoint.resume) {
+            checkpoint.other_blocks = shockgas::other_block_checkpoints(base_checkpoint, checkpoint_file);
+            checkpoint.gathered_from = &gathered_from;
+        }
+        const auto remove_gathered = [&] {
+            shockgas::remove_gathered_checkpoints(gathered_from, base_checkpoint, session.ranks());
+        };
         if (checkpoint.interval_seconds > 0.0 || checkpoint.resume) {
             checkpoint.path = checkpoint_file;
             shockgas::h5::check_writable(checkpoint.path);
@@ -269,7 +280,10 @@ int main(int argc, char** argv) {
         const bool mine_interrupted = mine_result.status == "interrupted";
         const auto joined = session.reduce(mine, std::move(mine_result));
         if (!joined) {
-            if (!mine_interrupted && !checkpoint.path.empty()) shockgas::remove_checkpoints(checkpoint.path);
+            if (!mine_interrupted && !checkpoint.path.empty()) {
+                shockgas::remove_checkpoints(checkpoint.path);
+                remove_gathered();
+            }
             return 0;
         }  // not rank 0: rank 0 writes the file and reports
         const auto& result = *joined;
@@ -277,7 +291,10 @@ int main(int argc, char** argv) {
         shockgas::write_output(output, p, result);
         session.record_provenance(output);
         // The output is safely in place: the checkpoint has served its purpose.
-        if (result.status != "interrupted" && !checkpoint.path.empty()) shockgas::remove_checkpoints(checkpoint.path);
+        if (result.status != "interrupted" && !checkpoint.path.empty()) {
+            shockgas::remove_checkpoints(checkpoint.path);
+            remove_gathered();
+        }
         if (!quiet) print_table(result);
         fmt::print(stderr, "shockgas-sim: {} ({} engine, {} collisions, {:.2f} s wall, {:.2f} s CPU) -> {}\n",
                    result.status, result.engine, result.total_collisions, result.wall_seconds, result.cpu_seconds,

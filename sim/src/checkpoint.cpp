@@ -1,6 +1,8 @@
 #include "shockgas/checkpoint.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -12,6 +14,7 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "shockgas/h5.hpp"
 #include "shockgas/provenance.hpp"
@@ -38,8 +41,8 @@ std::string layout_problem(const Checkpoint& c, const SimulationParameters& p, c
     const auto realizations = static_cast<std::size_t>(p.realizations);
     const std::size_t cells = realizations * times.size();
     if (r.times != times) return "its sample times differ";
-    for (const auto* table : {&r.temperature, &r.collisions_per_particle, &r.clusters, &r.kinetic_energy})
-        if (table->size() != cells) return "its time series do not match its realizations and times";
+    for (const SampleTable table : sample_tables)
+        if ((r.*table).size() != cells) return "its time series do not match its realizations and times";
     if (r.realization_status.size() != realizations || r.engine_switch_time.size() != realizations ||
         c.samples_done.size() != realizations)
         return "its realization records do not match the run's realizations";
@@ -107,6 +110,155 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
         say(fmt::format("warning: {}; so is the previous checkpoint ({}); starting from t = 0", damaged[0],
                         damaged[1]));
     return std::nullopt;
+}
+
+std::string rank_checkpoint_path(const std::string& base, int rank) { return fmt::format("{}.rank{}", base, rank); }
+
+std::vector<std::string> other_block_checkpoints(const std::string& base, const std::string& own) {
+    const auto exists = [](const std::string& path) {
+        return std::filesystem::exists(path) || std::filesystem::exists(previous_checkpoint_path(path));
+    };
+    std::vector<std::string> found;
+    for (int k = 0; exists(rank_checkpoint_path(base, k)); ++k)
+        if (rank_checkpoint_path(base, k) != own) found.push_back(rank_checkpoint_path(base, k));
+    if (base != own && exists(base)) found.push_back(base);
+    return found;
+}
+
+void remove_gathered_checkpoints(const std::vector<std::string>& sources, const std::string& base, int ranks) {
+    const std::string previous_suffix = previous_checkpoint_path("");
+    for (std::string file : sources) {
+        if (file.size() > previous_suffix.size() &&
+            file.compare(file.size() - previous_suffix.size(), previous_suffix.size(), previous_suffix) == 0)
+            file.resize(file.size() - previous_suffix.size());
+        bool current = ranks <= 1 && file == base;
+        for (int k = 0; k < ranks && ranks > 1; ++k) current |= file == rank_checkpoint_path(base, k);
+        if (!current) remove_checkpoints(file);
+    }
+}
+
+std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& candidates,
+                                            const SimulationParameters& parameters,
+                                            const std::vector<double>& sample_times, const Note& note,
+                                            std::vector<std::string>* sources) {
+    const auto say = [&](const std::string& text) {
+        if (note) note(text);
+    };
+    const auto realizations = static_cast<std::size_t>(parameters.realizations);
+    const std::size_t samples = sample_times.size();
+    const auto bins = static_cast<std::size_t>(parameters.histogram_bins) + 2;
+    const std::string physics = physics_signature(parameters);
+
+    Checkpoint out;
+    out.parameters = parameters;
+    out.version = build_info().version;
+    out.signature = run_signature(parameters);
+    EnsembleResult& r = out.result;
+    r.times = sample_times;
+    r.realizations = parameters.realizations;
+    for (const SampleTable table : sample_tables) (r.*table).assign(realizations * samples, std::numeric_limits<double>::quiet_NaN());
+    r.realization_status.assign(realizations, static_cast<std::int64_t>(RealizationStatus::not_run));
+    r.engine_switch_time.assign(realizations, std::numeric_limits<double>::quiet_NaN());
+    out.samples_done.assign(realizations, -1);  // -1: no candidate yet (0 after the loop)
+    std::vector<std::string> taken_from(realizations);
+    std::vector<double> cpu_seconds(realizations, 0.0), wall_seconds(realizations, 0.0);
+    std::vector<std::vector<SnapshotRecord>> snapshots(realizations);
+    std::vector<std::vector<CollapseRecord>> collapses(realizations);
+    const auto finished = [](std::int64_t status) {
+        return status == static_cast<std::int64_t>(RealizationStatus::complete) ||
+               status == static_cast<std::int64_t>(RealizationStatus::collapsed);
+    };
+    // A finished record beats any in progress; then the one with more samples.
+    const auto further = [&](std::int64_t status, std::int64_t done, std::int64_t other_status, std::int64_t other_done) {
+        if (finished(status) != finished(other_status)) return finished(status);
+        return done > other_done;
+    };
+
+    namespace fs = std::filesystem;
+    for (const std::string& name : candidates)
+        for (const std::string& candidate : {name, previous_checkpoint_path(name)}) {
+            if (!fs::exists(candidate)) continue;
+            Checkpoint c;
+            try {
+                c = read_checkpoint(candidate);
+            } catch (const std::exception& error) {
+                say(fmt::format("warning: passing over checkpoint '{}': {}", candidate, error.what()));
+                continue;
+            }
+            if (physics_signature(c.parameters) != physics || c.signature != run_signature(c.parameters) ||
+                c.version != build_info().version || !layout_problem(c, c.parameters, sample_times).empty())
+                continue;  // another run, another code version, or not a whole checkpoint
+            bool contributed = false;
+            const std::int64_t offset = c.parameters.first_realization - parameters.first_realization;
+            for (std::int64_t j = 0; j < c.result.realizations; ++j) {
+                const std::int64_t k = j + offset;  // index in this block
+                if (k < 0 || k >= parameters.realizations) continue;
+                const auto jj = static_cast<std::size_t>(j);
+                const auto kk = static_cast<std::size_t>(k);
+                const std::int64_t status = c.result.realization_status[jj];
+                const bool in_progress = status == static_cast<std::int64_t>(RealizationStatus::in_progress);
+                // Usable as the ensemble's resume uses them: finished, or in
+                // progress with its engine state.
+                if (!finished(status) && !(in_progress && c.engines.count(j) > 0)) continue;
+                if (out.samples_done[kk] >= 0 &&
+                    !further(status, c.samples_done[jj], r.realization_status[kk], out.samples_done[kk]))
+                    continue;
+                for (const SampleTable table : sample_tables)
+                    std::copy_n((c.result.*table).begin() + static_cast<std::ptrdiff_t>(jj * samples), samples,
+                                (r.*table).begin() + static_cast<std::ptrdiff_t>(kk * samples));
+                r.realization_status[kk] = status;
+                r.engine_switch_time[kk] = c.result.engine_switch_time[jj];
+                out.samples_done[kk] = c.samples_done[jj];
+                out.engines.erase(k);
+                if (in_progress) out.engines.emplace(k, c.engines.at(j));
+                snapshots[kk].clear();
+                for (SnapshotRecord s : c.result.snapshots)
+                    if (s.realization == j) {
+                        s.realization = k;
+                        snapshots[kk].push_back(std::move(s));
+                    }
+                collapses[kk].clear();
+                for (CollapseRecord s : c.result.collapses)
+                    if (s.realization == j) {
+                        s.realization = k;
+                        collapses[kk].push_back(std::move(s));
+                    }
+                if (r.histograms.empty())
+                    for (const HistogramRecord& h : c.result.histograms)
+                        r.histograms.push_back({h.time, h.edges, std::vector<double>(realizations * bins, 0.0)});
+                for (std::size_t h = 0; h < r.histograms.size(); ++h)
+                    std::copy_n(c.result.histograms[h].counts.begin() + static_cast<std::ptrdiff_t>(jj * bins), bins,
+                                r.histograms[h].counts.begin() + static_cast<std::ptrdiff_t>(kk * bins));
+                // This block's share of the candidate's cost.
+                const double share = 1.0 / static_cast<double>(c.result.realizations);
+                cpu_seconds[kk] = share * c.result.cpu_seconds;
+                wall_seconds[kk] = share * c.result.wall_seconds;
+                taken_from[kk] = candidate;
+                contributed = true;
+            }
+            if (contributed && sources != nullptr) sources->push_back(candidate);
+        }
+    std::size_t found = 0;
+    for (std::size_t k = 0; k < realizations; ++k) {
+        if (out.samples_done[k] < 0) {
+            out.samples_done[k] = 0;
+            continue;
+        }
+        ++found;
+        r.cpu_seconds += cpu_seconds[k];
+        r.wall_seconds += wall_seconds[k];
+        for (auto& s : snapshots[k]) r.snapshots.push_back(std::move(s));
+        for (auto& s : collapses[k]) r.collapses.push_back(std::move(s));
+    }
+    if (found == 0) return std::nullopt;
+    std::vector<std::string> files;
+    for (const auto& f : taken_from)
+        if (!f.empty() && std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
+    out.source = fmt::format("{}", fmt::join(files, "', '"));
+    say(fmt::format("gathering {} of this block's {} realizations from checkpoints of other blocks of the same run "
+                    "('{}')",
+                    found, realizations, out.source));
+    return out;
 }
 
 CheckpointLock::CheckpointLock(const std::string& checkpoint_path) : lock_path_(checkpoint_path + ".lock") {

@@ -37,9 +37,8 @@ bool contains(const std::vector<double>& times, double t) {
     return std::find(times.begin(), times.end(), t) != times.end();
 }
 
-using Table = std::vector<double> EnsembleResult::*;
-constexpr std::array<Table, 4> tables = {&EnsembleResult::temperature, &EnsembleResult::collisions_per_particle,
-                                         &EnsembleResult::clusters, &EnsembleResult::kinetic_energy};
+using Table = SampleTable;
+constexpr auto& tables = sample_tables;
 
 // Everything one realization produces, gathered by its worker and merged into
 // the ensemble in realization order afterwards.
@@ -375,8 +374,23 @@ private:
     // Continues from the newest usable checkpoint of this run made by this
     // code (checkpoint.hpp verifies it and says why it passes one over).
     void resume_from_checkpoint() {
-        std::optional<Checkpoint> loaded =
-            load_checkpoint(checkpoint_.path, parameters_, result_.times, checkpoint_.note);
+        // Notes of the first attempt are held back while other blocks may
+        // still supply the realizations ("belongs to another run" would be
+        // wrong then).
+        std::vector<std::string> held;
+        const Note hold = [&](const std::string& text) { held.push_back(text); };
+        std::optional<Checkpoint> loaded = load_checkpoint(checkpoint_.path, parameters_, result_.times,
+                                                           checkpoint_.other_blocks.empty() ? checkpoint_.note : hold);
+        if (!loaded && !checkpoint_.other_blocks.empty()) {
+            std::vector<std::string> candidates = checkpoint_.other_blocks;
+            candidates.push_back(checkpoint_.path);
+            loaded = gather_checkpoint(candidates, parameters_, result_.times, checkpoint_.note,
+                                       checkpoint_.gathered_from);
+            if (!loaded && checkpoint_.note)
+                for (const auto& text : held) checkpoint_.note(text);
+        } else if (checkpoint_.note) {
+            for (const auto& text : held) checkpoint_.note(text);
+        }
         if (!loaded) return;
         Checkpoint& checkpoint = *loaded;
         auto note = [&](const std::string& text) {

@@ -309,12 +309,6 @@ std::vector<std::pair<std::string, std::string>> physics_parameters(const Simula
             {"stall_events_min", fmt::format("{}", p.collapse.stall_events_min)}};
 }
 
-std::string physics_signature(const SimulationParameters& p) {
-    std::string signature;
-    for (const auto& [name, value] : physics_parameters(p)) signature += fmt::format("{}=[{}] ", name, value);
-    return signature;
-}
-
 // "restitution 0.5 vs 0.9, seed 2 vs 1": every parameter in which b differs from a.
 std::string parameter_differences(const SimulationParameters& a, const SimulationParameters& b) {
     const auto first = physics_parameters(a), second = physics_parameters(b);
@@ -327,6 +321,12 @@ std::string parameter_differences(const SimulationParameters& a, const Simulatio
 }
 
 }  // namespace
+
+std::string physics_signature(const SimulationParameters& p) {
+    std::string signature;
+    for (const auto& [name, value] : physics_parameters(p)) signature += fmt::format("{}=[{}] ", name, value);
+    return signature;
+}
 
 OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector<std::string>& names) {
     if (parts.empty()) throw InputError("merge: no input files");
@@ -353,9 +353,7 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
         next_realization += part.parameters.realizations;
         const EnsembleResult& p = part.result;
         const std::int64_t offset = r.realizations;
-        using Table = std::vector<double> EnsembleResult::*;
-        for (const Table table : {&EnsembleResult::temperature, &EnsembleResult::collisions_per_particle,
-                                  &EnsembleResult::clusters, &EnsembleResult::kinetic_energy})
+        for (const SampleTable table : sample_tables)
             (r.*table).insert((r.*table).end(), (p.*table).begin(), (p.*table).end());
         r.realization_status.insert(r.realization_status.end(), p.realization_status.begin(), p.realization_status.end());
         r.engine_switch_time.insert(r.engine_switch_time.end(), p.engine_switch_time.begin(), p.engine_switch_time.end());

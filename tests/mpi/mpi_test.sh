@@ -10,6 +10,11 @@
 #                 gives one file, written by rank 0, marked interrupted
 #   failing_run   a rank that fails during its run stops the whole job at once
 #                 (FAILING_RUN, tests/mpi/failing_run.cpp)
+#   other_ranks   a run interrupted in one process resumes on 2 ranks, and one
+#                 interrupted on 2 ranks resumes in one process: each block's
+#                 realizations are gathered from the other blocks' checkpoints,
+#                 the file equals an uninterrupted run's bit for bit, and no
+#                 checkpoint is left behind
 # MPIEXEC... is the launcher and its process-count flag, e.g. "mpiexec -n".
 set -u
 case_name=$1 sim=$2 failing_run=$3 python=$4 work=$5
@@ -102,6 +107,45 @@ failing_run)
   cat run.stderr
   grep -q "simulated failure during the run of rank 1" run.stderr || fail "rank 1's error is missing"
   [ $((SECONDS - start)) -lt "$max_seconds" ] || fail "the job took $((SECONDS - start)) s to stop after rank 1 failed"
+  ;;
+other_ranks)
+  # Long enough (6 realizations of about 1.3 s each) for an interrupt after
+  # 2.5 s to leave realizations finished, in progress and not started; the
+  # hybrid engine, so that states from both of its phases are carried over.
+  run=(-N 20000 -r 0.9 -d 1e-2 --subthreshold elastic --engine hybrid -t 3000 --snapshot-times 100
+       --histogram-times 100,3000 -R 6 -s 7 -j 1 -q)
+  interrupt_after=2.5
+  "$sim" "${run[@]}" -o reference.h5 || fail "the uninterrupted run failed"
+  # One process, interrupted; two ranks continue it.
+  "$sim" "${run[@]}" --checkpoint-interval 0.3 -o one_then_two.h5 2>one.stderr &
+  pid=$!
+  sleep "$interrupt_after"
+  kill -INT "$pid"
+  wait "$pid" && fail "the run finished before the interrupt: the test did not test"
+  [ -e one_then_two.h5.checkpoint ] || fail "no checkpoint after the interrupt: $(cat one.stderr)"
+  "${mpiexec[@]}" "$ranks" "$sim" "${run[@]}" --resume -o one_then_two.h5 2>two.stderr ||
+    fail "mpirun -np $ranks --resume failed: $(cat two.stderr)"
+  cat two.stderr
+  grep -q "rank 0\]: gathering [1-9]" two.stderr || fail "rank 0 did not gather from the one-process checkpoint"
+  "$python" "$compare" reference.h5 one_then_two.h5 "$ranks" ||
+    fail "one process then $ranks ranks differs from the uninterrupted run"
+  left=$(ls one_then_two.h5.checkpoint* 2>/dev/null)
+  [ -z "$left" ] || fail "checkpoints left behind: $left"
+  # Two ranks, interrupted; one process continues.
+  "${mpiexec[@]}" "$ranks" "$sim" "${run[@]}" --checkpoint-interval 0.3 -o two_then_one.h5 2>two_first.stderr &
+  launcher=$!
+  sleep "$interrupt_after"
+  kill -INT "$launcher"
+  wait "$launcher" && fail "the $ranks-rank run finished before the interrupt: the test did not test"
+  for k in 0 1; do
+    [ -e two_then_one.h5.checkpoint.rank$k ] || fail "no checkpoint of rank $k: $(cat two_first.stderr)"
+  done
+  "$sim" "${run[@]}" --resume -o two_then_one.h5 2>one_after.stderr || fail "--resume in one process failed"
+  cat one_after.stderr
+  grep -q "gathering [1-9]" one_after.stderr || fail "one process did not gather from the ranks' checkpoints"
+  "$python" "$compare" reference.h5 two_then_one.h5 || fail "$ranks ranks then one process differs"
+  left=$(ls two_then_one.h5.checkpoint* 2>/dev/null)
+  [ -z "$left" ] || fail "checkpoints left behind: $left"
   ;;
 *)
   fail "unknown case '$case_name'"

@@ -38,6 +38,35 @@ void save_checkpoint(const std::string& path, const Checkpoint& checkpoint);
 std::optional<Checkpoint> load_checkpoint(const std::string& path, const SimulationParameters& parameters,
                                           const std::vector<double>& sample_times, const Note& note);
 
+// This run's realizations gathered from checkpoints of the same run cut into
+// other blocks: an MPI job resumed with another number of ranks (each rank
+// kept PATH.rank<k> of its own block), or one process resuming an MPI job and
+// the reverse. Every candidate (and its previous generation) whose physics,
+// sample times and code version match contributes the realizations of its
+// block that fall in this one (parameters.first_realization and
+// parameters.realizations); where candidates overlap, the record that got
+// further wins. The checkpoint returned is this block's, as load_checkpoint
+// gives it (realizations no candidate holds: not run, status 3), with the
+// candidates' CPU and wall time shared out by the realizations taken;
+// `sources` lists the files that contributed. Nothing if no candidate holds
+// any of this block's realizations.
+std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& candidates,
+                                            const SimulationParameters& parameters,
+                                            const std::vector<double>& sample_times, const Note& note,
+                                            std::vector<std::string>* sources = nullptr);
+
+// BASE.rank<k>: rank k's checkpoint when BASE is the run's checkpoint path
+// and the job has more than one MPI rank.
+std::string rank_checkpoint_path(const std::string& base, int rank);
+// The checkpoints another job of the same run may have left, other than own:
+// base (one process) and base.rank0, base.rank1, ... (MPI ranks) for as long
+// as they (or their previous generations) exist.
+std::vector<std::string> other_block_checkpoints(const std::string& base, const std::string& own);
+// After the output is written: removes the checkpoints a rank gathered from
+// (gather_checkpoint's sources, either generation), except those of the
+// current job's own ranks, which each rank removes itself.
+void remove_gathered_checkpoints(const std::vector<std::string>& sources, const std::string& base, int ranks);
+
 // Removes both generations (the output they served is safely written).
 void remove_checkpoints(const std::string& path);
 

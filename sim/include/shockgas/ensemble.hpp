@@ -5,6 +5,7 @@
 // bit-identical for any thread count.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -62,6 +63,12 @@ struct EnsembleResult {
     double peak_memory_bytes = 0.0;  // resident set high-water mark of the process
 };
 
+// The R x K tables of EnsembleResult, for code that copies or joins rows.
+using SampleTable = std::vector<double> EnsembleResult::*;
+inline constexpr std::array<SampleTable, 4> sample_tables = {
+    &EnsembleResult::temperature, &EnsembleResult::collisions_per_particle, &EnsembleResult::clusters,
+    &EnsembleResult::kinetic_energy};
+
 // What the driver reports while running, about once a second.
 struct Progress {
     double fraction_done = 0.0;    // estimated share of the work done, in [0, 1]
@@ -92,6 +99,14 @@ struct CheckpointOptions {
     double interval_seconds = 300.0; // wall time between checkpoints
     bool resume = false;
     std::function<void(const std::string&)> note;  // one-line messages: written, resumed, ignored
+    // With resume, when path holds no checkpoint of this very block: other
+    // checkpoints of the same run, cut into other blocks (the ranks of an MPI
+    // job with another number of ranks, or one process's), from which this
+    // block's realizations are gathered (gather_checkpoint, checkpoint.hpp).
+    std::vector<std::string> other_blocks;
+    // Filled with the files gathered from, so that the caller can remove them
+    // once the output is safely written.
+    std::vector<std::string>* gathered_from = nullptr;
 };
 
 // Runs the ensemble. initial_override, when non-null, replaces the generated

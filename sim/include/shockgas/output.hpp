@@ -79,5 +79,8 @@ std::string checkpoint_path_for(const std::string& output_path);
 // realization range), as one string: a checkpoint resumes only a run with
 // the same signature.
 std::string run_signature(const SimulationParameters& parameters);
+// The same without the realization range: checkpoints of one run cut into
+// other blocks (MPI ranks, --first-realization parts) share it.
+std::string physics_signature(const SimulationParameters& parameters);
 
 }  // namespace shockgas
