@@ -188,7 +188,9 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
             if (physics_signature(c.parameters) != physics || c.signature != run_signature(c.parameters) ||
                 c.version != build_info().version || !layout_problem(c, c.parameters, sample_times).empty())
                 continue;  // another run, another code version, or not a whole checkpoint
-            bool contributed = false;
+            // A file of this run: obsolete once the output is written, even
+            // where another file's records of this block got further.
+            if (sources != nullptr) sources->push_back(candidate);
             const std::int64_t offset = c.parameters.first_realization - parameters.first_realization;
             for (std::int64_t j = 0; j < c.result.realizations; ++j) {
                 const std::int64_t k = j + offset;  // index in this block
@@ -234,9 +236,7 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
                 cpu_seconds[kk] = share * c.result.cpu_seconds;
                 wall_seconds[kk] = share * c.result.wall_seconds;
                 taken_from[kk] = candidate;
-                contributed = true;
             }
-            if (contributed && sources != nullptr) sources->push_back(candidate);
         }
     std::size_t found = 0;
     for (std::size_t k = 0; k < realizations; ++k) {

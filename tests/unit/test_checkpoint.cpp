@@ -19,6 +19,7 @@
 
 #include "../test_support.hpp"
 
+#include "shockgas/checkpoint.hpp"
 #include "shockgas/engine.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/event_engine.hpp"
@@ -240,3 +241,95 @@ TEST(Checkpoint, FileRoundTripKeepsEngineStateBitForBit) {
 }
 
 }  // namespace
+
+// gather_checkpoint (an MPI job resumed with another number of ranks): each
+// realization of the block comes from the checkpoint where it got furthest
+// (finished beats in progress), realizations no file holds start anew, and
+// files of another run contribute nothing. The end-to-end case under mpirun
+// is tests/mpi (other_ranks).
+TEST(Checkpoint, GatheredBlockTakesEachRealizationWhereItGotFurthest) {
+    SimulationParameters p = ensemble_parameters();
+    p.threads = 1;
+    const EnsembleResult whole = shockgas::run_ensemble(p, nullptr);  // realizations 0, 1, 2
+    const std::size_t samples = whole.times.size();
+    const auto status_code = [](shockgas::RealizationStatus s) { return static_cast<std::int64_t>(s); };
+
+    // A checkpoint of the block [first, first + count) in which realization
+    // k of the run has the given status (in progress: 3 samples and its state).
+    // Each file marks its records by engine_switch_time = tag + realization.
+    const auto checkpoint_of = [&](int first, int count, const std::vector<shockgas::RealizationStatus>& status,
+                                   double tag) {
+        shockgas::Checkpoint c;
+        c.parameters = p;
+        c.parameters.first_realization = first;
+        c.parameters.realizations = count;
+        EnsembleResult& r = c.result;
+        r = whole;
+        r.realizations = count;
+        for (const auto table : shockgas::sample_tables)
+            (r.*table).assign((whole.*table).begin() + static_cast<std::ptrdiff_t>(first * samples),
+                              (whole.*table).begin() + static_cast<std::ptrdiff_t>((first + count) * samples));
+        r.realization_status.clear();
+        r.engine_switch_time.assign(static_cast<std::size_t>(count), 0.0);
+        r.snapshots.clear();
+        const auto bins = static_cast<std::size_t>(p.histogram_bins) + 2;
+        for (auto& h : r.histograms)
+            h.counts.assign(h.counts.begin() + static_cast<std::ptrdiff_t>(first * bins),
+                            h.counts.begin() + static_cast<std::ptrdiff_t>((first + count) * bins));
+        for (int j = 0; j < count; ++j) {
+            const int k = first + j;
+            r.realization_status.push_back(status_code(status[static_cast<std::size_t>(j)]));
+            r.engine_switch_time[static_cast<std::size_t>(j)] = tag + k;
+            const bool running = status[static_cast<std::size_t>(j)] == shockgas::RealizationStatus::in_progress;
+            c.samples_done.push_back(running ? 3 : static_cast<std::int64_t>(samples));
+            if (running) {
+                const auto initial =
+                    shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), p.seed, k);
+                auto engine = shockgas::make_engine(p, initial, nullptr);
+                engine->advance_to(whole.times[2]);
+                c.engines.emplace(j, *engine->snapshot());
+            }
+        }
+        return c;
+    };
+    using S = shockgas::RealizationStatus;
+    // Rank 0 of a 2-rank job: realization 0 done, 1 in progress.
+    shockgas::write_checkpoint("gather.rank0", checkpoint_of(0, 2, {S::complete, S::in_progress}, 1000.0));
+    // An older one-process checkpoint: realization 1 done, 0 and 2 not started.
+    shockgas::write_checkpoint("gather.single", checkpoint_of(0, 3, {S::not_run, S::complete, S::not_run}, 2000.0));
+    // Another run (other seed) that has everything: must be passed over.
+    shockgas::Checkpoint other = checkpoint_of(0, 3, {S::complete, S::complete, S::complete}, 3000.0);
+    other.parameters.seed = p.seed + 1;
+    shockgas::write_checkpoint("gather.other", other);
+    const std::vector<std::string> files = {"gather.other", "gather.rank0", "gather.single"};
+
+    SimulationParameters block = p;  // rank 1 of a 2-rank job now: realizations 1 and 2
+    block.first_realization = 1;
+    block.realizations = 2;
+    std::vector<std::string> sources;
+    const auto gathered = shockgas::gather_checkpoint(files, block, whole.times, {}, &sources);
+    ASSERT_TRUE(gathered.has_value());
+    EXPECT_EQ(gathered->result.realization_status,
+              (std::vector<std::int64_t>{status_code(S::complete), status_code(S::not_run)}));
+    EXPECT_EQ(gathered->result.engine_switch_time[0], 2001.0);  // realization 1 from the one-process file
+    EXPECT_EQ(gathered->samples_done, (std::vector<std::int64_t>{static_cast<std::int64_t>(samples), 0}));
+    EXPECT_TRUE(gathered->engines.empty());
+    // Every file of this run is listed for removal, even one whose record was superseded; not the other run's.
+    EXPECT_EQ(sources, (std::vector<std::string>{"gather.rank0", "gather.single"}));
+
+    block.first_realization = 0;  // rank 0 of a 2-rank job: realizations 0 and 1
+    sources.clear();
+    const auto first_block = shockgas::gather_checkpoint(files, block, whole.times, {}, &sources);
+    ASSERT_TRUE(first_block.has_value());
+    EXPECT_EQ(first_block->result.realization_status,
+              (std::vector<std::int64_t>{status_code(S::complete), status_code(S::complete)}));
+    EXPECT_EQ(first_block->result.engine_switch_time, (std::vector<double>{1000.0, 2001.0}));
+    EXPECT_EQ(sources, (std::vector<std::string>{"gather.rank0", "gather.single"}));
+    // Without the one-process file, realization 1 continues from rank 0's state.
+    const auto from_rank0 = shockgas::gather_checkpoint({"gather.rank0"}, block, whole.times, {});
+    ASSERT_TRUE(from_rank0.has_value());
+    EXPECT_EQ(from_rank0->samples_done, (std::vector<std::int64_t>{static_cast<std::int64_t>(samples), 3}));
+    EXPECT_EQ(from_rank0->engines.count(1), 1u);
+    EXPECT_FALSE(shockgas::gather_checkpoint({"gather.other"}, block, whole.times, {}).has_value());
+    for (const auto& file : files) std::filesystem::remove(file);
+}

@@ -47,9 +47,10 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
 // parameters.realizations); where candidates overlap, the record that got
 // further wins. The checkpoint returned is this block's, as load_checkpoint
 // gives it (realizations no candidate holds: not run, status 3), with the
-// candidates' CPU and wall time shared out by the realizations taken;
-// `sources` lists the files that contributed. Nothing if no candidate holds
-// any of this block's realizations.
+// candidates' CPU and wall time shared out by the realizations taken.
+// `sources` gets every file of this run that was read (the caller removes
+// them once the output is written). Nothing if no candidate holds any of
+// this block's realizations.
 std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& candidates,
                                             const SimulationParameters& parameters,
                                             const std::vector<double>& sample_times, const Note& note,
