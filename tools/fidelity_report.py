@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Cost and accuracy of every figure at one fidelity, as Markdown tables.
 
-Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md]
+Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]
 
 Reads the runs (build/paper_targets/<fidelity>/<fig>/*.h5 written by shockgas-sim:
 particles, realizations, cpu_seconds, peak_memory_bytes, total_collisions) and the
@@ -17,6 +17,13 @@ that commit rather than from memory.
 README.md: the test that keeps the README's numbers from going stale (ctest figures.readme_numbers,
 after the figures are built; the simulations are deterministic, so a build at the same commit
 measures the same numbers on any machine).
+
+--progress prints instead where a build that is still running stands (a paper build can take days): for
+every run of every figure's parameter file (paper_targets/<figure>.<fidelity>.json), the parts and
+realizations done, the CPU seconds spent (the finished files' and the running checkpoints'
+cpu_seconds), the realization in progress and how far it got, and, once a part of a run has
+finished, the CPU seconds its remaining parts would take at the mean of its finished ones (marked as
+an extrapolation). Safe to run beside the build: it only reads.
 """
 import glob
 import os
@@ -30,8 +37,9 @@ if "--check-readme" in sys.argv[1:]:
     position = sys.argv.index("--check-readme")
     check_readme = sys.argv[position + 1]
     del sys.argv[position:position + 2]
-arguments = [a for a in sys.argv[1:] if a != "--readme"]
+arguments = [a for a in sys.argv[1:] if a not in ("--readme", "--progress")]
 readme = "--readme" in sys.argv[1:]
+progress = "--progress" in sys.argv[1:]
 build = arguments[0] if len(arguments) > 0 else "build"
 fidelity = arguments[1] if len(arguments) > 1 else "quick"
 base = os.path.join(build, "paper_targets", fidelity)
@@ -114,6 +122,59 @@ if readme:
     print("|---|---|---|---|")
     for row in readme_rows():
         print(row)
+    sys.exit(0)
+
+
+def progress_report():
+    """Where each run of a build in progress stands (--progress)."""
+    import json
+    import time
+
+    sources = os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "paper_targets")
+    print(f"### {fidelity} build {build}: progress at {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}\n")
+    print("| figure | run | parts done | realizations done | CPU s so far | running now | remaining CPU s "
+          "(extrapolated) |")
+    print("|---|---|---|---|---|---|---|")
+    total_cpu = total_remaining = 0.0
+    for parameters in sorted(glob.glob(os.path.join(sources, f"*.{fidelity}.json"))):
+        figure = os.path.basename(parameters)[:-len(f".{fidelity}.json")]
+        for run in json.load(open(parameters, encoding="utf-8"))["runs"]:
+            name, parts = run["name"], int(run.get("parts", 1))
+            realizations = int(run["options"].get("realizations", 1))
+            folder = os.path.join(base, figure)
+            merged = os.path.join(folder, name + ".h5")
+            finished = [merged] if os.path.exists(merged) else sorted(
+                glob.glob(os.path.join(folder, glob.escape(name) + ".part*.h5")))
+            finished = [f for f in finished if not f.endswith(".running.h5")]
+            cpu_done = [shockgas.attributes(f)["cpu_seconds"] for f in finished]
+            done = sum(int(shockgas.attributes(f)["realizations"]) for f in finished)
+            parts_done = parts if os.path.exists(merged) else len(finished)
+            cpu = sum(cpu_done)
+            running = []
+            prefix = os.path.join(folder, glob.escape(name))
+            for checkpoint in sorted(glob.glob(prefix + ".running.h5.checkpoint") +
+                                     glob.glob(prefix + ".part*.running.h5.checkpoint")):
+                c = shockgas.read_checkpoint(checkpoint)
+                status, samples = list(c.realization_status), list(c.samples_done)
+                done_here = sum(1 for s in status if s in (0, 1))
+                reached = [c.time[n - 1] for s, n in zip(status, samples) if s == 4 and n > 0]
+                cpu += c.attrs["cpu_seconds"]
+                part = os.path.basename(checkpoint)[len(name):].split(".running")[0].lstrip(".") or name
+                running.append(f"{part}: {done_here}/{len(status)} done" +
+                               (f", one at t = {max(reached):.3g}" if reached else ""))
+            remaining = ""
+            if parts_done < parts and cpu_done:
+                estimate = (parts - parts_done) * sum(cpu_done) / len(cpu_done)
+                total_remaining += estimate
+                remaining = f"{estimate:.0f}"
+            total_cpu += cpu
+            print(f"| {figure} | {name} | {parts_done}/{parts} | {done}/{realizations} | {cpu:.0f} | "
+                  f"{'; '.join(running) or '—'} | {remaining or '—'} |")
+    print(f"| **all** | | | | **{total_cpu:.0f}** | | **{total_remaining:.0f}** (mean of finished parts) |")
+
+
+if progress:
+    progress_report()
     sys.exit(0)
 
 

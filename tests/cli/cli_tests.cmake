@@ -196,6 +196,11 @@ if(SHOCKGAS_PYTHON)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/damaged_checkpoint_test.sh ${_sim} ${SHOCKGAS_PYTHON}
                    ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/damaged_checkpoint")
   set_tests_properties(cli.faults.damaged_checkpoint PROPERTIES LABELS cli TIMEOUT 300)
+  # Where a paper build in progress stands (tools/fidelity_report.py --progress).
+  add_test(NAME cli.progress_report
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress_report_test.sh ${_sim} ${SHOCKGAS_PYTHON}
+                   ${PROJECT_SOURCE_DIR}/tools/fidelity_report.py "${_cli_dir}/progress_report")
+  set_tests_properties(cli.progress_report PROPERTIES LABELS cli TIMEOUT 120)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock memory_fewer_at_once)
   add_test(NAME cli.faults.${_case}
