@@ -107,6 +107,14 @@ class Run(File):
         return int(self.timeseries.data["temperature"].shape[0])
 
     @property
+    def engine_switch_time(self):
+        """Per realization, when the hybrid engine handed over to the pass-through engine (inf: not
+        yet; NaN: an engine that never switches). NaN for files written before 2026-11-26, which did
+        not record it, as the C++ reader gives."""
+        recorded = self.timeseries.data.get("engine_switch_time")
+        return recorded if recorded is not None else np.full(self.realizations, np.nan)
+
+    @property
     def snapshots(self):
         return list(self.groups["snapshots"].groups.values()) if "snapshots" in self.groups else []
 

@@ -116,6 +116,24 @@ class Runs(unittest.TestCase):
             np.testing.assert_array_equal(getattr(merged, name), getattr(self.whole, name), name)
         self.assertEqual(len(merged.snapshots), len(self.whole.snapshots))
 
+    def test_engine_switch_time(self):
+        # The event engine runs one method throughout: NaN. The hybrid engine records its hand-over
+        # (N = 2000, r = 0.9, delta = 1e-2: at t = 1.25^31 = 1009.74 for both realizations, as the
+        # C++ test HybridEngine.FileRecordsEachRealizationsSwitchTime measures).
+        self.assertTrue(np.all(np.isnan(self.whole.engine_switch_time)))
+        self.assertEqual(self.whole.engine_switch_time.shape, (3,))
+        run(SIM, "-N", 2000, "-r", 0.9, "-d", 0.01, "--subthreshold", "elastic", "--engine", "hybrid", "-t", 3000,
+            "-R", 2, "-j", 1, "-q", "-o", path("hybrid.h5"))
+        # The check times are products of 1.25 accumulated in the engine: equal to 1.25^31 to rounding.
+        np.testing.assert_allclose(shockgas.read_run(path("hybrid.h5")).engine_switch_time, [1.25 ** 31] * 2,
+                                   rtol=T_RELATIVE_TOLERANCE)
+        # A file from before the record: no dataset, NaN as the C++ reader gives.
+        old = path("before_switch_record.h5")
+        shutil.copyfile(path("hybrid.h5"), old)
+        with h5py.File(old, "r+") as handle:
+            del handle["timeseries/engine_switch_time"]
+        self.assertTrue(np.all(np.isnan(shockgas.read_run(old).engine_switch_time)))
+
     def test_results_carry_their_input(self):
         run(ANALYZE, "decay", path("whole.h5"), "-o", path("decay.h5"), "--data-only", "--data", path("T.dat"))
         run(ANALYZE, "shocks", path("whole.h5"), "-o", path("shocks.h5"))
