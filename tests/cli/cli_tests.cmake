@@ -201,6 +201,12 @@ if(SHOCKGAS_PYTHON)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress_report_test.sh ${_sim} ${SHOCKGAS_PYTHON}
                    ${PROJECT_SOURCE_DIR}/tools/fidelity_report.py "${_cli_dir}/progress_report")
   set_tests_properties(cli.progress_report PROPERTIES LABELS cli TIMEOUT 120)
+  # A provisional Fig. 4 from the finished parts of a paper build (tools/provisional-fig4).
+  add_test(NAME cli.provisional_fig4
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/provisional_fig4_test.sh ${_sim} $<TARGET_FILE:shockgas-merge>
+                   $<TARGET_FILE:shockgas-dump> $<TARGET_FILE:shockgas-analyze> ${SHOCKGAS_PYTHON}
+                   "${_cli_dir}/provisional_fig4")
+  set_tests_properties(cli.provisional_fig4 PROPERTIES LABELS cli TIMEOUT 300)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock memory_fewer_at_once)
   add_test(NAME cli.faults.${_case}
