@@ -37,9 +37,6 @@ bool contains(const std::vector<double>& times, double t) {
     return std::find(times.begin(), times.end(), t) != times.end();
 }
 
-using Table = SampleTable;
-constexpr auto& tables = sample_tables;
-
 // Everything one realization produces, gathered by its worker and merged into
 // the ensemble in realization order afterwards.
 struct RealizationOutput {
@@ -58,7 +55,7 @@ struct Deposit {
     std::uint64_t epoch = 0;
     std::optional<EngineSnapshot> engine;  // empty: the engine reruns from t = 0 instead
     RealizationOutput output;
-    std::array<std::vector<double>, 4> rows;  // its rows of `tables`
+    std::array<std::vector<double>, sample_tables.size()> rows;  // its rows of `sample_tables`
 };
 
 class EnsembleRunner {
@@ -73,7 +70,7 @@ public:
         std::sort(histogram_times_.begin(), histogram_times_.end());
         histogram_times_.erase(std::unique(histogram_times_.begin(), histogram_times_.end()), histogram_times_.end());
         const std::size_t cells = static_cast<std::size_t>(parameters.realizations) * result_.times.size();
-        for (const Table table : tables) (result_.*table).assign(cells, not_reached);
+        for (const SampleTable table : sample_tables) (result_.*table).assign(cells, not_reached);
         const auto realizations = static_cast<std::size_t>(parameters.realizations);
         outputs_.resize(realizations);
         for (auto& out : outputs_) out.histogram_counts.assign(histogram_times_.size(), {});
@@ -207,7 +204,7 @@ private:
             outputs_[index] = RealizationOutput{};
             outputs_[index].histogram_counts.assign(histogram_times_.size(), {});
             const std::size_t samples = result_.times.size();
-            for (const Table table : tables)
+            for (const SampleTable table : sample_tables)
                 std::fill_n((result_.*table).begin() + static_cast<std::ptrdiff_t>(index * samples), samples,
                             not_reached);
             EventEngine engine(initial, parameters_.collision, parameters_.collapse, &live_[index]);
@@ -281,8 +278,8 @@ private:
         d.output = outputs_[index];
         d.output.collisions = engine.collisions();
         const std::size_t samples = result_.times.size();
-        for (std::size_t t = 0; t < tables.size(); ++t) {
-            const auto begin = (result_.*tables[t]).begin() + static_cast<std::ptrdiff_t>(index * samples);
+        for (std::size_t t = 0; t < sample_tables.size(); ++t) {
+            const auto begin = (result_.*sample_tables[t]).begin() + static_cast<std::ptrdiff_t>(index * samples);
             d.rows[t].assign(begin, begin + static_cast<std::ptrdiff_t>(samples));
         }
         {
@@ -329,7 +326,7 @@ private:
         r.realizations = result_.realizations;
         r.engine = result_.engine;
         const std::size_t samples = result_.times.size();
-        for (const Table table : tables) (r.*table).assign((result_.*table).size(), not_reached);
+        for (const SampleTable table : sample_tables) (r.*table).assign((result_.*table).size(), not_reached);
         std::vector<RealizationOutput> outs(outputs_.size());
         checkpoint.samples_done.assign(outputs_.size(), 0);
         {
@@ -340,13 +337,13 @@ private:
                 const auto row = static_cast<std::ptrdiff_t>(k * samples);
                 if (finished_[k].load() && outputs_[k].status != RealizationStatus::interrupted) {
                     outs[k] = outputs_[k];
-                    for (const Table table : tables)
+                    for (const SampleTable table : sample_tables)
                         std::copy_n((result_.*table).begin() + row, samples, (r.*table).begin() + row);
                 } else if (fresh) {
                     outs[k] = d->output;
                     outs[k].status = RealizationStatus::in_progress;
-                    for (std::size_t t = 0; t < tables.size(); ++t)
-                        std::copy(d->rows[t].begin(), d->rows[t].end(), (r.*tables[t]).begin() + row);
+                    for (std::size_t t = 0; t < sample_tables.size(); ++t)
+                        std::copy(d->rows[t].begin(), d->rows[t].end(), (r.*sample_tables[t]).begin() + row);
                     checkpoint.engines.emplace(static_cast<std::int64_t>(k), *d->engine);
                 } else {
                     outs[k].status = RealizationStatus::not_run;
@@ -381,16 +378,16 @@ private:
         const Note hold = [&](const std::string& text) { held.push_back(text); };
         std::optional<Checkpoint> loaded = load_checkpoint(checkpoint_.path, parameters_, result_.times,
                                                            checkpoint_.other_blocks.empty() ? checkpoint_.note : hold);
+        bool gathered = false;
         if (!loaded && !checkpoint_.other_blocks.empty()) {
             std::vector<std::string> candidates = checkpoint_.other_blocks;
             candidates.push_back(checkpoint_.path);
             loaded = gather_checkpoint(candidates, parameters_, result_.times, checkpoint_.note,
                                        checkpoint_.gathered_from);
-            if (!loaded && checkpoint_.note)
-                for (const auto& text : held) checkpoint_.note(text);
-        } else if (checkpoint_.note) {
-            for (const auto& text : held) checkpoint_.note(text);
+            gathered = loaded.has_value();
         }
+        if (!gathered && checkpoint_.note)
+            for (const auto& text : held) checkpoint_.note(text);
         if (!loaded) return;
         Checkpoint& checkpoint = *loaded;
         auto note = [&](const std::string& text) {
@@ -412,7 +409,7 @@ private:
             out.samples_done = checkpoint.samples_done[k];
             out.engine_switch_time = r.engine_switch_time[k];
             const auto row = static_cast<std::ptrdiff_t>(k * samples);
-            for (const Table table : tables)
+            for (const SampleTable table : sample_tables)
                 std::copy_n((r.*table).begin() + row, samples, (result_.*table).begin() + row);
             for (const auto& snapshot : r.snapshots)
                 if (snapshot.realization == static_cast<std::int64_t>(k)) out.snapshots.push_back(snapshot);

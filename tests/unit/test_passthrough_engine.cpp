@@ -318,17 +318,24 @@ TEST(PassThroughEngine, SnapshotResumesBitForBit) {
     EXPECT_EQ(a.position, b.position);
 }
 
+// An ensemble of the elastic r = 0.9, delta = 1e-2 gas through the driver,
+// on `engine`, two realizations.
+shockgas::SimulationParameters elastic_ensemble(std::int64_t particles, double t_max, const std::string& engine) {
+    shockgas::SimulationParameters p;
+    p.particles = particles;
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    p.t_max = t_max;
+    p.realizations = 2;
+    p.engine = engine;
+    return p;
+}
+
 // Through the ensemble driver: a run paused for checkpoints every 20 ms (the
 // driver snapshots and restores the engines) gives bit for bit the result of
 // the run that never paused, and restore_engine knows the engine's kind.
 TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
-    shockgas::SimulationParameters p;
-    p.particles = 5000;
-    p.collision = {0.9, 0.01, Subthreshold::elastic};
-    p.t_max = 2000.0;
-    p.realizations = 2;
+    shockgas::SimulationParameters p = elastic_ensemble(5000, 2000.0, "passthrough");
     p.threads = 2;
-    p.engine = "passthrough";
     const auto [reference, paused] = shockgas::testing::run_with_and_without_checkpoint_pauses(p, "passthrough");
     EXPECT_EQ(reference.engine, "passthrough");
 }
@@ -482,13 +489,9 @@ TEST(HybridEngine, SnapshotResumesBitForBitBeforeAndAfterTheSwitch) {
 // Through the ensemble driver with --engine hybrid: checkpoints every 20 ms
 // (before and after the switch) give bit for bit the run that never paused.
 TEST(HybridEngine, CheckpointPausesChangeNothing) {
-    shockgas::SimulationParameters p;
-    p.particles = 5000;
-    p.collision = {0.9, 0.01, Subthreshold::elastic};
-    p.t_max = 12000.0;  // the measured rule switches at t ~ 5e3 here
-    p.realizations = 2;
+    // The measured rule switches at t ~ 5e3 here.
+    shockgas::SimulationParameters p = elastic_ensemble(5000, 12000.0, "hybrid");
     p.threads = 2;
-    p.engine = "hybrid";
     std::vector<double> switch_times;
     for (std::int64_t k = 0; k < p.realizations; ++k) {
         // The measured rule switches within this run, so pauses fall on both sides.
@@ -511,12 +514,7 @@ TEST(HybridEngine, CheckpointPausesChangeNothing) {
 // that never switches, infinity for a hybrid that had not yet, NaN from a file
 // written before the record existed (no dataset).
 TEST(HybridEngine, FileRecordsEachRealizationsSwitchTime) {
-    shockgas::SimulationParameters p;
-    p.particles = 2000;
-    p.collision = {0.9, 0.01, Subthreshold::elastic};
-    p.t_max = 3000.0;
-    p.realizations = 2;
-    p.engine = "hybrid";
+    const shockgas::SimulationParameters p = elastic_ensemble(2000, 3000.0, "hybrid");
     const shockgas::EnsembleResult whole = shockgas::run_ensemble(p, nullptr);
     ASSERT_EQ(whole.engine_switch_time.size(), 2u);
     for (const double t : whole.engine_switch_time) EXPECT_TRUE(t > 0.0 && t < p.t_max) << t;
