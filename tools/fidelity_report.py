@@ -146,8 +146,9 @@ def progress_report():
             finished = [merged] if os.path.exists(merged) else sorted(
                 glob.glob(os.path.join(folder, glob.escape(name) + ".part*.h5")))
             finished = [f for f in finished if not f.endswith(".running.h5")]
-            cpu_done = [shockgas.attributes(f)["cpu_seconds"] for f in finished]
-            done = sum(int(shockgas.attributes(f)["realizations"]) for f in finished)
+            finished_attrs = [shockgas.attributes(f) for f in finished]
+            cpu_done = [a["cpu_seconds"] for a in finished_attrs]
+            done = sum(int(a["realizations"]) for a in finished_attrs)
             parts_done = parts if os.path.exists(merged) else len(finished)
             cpu = sum(cpu_done)
             running = []
