@@ -23,6 +23,8 @@ done
 cat report.txt
 grep -q "r = 0.5: 2 parts (20 realizations): r0.5.part0.h5 r0.5.part10.h5" report.txt || fail "r = 0.5 not merged"
 grep -q "r = 0.9: no part from part0 on is finished; left out" report.txt || fail "r = 0.9's gap not reported"
+# The tool's job is to run the fit, not to judge it (the physics tests assert beta): a fit came out in
+# [0.3, 0.4). At this N and 40 realizations it gave 0.371 +- 0.015 and 0.353 +- 0.015 (2026-11-26).
 grep -q "^scaling exponent 0\.3" report.txt || fail "no scaling exponent near 1/3"
 [ -s "$work/look/fig4.png" ] || fail "no figure"
 echo "ok"
