@@ -145,8 +145,6 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
         if (note) note(text);
     };
     const auto realizations = static_cast<std::size_t>(parameters.realizations);
-    const std::size_t samples = sample_times.size();
-    const auto bins = static_cast<std::size_t>(parameters.histogram_bins) + 2;
     const std::string physics = physics_signature(parameters);
 
     Checkpoint out;
@@ -155,15 +153,10 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
     out.signature = run_signature(parameters);
     EnsembleResult& r = out.result;
     r.times = sample_times;
-    r.realizations = parameters.realizations;
-    for (const SampleTable table : sample_tables) (r.*table).assign(realizations * samples, std::numeric_limits<double>::quiet_NaN());
-    r.realization_status.assign(realizations, static_cast<std::int64_t>(RealizationStatus::not_run));
-    r.engine_switch_time.assign(realizations, std::numeric_limits<double>::quiet_NaN());
+    grow_realizations(r, parameters.realizations);
     out.samples_done.assign(realizations, -1);  // -1: no candidate yet (0 after the loop)
     std::vector<std::string> taken_from(realizations);
     std::vector<double> cpu_seconds(realizations, 0.0), wall_seconds(realizations, 0.0);
-    std::vector<std::vector<SnapshotRecord>> snapshots(realizations);
-    std::vector<std::vector<CollapseRecord>> collapses(realizations);
     const auto finished = [](std::int64_t status) {
         return status == static_cast<std::int64_t>(RealizationStatus::complete) ||
                status == static_cast<std::int64_t>(RealizationStatus::collapsed);
@@ -205,32 +198,10 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
                 if (out.samples_done[kk] >= 0 &&
                     !further(status, c.samples_done[jj], r.realization_status[kk], out.samples_done[kk]))
                     continue;
-                for (const SampleTable table : sample_tables)
-                    std::copy_n((c.result.*table).begin() + static_cast<std::ptrdiff_t>(jj * samples), samples,
-                                (r.*table).begin() + static_cast<std::ptrdiff_t>(kk * samples));
-                r.realization_status[kk] = status;
-                r.engine_switch_time[kk] = c.result.engine_switch_time[jj];
+                copy_realization(c.result, j, r, k);
                 out.samples_done[kk] = c.samples_done[jj];
                 out.engines.erase(k);
                 if (in_progress) out.engines.emplace(k, c.engines.at(j));
-                snapshots[kk].clear();
-                for (SnapshotRecord s : c.result.snapshots)
-                    if (s.realization == j) {
-                        s.realization = k;
-                        snapshots[kk].push_back(std::move(s));
-                    }
-                collapses[kk].clear();
-                for (CollapseRecord s : c.result.collapses)
-                    if (s.realization == j) {
-                        s.realization = k;
-                        collapses[kk].push_back(std::move(s));
-                    }
-                if (r.histograms.empty())
-                    for (const HistogramRecord& h : c.result.histograms)
-                        r.histograms.push_back({h.time, h.edges, std::vector<double>(realizations * bins, 0.0)});
-                for (std::size_t h = 0; h < r.histograms.size(); ++h)
-                    std::copy_n(c.result.histograms[h].counts.begin() + static_cast<std::ptrdiff_t>(jj * bins), bins,
-                                r.histograms[h].counts.begin() + static_cast<std::ptrdiff_t>(kk * bins));
                 // This block's share of the candidate's cost.
                 const double share = 1.0 / static_cast<double>(c.result.realizations);
                 cpu_seconds[kk] = share * c.result.cpu_seconds;
@@ -247,8 +218,6 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
         ++found;
         r.cpu_seconds += cpu_seconds[k];
         r.wall_seconds += wall_seconds[k];
-        for (auto& s : snapshots[k]) r.snapshots.push_back(std::move(s));
-        for (auto& s : collapses[k]) r.collapses.push_back(std::move(s));
     }
     if (found == 0) return std::nullopt;
     std::vector<std::string> files;

@@ -353,22 +353,8 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
         next_realization += part.parameters.realizations;
         const EnsembleResult& p = part.result;
         const std::int64_t offset = r.realizations;
-        for (const SampleTable table : sample_tables)
-            (r.*table).insert((r.*table).end(), (p.*table).begin(), (p.*table).end());
-        r.realization_status.insert(r.realization_status.end(), p.realization_status.begin(), p.realization_status.end());
-        r.engine_switch_time.insert(r.engine_switch_time.end(), p.engine_switch_time.begin(), p.engine_switch_time.end());
-        for (auto snapshot : p.snapshots) {
-            snapshot.realization += offset;
-            r.snapshots.push_back(std::move(snapshot));
-        }
-        for (auto collapse : p.collapses) {
-            collapse.realization += offset;
-            r.collapses.push_back(std::move(collapse));
-        }
-        for (std::size_t h = 0; h < r.histograms.size(); ++h)
-            r.histograms[h].counts.insert(r.histograms[h].counts.end(), p.histograms[h].counts.begin(),
-                                          p.histograms[h].counts.end());
-        r.realizations += p.realizations;
+        grow_realizations(r, offset + p.realizations);
+        for (std::int64_t j = 0; j < p.realizations; ++j) copy_realization(p, j, r, offset + j);
         r.total_collisions += p.total_collisions;
         r.cpu_seconds += p.cpu_seconds;
         r.wall_seconds += p.wall_seconds;

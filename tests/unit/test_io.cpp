@@ -188,6 +188,63 @@ TEST(Output, PartsMergeIntoTheSingleRunResult) {
     EXPECT_THROW(shockgas::merge_outputs({parts[1], parts[0]}, {names[1], names[0]}), shockgas::InputError);
 }
 
+// copy_realization is how merge_outputs and gather_checkpoint move a
+// realization: it must replace the target's records of that realization where
+// they stood (EnsembleResult keeps snapshots by (realization, time) and
+// collapses by realization; the writer and the resume rely on it), drop those
+// the source does not have, and leave every other realization alone.
+TEST(Output, CopiedRealizationReplacesItsRecordsInOrder) {
+    using shockgas::EnsembleResult;
+    const auto snapshot = [](std::int64_t realization, double time) {
+        shockgas::SnapshotRecord s;
+        s.realization = realization;
+        s.state.time = time;
+        return s;
+    };
+    const auto collapse = [](std::int64_t realization) {
+        shockgas::CollapseRecord c;
+        c.realization = realization;
+        return c;
+    };
+    EnsembleResult to;
+    to.times = {0.0, 1.0};
+    shockgas::grow_realizations(to, 3);
+    to.snapshots = {snapshot(0, 1), snapshot(0, 2), snapshot(1, 1), snapshot(1, 2), snapshot(2, 1)};
+    to.collapses = {collapse(0), collapse(1), collapse(2)};
+    EnsembleResult from;
+    from.times = to.times;
+    shockgas::grow_realizations(from, 2);
+    from.temperature = {5, 6, 7, 8};
+    from.realization_status[1] = static_cast<std::int64_t>(shockgas::RealizationStatus::complete);
+    from.engine_switch_time[1] = 3.5;
+    from.snapshots = {snapshot(0, 9), snapshot(1, 7), snapshot(1, 8)};
+    from.histograms = {{20.0, {0.0, 1.0}, {1, 2, 3, 4, 5, 6}}};  // one bin: 3 counts per realization
+
+    shockgas::copy_realization(from, 1, to, 1);
+    std::vector<std::pair<std::int64_t, double>> order;
+    for (const auto& s : to.snapshots) order.emplace_back(s.realization, s.state.time);
+    EXPECT_EQ(order, (std::vector<std::pair<std::int64_t, double>>{{0, 1}, {0, 2}, {1, 7}, {1, 8}, {2, 1}}));
+    ASSERT_EQ(to.collapses.size(), 2u);  // realization 1's collapse record is gone: the source has none
+    EXPECT_EQ(to.collapses[0].realization, 0);
+    EXPECT_EQ(to.collapses[1].realization, 2);
+    EXPECT_EQ(to.temperature[2], 7.0);
+    EXPECT_EQ(to.temperature[3], 8.0);
+    EXPECT_TRUE(std::isnan(to.temperature[0]) && std::isnan(to.temperature[5]));
+    EXPECT_EQ(to.realization_status[1], static_cast<std::int64_t>(shockgas::RealizationStatus::complete));
+    EXPECT_EQ(to.realization_status[0], static_cast<std::int64_t>(shockgas::RealizationStatus::not_run));
+    EXPECT_EQ(to.engine_switch_time[1], 3.5);
+    ASSERT_EQ(to.histograms.size(), 1u);
+    EXPECT_EQ(to.histograms[0].counts, (std::vector<double>{0, 0, 0, 4, 5, 6, 0, 0, 0}));
+
+    // Room for one more: a realization that never ran.
+    shockgas::grow_realizations(to, 4);
+    EXPECT_EQ(to.temperature.size(), 8u);
+    EXPECT_TRUE(std::isnan(to.temperature[7]));
+    EXPECT_EQ(to.realization_status[3], static_cast<std::int64_t>(shockgas::RealizationStatus::not_run));
+    EXPECT_EQ(to.histograms[0].counts.size(), 12u);
+    EXPECT_EQ(to.histograms[0].counts[5], 6.0);
+}
+
 TEST(InitFile, HostileFilesFoundByFuzzingAreRefusedBeforeAllocating) {
     // Two 2 kB files from the libFuzzer run (tests/fuzz): one declares a
     // dataset of 1.7e11 bytes, the other an element type of 4 GB per value.

@@ -69,6 +69,21 @@ inline constexpr std::array<SampleTable, 4> sample_tables = {
     &EnsembleResult::temperature, &EnsembleResult::collisions_per_particle, &EnsembleResult::clusters,
     &EnsembleResult::kinetic_energy};
 
+// Room for `realizations` realizations in r: the sample tables and histogram
+// rows of the new ones are NaN and zero, their status not_run, their hand-over
+// time NaN (what a realization that never ran records). Existing rows stay.
+void grow_realizations(EnsembleResult& r, std::int64_t realizations);
+
+// Realization j of `from` becomes realization k of `to` (which must have room
+// for it, grow_realizations), replacing whatever `to` held for k: its rows of
+// the sample tables and histograms, its status and hand-over time, and its
+// snapshots and collapse records, renumbered and kept in the order
+// EnsembleResult promises. If `to` has no histograms yet it takes `from`'s
+// times and edges. The one way realizations move between results: joining
+// parts (merge_outputs) and gathering a block from other blocks'
+// checkpoints (gather_checkpoint).
+void copy_realization(const EnsembleResult& from, std::int64_t j, EnsembleResult& to, std::int64_t k);
+
 // What the driver reports while running, about once a second.
 struct Progress {
     double fraction_done = 0.0;    // estimated share of the work done, in [0, 1]
