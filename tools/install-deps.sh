@@ -16,6 +16,9 @@ packages=(
   # The MPI build is optional (cmake -DSHOCKGAS_MPI=ON), but the ci preset
   # builds it so that the mpirun -np 2 test really runs: install it always.
   libopenmpi-dev openmpi-bin
+  # pgrep, with which the tests of stopping a build find its processes
+  # (not in a minimal Debian; setsid is, in the essential util-linux).
+  procps
 )
 
 missing=()

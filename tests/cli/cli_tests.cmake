@@ -207,6 +207,11 @@ if(SHOCKGAS_PYTHON)
                    $<TARGET_FILE:shockgas-dump> $<TARGET_FILE:shockgas-analyze> ${SHOCKGAS_PYTHON}
                    "${_cli_dir}/provisional_fig4")
   set_tests_properties(cli.provisional_fig4 PROPERTIES LABELS cli TIMEOUT 300)
+  # A build in the background: start, stop with a last checkpoint, resume (tools/paper-tier).
+  add_test(NAME cli.paper_tier
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/paper_tier_test.sh ${PROJECT_SOURCE_DIR}/tools/paper-tier ${_sim}
+                   "${_cli_dir}/paper_tier")
+  set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 300)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock memory_fewer_at_once)
   add_test(NAME cli.faults.${_case}

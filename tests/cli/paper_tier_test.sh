@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# paper_tier_test.sh TOOL SIM WORK_DIR: tools/paper-tier on a throwaway CMake project whose targets
+# stand in for the pipeline's: `quick` touches a file, `simulate` runs shockgas-sim long enough to be
+# stopped. Asserts that start runs a target in the background and records its end with rc = 0; that a
+# second start while one runs starts nothing; that stop ends every process of the build and the
+# simulation writes its last checkpoint on the way (so a later start resumes it); and that
+# paper-tier.times records each start and end.
+set -u
+tool=$1 sim=$2 work=$3
+fail() { echo "FAIL: $*"; [ -f "$work/build/paper-tier.log" ] && tail -n 20 "$work/build/paper-tier.log"; exit 1; }
+rm -rf "$work" && mkdir -p "$work/project" || exit 1
+cat >"$work/project/CMakeLists.txt" <<'EOF'
+cmake_minimum_required(VERSION 3.20)
+project(paper_tier_test NONE)
+add_custom_target(quick COMMAND ${CMAKE_COMMAND} -E touch ${CMAKE_BINARY_DIR}/quick.done)
+# Long enough (N = 20000 to t = 1e6 with the event engine: minutes) to be stopped while it runs.
+add_custom_target(simulate COMMAND ${SIM} -N 20000 -t 1e6 -R 1 -q --resume --checkpoint-interval 3600
+                  --output ${CMAKE_BINARY_DIR}/run.h5)
+EOF
+cmake -S "$work/project" -B "$work/build" -DSIM="$sim" >/dev/null || fail "the test project did not configure"
+build=$work/build
+wait_until_stopped() {
+  for ((i = 0; i < 600; ++i)); do
+    "$tool" status --build "$build" | grep -q "^paper-tier: not running" && return 0
+    sleep 0.1
+  done
+  return 1
+}
+
+"$tool" start --build "$build" quick || fail "start failed"
+wait_until_stopped || fail "the quick target still runs after 60 s"
+[ -f "$build/quick.done" ] || fail "the quick target did not run"
+tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=0$' || fail "no end with rc=0: $(cat "$build/paper-tier.times")"
+
+"$tool" start --build "$build" simulate || fail "start of the simulation failed"
+status=$("$tool" status --build "$build")
+echo "$status" | grep -q "^paper-tier: running" || fail "status does not say it runs: $status"
+pid=$(cat "$build/paper-tier.pid")
+again=$("$tool" start --build "$build" simulate)
+echo "$again" | grep -q "already running" || fail "a second start did not see the first: $again"
+[ "$(grep -c '^start' "$build/paper-tier.times")" = 2 ] || fail "a second start was recorded"
+# Wait until the simulation itself runs, then stop the whole build.
+for ((i = 0; i < 300; ++i)); do
+  pgrep -g "$pid" -f "run.h5" >/dev/null && break
+  sleep 0.1
+done
+pgrep -g "$pid" -f "run.h5" >/dev/null || fail "the simulation did not start"
+sleep 1
+"$tool" stop --build "$build" || fail "stop failed"
+pgrep -g "$pid" >/dev/null && fail "processes of the build are left: $(pgrep -a -g "$pid")"
+[ -f "$build/run.h5.checkpoint" ] || fail "the stopped simulation left no checkpoint"
+tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=[1-9]' || fail "the stop was not recorded as a failed end"
+"$tool" status --build "$build" | grep -q "^paper-tier: not running" || fail "status after stop"
+# A second start continues the simulation from that checkpoint.
+"$tool" start --build "$build" simulate >/dev/null || fail "the second start failed"
+for ((i = 0; i < 300; ++i)); do
+  grep -q "resuming from '$build/run.h5.checkpoint'" "$build/paper-tier.log" && break
+  sleep 0.1
+done
+grep -q "resuming from '$build/run.h5.checkpoint'" "$build/paper-tier.log" || fail "the second start did not resume"
+"$tool" stop --build "$build" >/dev/null || fail "the second stop failed"
+[ "$(grep -c '^end .* rc=[1-9]' "$build/paper-tier.times")" = 2 ] || fail "the second stop was not recorded"
+stop_again=$("$tool" stop --build "$build")
+echo "$stop_again" | grep -q "not running" || fail "stop of a stopped build: $stop_again"
+echo "ok"
