@@ -79,7 +79,11 @@ private:
     static constexpr bool left_is_cut(std::int32_t) { return false; }
     static constexpr bool right_is_cut(std::int32_t) { return false; }
     void unschedule(std::int32_t slot) { queue_.remove(slot); }
-    void reschedule_collided(std::int32_t slot) { reschedule(slot); }
+    void reschedule_collided(std::int32_t slot, std::int32_t left, std::int32_t right) {
+        reschedule(slot);
+        reschedule(left);  // never a cut (-1) here: the global loop has none
+        reschedule(right);
+    }
     static void log_left(double, std::int32_t, double) {}
     static void log_right(double, std::int32_t, std::int32_t, double, double) {}
     static void became_block_end(std::int32_t) {}

@@ -152,7 +152,6 @@ private:
     double key_for(std::int32_t slot) const;
     double linked_key(std::int32_t slot) const;
     void reschedule(std::int32_t slot);
-    void reschedule_top(std::int32_t slot);
     bool cuttable(std::int32_t slot) const;
     void run_window(double window_end);
     void run_block(std::int32_t first, std::int32_t last);
@@ -175,7 +174,9 @@ private:
         heap_.remove(slot);
         node_[static_cast<std::size_t>(slot)].key = QuaternaryHeap::never;
     }
-    void reschedule_collided(std::int32_t slot) { reschedule_top(slot); }  // i is the heap's top
+    // i is the heap's top; left and right (-1: a cut, not in the block) are
+    // its neighbour pairs.
+    void reschedule_collided(std::int32_t i, std::int32_t left, std::int32_t right);
     void log_left(double t, std::int32_t i, double velocity) { left_changes_.push_back({t, i, i, velocity, 0.0}); }
     void log_right(double t, std::int32_t i, std::int32_t end, double velocity, double contact_gap) {
         right_changes_.push_back({t, i, end, velocity, contact_gap});

@@ -65,12 +65,34 @@ public:
         heap_.front().time = t;
         sift_down(0);
     }
-    // The top entry leaves and slot, which must not be queued, enters at
-    // time t: one sift where pop_top and schedule would take two.
-    void replace_top(std::int32_t slot, double t) {
-        position_[static_cast<std::size_t>(heap_.front().slot)] = absent;
-        place(0, {t, slot});
-        sift_down(0);
+    // The top entry leaves, and slots a and b (-1: none; a != b) are
+    // scheduled at ta and tb if these are not after `due` and removed if they
+    // are, as pop_top and two schedules would leave the heap. An event's two
+    // neighbour pairs after it: where one of them was not queued, it takes
+    // the top's place, one sift instead of a pop and a push (docs/engines.md).
+    [[gnu::always_inline]] inline void pop_top_and_schedule(std::int32_t a, double ta, std::int32_t b, double tb,
+                                                            double due) {
+        const bool a_enters = a >= 0 && ta <= due && ta != never && !contains(a);
+        const bool b_enters = !a_enters && b >= 0 && tb <= due && tb != never && !contains(b);
+        if (a_enters || b_enters) {
+            position_[static_cast<std::size_t>(heap_.front().slot)] = absent;
+            place(0, a_enters ? Entry{ta, a} : Entry{tb, b});
+            sift_down(0);
+        } else {
+            pop_top();
+        }
+        if (a >= 0 && !a_enters) {
+            if (ta <= due)
+                schedule(a, ta);  // never: removed
+            else
+                remove(a);
+        }
+        if (b >= 0 && !b_enters) {
+            if (tb <= due)
+                schedule(b, tb);
+            else
+                remove(b);
+        }
     }
     // Removes the top entry.
     void pop_top() {

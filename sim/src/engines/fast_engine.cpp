@@ -113,15 +113,25 @@ double FastEventEngine::key_for(std::int32_t slot) const {
         heap_.remove(slot);
 }
 
-// reschedule for the pair at the top of the heap (the one just taken): its
-// new key is never earlier than the old one.
-[[gnu::always_inline]] inline void FastEventEngine::reschedule_top(std::int32_t slot) {
-    const double key = linked_key(slot);
-    node_[static_cast<std::size_t>(slot)].key = key;
-    if (key <= window_end_)
+// After a collision of pair i (the heap's top): i's new key, and its
+// neighbour pairs' (left, right; -1: a cut), each kept in the heap only if
+// due in this window.
+void FastEventEngine::reschedule_collided(std::int32_t i, std::int32_t left, std::int32_t right) {
+    const auto new_key = [this](std::int32_t slot) {
+        if (slot < 0) return never;
+        const double key = linked_key(slot);
+        node_[static_cast<std::size_t>(slot)].key = key;
+        return key;
+    };
+    const double key = new_key(i);
+    if (key <= window_end_) {  // not the usual case: the collided pair diverges
         heap_.replace_top(key);
-    else
-        heap_.pop_top();
+        if (left >= 0) reschedule(left);
+        if (right >= 0) reschedule(right);
+        return;
+    }
+    // On a ring of two clusters both neighbour pairs are one.
+    heap_.pop_top_and_schedule(left, new_key(left), right == left ? -1 : right, new_key(right), window_end_);
 }
 
 void FastEventEngine::move_anchor_clock(std::int32_t slot, double t) {

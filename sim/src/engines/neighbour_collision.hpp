@@ -9,7 +9,7 @@
 // The engine provides, as members this function may call (it is a friend):
 //   records()                         the per-slot records (velocity, gap, clock, mass, next, prev)
 //   gap_at(slot, t), move_anchor_clock(slot, t)
-//   reschedule(slot), reschedule_collided(i), unschedule(slot)
+//   reschedule(slot), reschedule_collided(i, left, right) (left/right -1: a cut), unschedule(slot)
 //   left_is_cut(i), right_is_cut(j)   the windowed engine's block ends; false in the reference loop
 //   log_left(t, i, v), log_right(t, i, end, v, contact_gap), became_block_end(i)
 //                                     the windowed engine's boundary logs; no-ops in the reference loop
@@ -93,11 +93,10 @@ void collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind 
     b.clock = t;
     if (left_is_cut) engine.log_left(t, i, a.velocity);
     if (right_is_cut) engine.log_right(t, i, j, b.velocity, 0.0);
-    // The order of the three updates does not matter: queues order by
-    // (time, slot), which is unique.
-    engine.reschedule_collided(i);
-    if (!left_is_cut) engine.reschedule(p);
-    if (!right_is_cut) engine.reschedule(j);
+    // The pair (i, j) and its neighbours (p, i), (j, next j), except those
+    // that are cuts. The order of the updates does not matter: queues order
+    // by (time, slot), which is unique.
+    engine.reschedule_collided(i, left_is_cut ? -1 : p, right_is_cut ? -1 : j);
 }
 
 }  // namespace shockgas::detail
