@@ -7,7 +7,12 @@
 # paper-tier.times records each start and end.
 set -u
 tool=$1 sim=$2 work=$3
-fail() { echo "FAIL: $*"; [ -f "$work/build/paper-tier.log" ] && tail -n 20 "$work/build/paper-tier.log"; exit 1; }
+fail() {
+  echo "FAIL: $*"
+  [ -f "$work/build/paper-tier.log" ] && tail -n 20 "$work/build/paper-tier.log"
+  "$tool" stop --build "$work/build" >/dev/null 2>&1  # leave nothing running
+  exit 1
+}
 rm -rf "$work" && mkdir -p "$work/project" || exit 1
 cat >"$work/project/CMakeLists.txt" <<'EOF'
 cmake_minimum_required(VERSION 3.20)
@@ -32,10 +37,21 @@ wait_until_stopped || fail "the quick target still runs after 60 s"
 [ -f "$build/quick.done" ] || fail "the quick target did not run"
 tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=0$' || fail "no end with rc=0: $(cat "$build/paper-tier.times")"
 
+own_autogroup=$(cat /proc/$$/autogroup 2>/dev/null)
 "$tool" start --build "$build" simulate || fail "start of the simulation failed"
 status=$("$tool" status --build "$build")
 echo "$status" | grep -q "^paper-tier: running" || fail "status does not say it runs: $status"
 pid=$(cat "$build/paper-tier.pid")
+# The build's own session yields (autogroup nice 19, where the kernel groups sessions); the caller's
+# does not change.
+[ "$(cat /proc/$$/autogroup 2>/dev/null)" = "$own_autogroup" ] || fail "start changed the caller's autogroup"
+if [ "$(cat /proc/sys/kernel/sched_autogroup_enabled 2>/dev/null)" = 1 ]; then
+  for ((i = 0; i < 100; ++i)); do
+    grep -q "nice 19" "/proc/$pid/autogroup" 2>/dev/null && break
+    sleep 0.05
+  done
+  grep -q "nice 19" "/proc/$pid/autogroup" || fail "the build's autogroup: $(cat "/proc/$pid/autogroup")"
+fi
 again=$("$tool" start --build "$build" simulate)
 echo "$again" | grep -q "already running" || fail "a second start did not see the first: $again"
 [ "$(grep -c '^start' "$build/paper-tier.times")" = 2 ] || fail "a second start was recorded"
