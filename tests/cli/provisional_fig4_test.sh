@@ -13,7 +13,7 @@ ln -s "$sim" "$work/sim/shockgas-sim" && ln -s "$merge" "$work/sim/shockgas-merg
 "$python" "$here/../../python/exact_ballistic.py" --out-dir "$work/paper_targets/theory" >/dev/null ||
   fail "the exact theory did not build"
 runs=$work/paper_targets/paper/fig4
-common=(-N 2000 -d 1e-3 --subthreshold elastic -t 1000 --histogram-times 100,1000 --histogram-bins 80 -q)
+common=(-N 2000 -d 1e-2 --subthreshold elastic -t 1000 --histogram-times 100,1000 --histogram-bins 80 -q)
 "$sim" "${common[@]}" -r 0 --engine exact -R 20 -o "$runs/r0.h5" || fail "r = 0 did not run"
 for first in 0 10; do
   "$sim" "${common[@]}" -r 0.5 -R 10 --first-realization $first -o "$runs/r0.5.part$first.h5" || fail "r = 0.5"
@@ -24,7 +24,9 @@ cat report.txt
 grep -q "r = 0.5: 2 parts (20 realizations): r0.5.part0.h5 r0.5.part10.h5" report.txt || fail "r = 0.5 not merged"
 grep -q "r = 0.9: no part from part0 on is finished; left out" report.txt || fail "r = 0.9's gap not reported"
 # The tool's job is to run the fit, not to judge it (the physics tests assert beta): a fit came out in
-# [0.3, 0.4). At this N and 40 realizations it gave 0.371 +- 0.015 and 0.353 +- 0.015 (2026-11-26).
+# [0.3, 0.4). At this N and 40 realizations it gave 0.371 +- 0.015 (2026-11-26). delta = 1e-2, not
+# Fig. 4's 1e-3: 8x fewer collisions (1.2e7 against 9.3e7 for ten r = 0.5 realizations), so that the
+# sanitizer build runs it well inside its timeout (with 1e-3 it took over 300 s there, 2026-11-26).
 grep -q "^scaling exponent 0\.3" report.txt || fail "no scaling exponent near 1/3"
 [ -s "$work/look/fig4.png" ] || fail "no figure"
 echo "ok"
