@@ -33,6 +33,9 @@ wait_until_stopped() {
 }
 
 "$tool" start --build "$build" quick || fail "start failed"
+# The start is on record when start returns (not later, from the background), so that a second start
+# or a status right after it sees it.
+[ "$(grep -c '^start' "$build/paper-tier.times" 2>/dev/null)" = 1 ] || fail "start returned before its start was recorded"
 wait_until_stopped || fail "the quick target still runs after 60 s"
 [ -f "$build/quick.done" ] || fail "the quick target did not run"
 tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=0$' || fail "no end with rc=0: $(cat "$build/paper-tier.times")"
