@@ -151,6 +151,7 @@ private:
     double gap_at(std::int32_t slot, double t) const;
     double key_for(std::int32_t slot) const;
     double linked_key(std::int32_t slot) const;
+    double rekey(std::int32_t slot);
     void reschedule(std::int32_t slot);
     bool cuttable(std::int32_t slot) const;
     void run_window(double window_end);

@@ -102,11 +102,18 @@ double FastEventEngine::key_for(std::int32_t slot) const {
     return contact_time(left.gap, closing_speed, left.clock, right.clock, now_);
 }
 
-// Within a block: record the key, and keep the pair in the block's heap only
-// if it is due in this window. Called only while two or more clusters live.
-[[gnu::always_inline]] inline void FastEventEngine::reschedule(std::int32_t slot) {
+// The pair's new key at now_, recorded in its node; the caller updates the
+// heap. Called only while two or more clusters live.
+[[gnu::always_inline]] inline double FastEventEngine::rekey(std::int32_t slot) {
     const double key = linked_key(slot);
     node_[static_cast<std::size_t>(slot)].key = key;
+    return key;
+}
+
+// Within a block: record the key, and keep the pair in the block's heap only
+// if it is due in this window.
+[[gnu::always_inline]] inline void FastEventEngine::reschedule(std::int32_t slot) {
+    const double key = rekey(slot);
     if (key <= window_end_)
         heap_.schedule(slot, key);
     else
@@ -117,12 +124,7 @@ double FastEventEngine::key_for(std::int32_t slot) const {
 // neighbour pairs' (left, right; -1: a cut), each kept in the heap only if
 // due in this window.
 void FastEventEngine::reschedule_collided(std::int32_t i, std::int32_t left, std::int32_t right) {
-    const auto new_key = [this](std::int32_t slot) {
-        if (slot < 0) return never;
-        const double key = linked_key(slot);
-        node_[static_cast<std::size_t>(slot)].key = key;
-        return key;
-    };
+    const auto new_key = [this](std::int32_t slot) { return slot < 0 ? never : rekey(slot); };
     const double key = new_key(i);
     if (key <= window_end_) {  // not the usual case: the collided pair diverges
         heap_.replace_top(key);
