@@ -42,20 +42,22 @@ TEST(FarTailPhysics, PhiOnTheExactCurveAndGammaThreeAtTimeOneHundred) {
                                   "tagged_cluster_velocity");
     const auto tail = shockgas::analysis::read_far_tail("far_tail_t100.h5");
 
-    // Phi at two deep points against the exact curve. The finite-t ratio
-    // measured at t = 100 (docs/far-tail.md, 6 chains) is 0.95 +- 0.3 at
-    // z = 4 and 0.44 +- 0.2 at z = 5: the allowance ln 3 covers it, and
-    // 4 jackknife sigmas (4 chains: sigma itself uncertain by ~40%) the noise.
-    // A wrong scaling (z = V t^0.3) or a broken reweighting is off by
-    // decades here.
-    constexpr double finite_time_allowance = 1.0986;  // ln 3
+    // Phi at two deep points against the exact curve. Chains this short (for
+    // CI's time) are not yet equilibrated that deep: with these very options
+    // and seed (the quick fig_tail's) Phi / exact is 0.46 at z = 4 and 0.35
+    // at z = 5, where chains 13 times longer give 0.99 and 0.93
+    // (docs/far-tail.md, "Longer chains"). The allowance ln 3 covers that
+    // shortfall, and 4 jackknife sigmas (4 chains: sigma itself uncertain by
+    // ~40%) the noise. A wrong scaling (z = V t^0.3) or a broken reweighting
+    // is off by decades here.
+    constexpr double short_chain_allowance = 1.0986;  // ln 3
     constexpr double allowed_sigmas = 4.0;
     for (const auto& [z, exact] : {std::pair{4.01, exact_log_phi_at_4_01}, std::pair{5.01, exact_log_phi_at_5_01}}) {
         std::size_t i = 0;
         while (i + 1 < tail.z.size() && tail.z[i] < z - 1e-9) ++i;
         ASSERT_NEAR(tail.z[i], z, 1e-9);
         ASSERT_TRUE(std::isfinite(tail.log_phi_sigma[i])) << "z = " << z;
-        EXPECT_NEAR(tail.log_phi[i], exact, finite_time_allowance + allowed_sigmas * tail.log_phi_sigma[i])
+        EXPECT_NEAR(tail.log_phi[i], exact, short_chain_allowance + allowed_sigmas * tail.log_phi_sigma[i])
             << "z = " << z;
     }
     // Deepest measured point is beyond 10^-30.
