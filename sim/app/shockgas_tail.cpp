@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -51,6 +52,15 @@ int main(int argc, char** argv) {
     app.add_option("--burn-in", p.burn_in_steps, "unrecorded steps before each bias")->capture_default_str();
     app.add_option("--chains", p.chains, "independent chains (jackknife error bars)")->capture_default_str();
     app.add_option("--seed", p.seed)->capture_default_str();
+    p.threads = 0;
+    app.add_option("-j,--threads", p.threads,
+                   "chains run at once, one per thread; 0 means every core (the result does not depend on it)")
+        ->capture_default_str();
+    double progress_interval = 60.0;
+    app.add_option("--progress-interval", progress_interval,
+                   "when stderr is not a terminal (a batch job's log), write a progress line every this many "
+                   "wall seconds")
+        ->capture_default_str();
     app.add_option("--velocity-law", law, "initial velocities: gaussian or uniform (variance 1/3)")
         ->capture_default_str();
     app.add_option("--z-min", p.z_min)->capture_default_str();
@@ -77,8 +87,29 @@ int main(int argc, char** argv) {
                 const auto mean = shockgas::tagged_cluster_instanton(z, time, half_window);
                 p.start_mean.insert(p.start_mean.end(), mean.begin(), mean.end());
             }
-        const auto estimate = shockgas::sample_far_tail(
-            p, [&tagged](std::span<const double> velocity) { return tagged(velocity); });
+        // Each thread its own copy: the observable keeps scratch clusters.
+        const shockgas::ObservableFactory make_observable = [&tagged] {
+            return shockgas::WindowObservable(
+                [copy = tagged](std::span<const double> velocity) mutable { return copy(velocity); });
+        };
+        // On a terminal one line, rewritten; in a log a line now and then.
+        const bool terminal = isatty(fileno(stderr)) != 0;
+        double last_line = 0.0;
+        const auto progress = [&](double done, double elapsed) {
+            const std::string eta = done > 0.0 ? fmt::format("{:.0f} s", elapsed * (1.0 - done) / done) : "--";
+            const std::string line =
+                fmt::format("shockgas-tail: progress: {:.1f}% of the steps  elapsed {:.0f} s  ETA {}", 100.0 * done,
+                            elapsed, eta);
+            if (terminal) {
+                fmt::print(stderr, "\r{:<80}", line);
+            } else if (elapsed >= last_line + progress_interval) {
+                last_line = elapsed;
+                fmt::print(stderr, "{}\n", line);
+            }
+            std::fflush(stderr);
+        };
+        const auto estimate = shockgas::sample_far_tail(p, make_observable, progress);
+        if (terminal) fmt::print(stderr, "\n");
         shockgas::write_tail_estimate(output, "shockgas-tail", p, estimate, time, half_window, "tagged_cluster_velocity");
         double deepest = 1.0, deepest_z = 0.0;
         for (std::size_t i = 0; i < estimate.z.size(); ++i)
@@ -86,8 +117,10 @@ int main(int argc, char** argv) {
                 deepest = estimate.density[i];
                 deepest_z = estimate.z[i];
             }
-        fmt::print("{}: t = {}, {} biases x {} chains, {} evaluations; deepest Phi = {:.3g} at z = {:.3f}\n", output,
-                   time, p.biases.size(), p.chains, estimate.evaluations, deepest, deepest_z);
+        fmt::print("{}: t = {}, {} biases x {} chains, {} evaluations; deepest Phi = {:.3g} at z = {:.3f}; "
+                   "{:.1f} s CPU, {:.1f} s wall\n",
+                   output, time, p.biases.size(), p.chains, estimate.evaluations, deepest, deepest_z,
+                   estimate.cpu_seconds, estimate.wall_seconds);
     } catch (const std::exception& error) {
         fmt::print(stderr, "shockgas-tail: {}\n", error.what());
         return 1;

@@ -3,10 +3,15 @@
 #include "shockgas/tail_sampler.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <ctime>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <random>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -148,7 +153,7 @@ bool metropolis_step(const TailSamplerParameters& p, const WindowObservable& obs
 // min(1, exp((beta_{k+1} - beta_k)(z_k - z_{k+1}))), which keeps every
 // replica's law, and lets a state found at one bias serve the others.
 ChainRecord run_chain(const TailSamplerParameters& p, const WindowObservable& observable, std::int64_t chain,
-                      std::size_t fine_bins, std::int64_t& evaluations) {
+                      std::size_t fine_bins, std::int64_t& evaluations, std::atomic<std::int64_t>& steps_done) {
     std::mt19937_64 engine(realization_seed(p.seed, chain));
     const std::size_t biases = p.biases.size();
     std::vector<Replica> replicas(biases);
@@ -189,6 +194,7 @@ ChainRecord run_chain(const TailSamplerParameters& p, const WindowObservable& ob
                     record.histogram[k * fine_bins + static_cast<std::size_t>(position)] += 1.0;
             }
         }
+        steps_done.fetch_add(steps * static_cast<std::int64_t>(biases), std::memory_order_relaxed);
         // Even pairs on even rounds, odd pairs on odd rounds.
         for (auto k = static_cast<std::size_t>(round % 2); k + 1 < biases; k += 2) {
             const double log_ratio = (p.biases[k + 1] - p.biases[k]) * (replicas[k].z - replicas[k + 1].z);
@@ -318,6 +324,13 @@ std::vector<double> wham_log_probability(std::span<const double> histograms, std
 }
 
 TailEstimate sample_far_tail(const TailSamplerParameters& p, const WindowObservable& observable) {
+    TailSamplerParameters one_thread = p;
+    one_thread.threads = 1;
+    return sample_far_tail(one_thread, ObservableFactory([&observable] { return observable; }));
+}
+
+TailEstimate sample_far_tail(const TailSamplerParameters& p, const ObservableFactory& make_observable,
+                             const TailProgress& progress) {
     if (p.biases.empty() || p.biases.front() != 0.0)
         throw InputError("tail sampler: the bias ladder must start at 0 (plain sampling fixes the normalization)");
     if (!std::is_sorted(p.biases.begin(), p.biases.end())) throw InputError("tail sampler: biases must ascend");
@@ -338,9 +351,49 @@ TailEstimate sample_far_tail(const TailSamplerParameters& p, const WindowObserva
     const auto chains = static_cast<std::size_t>(p.chains);
 
     TailEstimate estimate;
-    std::vector<ChainRecord> records;
-    for (std::size_t c = 0; c < chains; ++c)
-        records.push_back(run_chain(p, observable, static_cast<std::int64_t>(c), fine_bins, estimate.evaluations));
+    const std::clock_t cpu_start = std::clock();
+    const auto wall_start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
+    // The chains, each by whichever thread takes it next; each record lands in
+    // its chain's slot, so the combination below sees them in chain order.
+    std::vector<ChainRecord> records(chains);
+    std::vector<std::int64_t> evaluations(chains, 0);
+    std::atomic<std::size_t> next_chain{0};
+    std::atomic<std::int64_t> steps_done{0};
+    std::atomic<std::size_t> threads_done{0};
+    const auto hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const auto threads = static_cast<std::size_t>(std::clamp(p.threads > 0 ? p.threads : hardware, 1,
+                                                             static_cast<int>(chains)));
+    std::vector<std::exception_ptr> failures(threads);
+    {
+        std::vector<std::jthread> workers;
+        for (std::size_t w = 0; w < threads; ++w)
+            workers.emplace_back([&, w] {
+                try {
+                    const WindowObservable observable = make_observable();
+                    for (std::size_t c; (c = next_chain.fetch_add(1)) < chains;)
+                        records[c] = run_chain(p, observable, static_cast<std::int64_t>(c), fine_bins,
+                                               evaluations[c], steps_done);
+                } catch (...) {
+                    failures[w] = std::current_exception();
+                    next_chain.store(chains);  // the others stop after their current chain
+                }
+                threads_done.fetch_add(1);
+            });
+        const double total_steps = static_cast<double>(chains) * static_cast<double>(biases) *
+                                   static_cast<double>(p.burn_in_steps + p.steps_per_bias);
+        double last_report = 0.0;
+        while (threads_done.load() < threads) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            if (progress && threads_done.load() < threads && elapsed() >= last_report + 0.5) {
+                last_report = elapsed();
+                progress(static_cast<double>(steps_done.load(std::memory_order_relaxed)) / total_steps, last_report);
+            }
+        }
+    }
+    for (const auto& failure : failures)
+        if (failure) std::rethrow_exception(failure);
+    for (const std::int64_t e : evaluations) estimate.evaluations += e;
 
     std::vector<double> centres(fine_bins);
     for (std::size_t b = 0; b < fine_bins; ++b)
@@ -437,6 +490,8 @@ TailEstimate sample_far_tail(const TailSamplerParameters& p, const WindowObserva
         }
         estimate.overlap_with_next[k] = overlap;
     }
+    estimate.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    estimate.wall_seconds = elapsed();
     return estimate;
 }
 
@@ -469,6 +524,8 @@ void write_tail_estimate(const std::string& path, const std::string& program, co
     root.set_attribute("fine_bins_per_output_bin", p.fine_bins_per_output_bin);
     root.set_attribute("evaluations", e.evaluations);
     root.set_attribute("wham_iterations", e.wham_iterations);
+    root.set_attribute("cpu_seconds", e.cpu_seconds);
+    root.set_attribute("wall_seconds", e.wall_seconds);
     root.write("z", e.z);
     root.write("phi", e.density);
     root.write("phi_sigma", e.density_sigma);

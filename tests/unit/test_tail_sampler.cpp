@@ -1,9 +1,11 @@
 // The far-tail sampler (shockgas/tail_sampler.hpp): the weighted-histogram
 // combination on a law known in closed form down to 10^-30 and below, and the
 // tagged-cluster sampler against plain sampling where a histogram reaches.
+#include <atomic>
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -159,3 +161,73 @@ TEST(TailSampler, TaggedClusterAgreesWithPlainSamplingWhereHistogramsReach) {
 }
 
 }  // namespace
+
+namespace {
+// A small ladder on the mean of two velocities: enough chains and steps to
+// give every bin a value, quick enough to run three times.
+shockgas::TailSamplerParameters small_ladder() {
+    shockgas::TailSamplerParameters p;
+    p.sites = 4;
+    p.focus_begin = 1;
+    p.focus_end = 3;
+    p.biases = {0.0, 3.0, 6.0, 9.0};
+    p.steps_per_bias = 2000;
+    p.burn_in_steps = 200;
+    p.chains = 5;
+    p.seed = 3;
+    p.z_min = -2.0;
+    p.z_max = 3.0;
+    return p;
+}
+shockgas::WindowObservable mean_of_two() {
+    return [](std::span<const double> v) { return 0.5 * (v[1] + v[2]); };
+}
+}  // namespace
+
+TEST(TailSampler, ThreadsChangeNothing) {
+    // Each chain has its own random stream and the chains are combined in
+    // chain order, so any number of threads gives the one-thread result bit
+    // for bit (5 chains on 3 threads: uneven shares, chains taken out of order).
+    auto p = small_ladder();
+    const auto one = shockgas::sample_far_tail(p, mean_of_two());
+    p.threads = 3;
+    std::atomic<int> observables_made{0};
+    const auto three = shockgas::sample_far_tail(p, shockgas::ObservableFactory([&] {
+                                                     ++observables_made;
+                                                     return mean_of_two();
+                                                 }));
+    EXPECT_EQ(observables_made.load(), 3);  // one per thread, not shared
+    EXPECT_EQ(one.evaluations, three.evaluations);
+    ASSERT_EQ(one.log_density.size(), three.log_density.size());
+    for (std::size_t i = 0; i < one.log_density.size(); ++i) {
+        if (std::isnan(one.log_density[i])) {
+            EXPECT_TRUE(std::isnan(three.log_density[i]));
+            continue;
+        }
+        EXPECT_EQ(one.log_density[i], three.log_density[i]) << "bin " << i;
+    }
+    EXPECT_EQ(one.leave_one_out, three.leave_one_out);
+    EXPECT_GT(three.wall_seconds, 0.0);
+}
+
+TEST(TailSampler, AFailingObservableStopsTheRunWithItsError) {
+    auto p = small_ladder();
+    p.threads = 2;
+    std::atomic<std::int64_t> calls{0};
+    const auto failing = shockgas::ObservableFactory([&] {
+        return shockgas::WindowObservable([&](std::span<const double> v) {
+            if (++calls > 5000) throw std::runtime_error("observable failed");
+            return v[1];
+        });
+    });
+    EXPECT_THROW(
+        {
+            try {
+                shockgas::sample_far_tail(p, failing);
+            } catch (const std::runtime_error& error) {
+                EXPECT_STREQ(error.what(), "observable failed");
+                throw;
+            }
+        },
+        std::runtime_error);
+}

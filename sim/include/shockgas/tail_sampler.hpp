@@ -60,6 +60,12 @@ private:
 // Any observable of the window's initial velocities (the sampler does not
 // care which: tests use the mean of M velocities, whose law is exact).
 using WindowObservable = std::function<double(std::span<const double> velocity)>;
+// Makes one observable per thread (an observable may keep scratch state, as
+// TaggedClusterVelocity does, so threads do not share one).
+using ObservableFactory = std::function<WindowObservable()>;
+// Called from the calling thread about twice a second while the chains run:
+// the share of all Metropolis steps done, and the wall seconds since the start.
+using TailProgress = std::function<void(double fraction_done, double elapsed_seconds)>;
 
 struct TailSamplerParameters {
     std::vector<double> biases;          // beta_k, ascending; the first must be 0 (plain sampling, fixes the norm)
@@ -79,6 +85,10 @@ struct TailSamplerParameters {
     double z_min = -3.0, z_max = 7.0;    // histogram range (must hold the whole unbiased mass)
     double fine_bin_width = 1e-3;        // WHAM bins: bias varies by beta * width <= ~0.07 across one
     std::int64_t fine_bins_per_output_bin = 10;
+    // Chains run at once, one per thread (0: every core). Each chain has its
+    // own random stream (realization_seed(seed, chain)) and the chains are
+    // combined in chain order, so the result does not depend on it.
+    int threads = 1;
 };
 
 // A ladder of biases for Phi's tail: beta(z*) = -d ln Phi/dz at z*, from the
@@ -122,10 +132,16 @@ struct TailEstimate {
     std::int64_t chains = 0;
     std::int64_t evaluations = 0;         // observable evaluations, all chains
     std::int64_t wham_iterations = 0;
+    double cpu_seconds = 0.0;             // CPU of the whole process while the chains ran (all threads)
+    double wall_seconds = 0.0;
 };
 
 // Runs the chains and combines them. Each chain holds one replica per bias,
 // all started from the prior, with replica exchange between neighbours.
+TailEstimate sample_far_tail(const TailSamplerParameters& parameters, const ObservableFactory& make_observable,
+                             const TailProgress& progress = {});
+// The same with one observable, used by one thread (parameters.threads is not
+// read).
 TailEstimate sample_far_tail(const TailSamplerParameters& parameters, const WindowObservable& observable);
 
 // The WHAM equations on bins of centres z_b for histograms h_kb (K x B,
