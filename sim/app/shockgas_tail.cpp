@@ -121,8 +121,14 @@ int main(int argc, char** argv) {
                    "{:.1f} s CPU, {:.1f} s wall\n",
                    output, time, p.biases.size(), p.chains, estimate.evaluations, deepest, deepest_z,
                    estimate.cpu_seconds, estimate.wall_seconds);
+    } catch (const shockgas::InputError& error) {  // bad input: status 2, as every shockgas program
+        fmt::print(stderr, "shockgas-tail: error: {}\n", error.what());
+        return 2;
+    } catch (const shockgas::h5::Error& error) {
+        fmt::print(stderr, "shockgas-tail: error: {}\n", error.what());
+        return 2;
     } catch (const std::exception& error) {
-        fmt::print(stderr, "shockgas-tail: {}\n", error.what());
+        fmt::print(stderr, "shockgas-tail: internal error: {}\n", error.what());
         return 1;
     }
     return 0;

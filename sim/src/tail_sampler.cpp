@@ -335,6 +335,7 @@ TailEstimate sample_far_tail(const TailSamplerParameters& p, const ObservableFac
         throw InputError("tail sampler: the bias ladder must start at 0 (plain sampling fixes the normalization)");
     if (!std::is_sorted(p.biases.begin(), p.biases.end())) throw InputError("tail sampler: biases must ascend");
     if (p.chains < 2) throw InputError("tail sampler: need >= 2 chains for error bars");
+    if (p.threads < 0) throw InputError(fmt::format("tail sampler: threads must be >= 0, got {}", p.threads));
     if (p.sites < 1 || p.focus_begin < 0 || p.focus_end > p.sites || p.focus_end <= p.focus_begin)
         throw InputError("tail sampler: the focus range must lie inside the window");
     if (p.steps_per_bias < 1 || p.burn_in_steps < 0) throw InputError("tail sampler: need >= 1 step per bias");

@@ -13,6 +13,17 @@ function(shockgas_cli_error name regex)
   set_tests_properties(cli.error.${name} PROPERTIES LABELS cli)
 endfunction()
 
+# The far-tail sampler follows the same rule (status 2, one line, no file).
+foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;need >= 2 chains;--chains;1")
+  list(GET _case 0 _name)
+  list(GET _case 1 _regex)
+  list(SUBLIST _case 2 -1 _arguments)
+  add_test(NAME cli.error.tail_${_name}
+           COMMAND ${_expect} "${_regex}" "${_cli_dir}/tail_${_name}.h5" -- $<TARGET_FILE:shockgas-tail> -t 10
+                   --half-window 20 --steps-per-bias 10 --burn-in 0 ${_arguments} -o "${_cli_dir}/tail_${_name}.h5"
+           WORKING_DIRECTORY "${_cli_dir}")
+  set_tests_properties(cli.error.tail_${_name} PROPERTIES LABELS cli)
+endforeach()
 shockgas_cli_error(restitution_above_one "restitution" -N 10 -r 1.5)
 shockgas_cli_error(restitution_negative "restitution" -N 10 -r -0.1)
 shockgas_cli_error(threshold_negative "threshold" -N 10 -d -1e-3)
