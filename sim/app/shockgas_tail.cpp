@@ -11,6 +11,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/cli.hpp"
+#include "shockgas/ensemble.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/parameters.hpp"
 #include "shockgas/provenance.hpp"
@@ -71,7 +73,7 @@ int main(int argc, char** argv) {
                    "density at the centre by ~ (h d ln Phi/dz)^2/24, 3% for 0.02 at z = 5)")
         ->capture_default_str();
     app.add_option("--output,-o", output, "output HDF5 file")->required();
-    CLI11_PARSE(app, argc, argv);
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-tail"); status >= 0) return status;
     try {
         p.law = shockgas::velocity_law_from_string(law);
         p.biases = biases.empty() ? shockgas::tail_bias_ladder(z_reach, z_step) : biases;
@@ -92,20 +94,23 @@ int main(int argc, char** argv) {
             return shockgas::WindowObservable(
                 [copy = tagged](std::span<const double> velocity) mutable { return copy(velocity); });
         };
-        // On a terminal one line, rewritten; in a log a line now and then.
+        // On a terminal one line, rewritten; in a log a line when shockgas-sim's
+        // ProgressLog says one is due (every interval, and at each tenth done).
         const bool terminal = isatty(fileno(stderr)) != 0;
-        double last_line = 0.0;
+        shockgas::ProgressLog log(progress_interval);
         const auto progress = [&](double done, double elapsed) {
+            shockgas::Progress status;
+            status.fraction_done = done;
+            status.elapsed_seconds = elapsed;
+            if (!terminal && !log.due(status)) return;
             const std::string eta = done > 0.0 ? fmt::format("{:.0f} s", elapsed * (1.0 - done) / done) : "--";
             const std::string line =
                 fmt::format("shockgas-tail: progress: {:.1f}% of the steps  elapsed {:.0f} s  ETA {}", 100.0 * done,
                             elapsed, eta);
-            if (terminal) {
+            if (terminal)
                 fmt::print(stderr, "\r{:<80}", line);
-            } else if (elapsed >= last_line + progress_interval) {
-                last_line = elapsed;
+            else
                 fmt::print(stderr, "{}\n", line);
-            }
             std::fflush(stderr);
         };
         const auto estimate = shockgas::sample_far_tail(p, make_observable, progress);
@@ -121,12 +126,12 @@ int main(int argc, char** argv) {
                    "{:.1f} s CPU, {:.1f} s wall\n",
                    output, time, p.biases.size(), p.chains, estimate.evaluations, deepest, deepest_z,
                    estimate.cpu_seconds, estimate.wall_seconds);
-    } catch (const shockgas::InputError& error) {  // bad input: status 2, as every shockgas program
+    } catch (const shockgas::InputError& error) {
         fmt::print(stderr, "shockgas-tail: error: {}\n", error.what());
-        return 2;
+        return shockgas::cli::bad_input;
     } catch (const shockgas::h5::Error& error) {
         fmt::print(stderr, "shockgas-tail: error: {}\n", error.what());
-        return 2;
+        return shockgas::cli::bad_input;
     } catch (const std::exception& error) {
         fmt::print(stderr, "shockgas-tail: internal error: {}\n", error.what());
         return 1;
