@@ -260,6 +260,33 @@ TEST(PassThroughEngine, CountsEveryCrossingOfFreeLinesExactly) {
 
 // Momentum conserved, energy never rising, the ring in order (gaps >= 0 up
 // to rounding, summing to L), over millions of collisions.
+// Lines that start at one point and close collide at t = 0, and the state at
+// a sample includes every collision at its time: the sample at t = 0 is the
+// event engine's, one inelastic collision included (a case the independent
+// reference check, tests/python/test_reference_gas.py, found the pass-through
+// engine leaving to its first window).
+TEST(PassThroughEngine, CollidesAtTheStartTimeAsTheEventEngineDoes) {
+    InitialCondition start;
+    start.ring_length = 3.0;
+    start.position = {0.5, 1.0, 1.0};
+    start.velocity = {0.0, 0.5, -0.5};
+    start.mass = {1.0, 1.0, 1.0};
+    const CollisionModel model{0.5, 0.1, Subthreshold::elastic};
+    PassThroughEngine engine(start, model);
+    EventEngine reference(start, model, CollapseCriterion{});
+    engine.advance_to(0.0);
+    reference.advance_to(0.0);
+    EXPECT_EQ(engine.collisions(), 1u);
+    EXPECT_EQ(reference.collisions(), 1u);
+    ClusterState mine;
+    ClusterState theirs;
+    engine.clusters(mine);
+    reference.clusters(theirs);
+    // g = 1 >= delta: Eq. (1) with r = 0.5 leaves -0.25 and +0.25, exactly.
+    EXPECT_EQ(mine.velocity, theirs.velocity);
+    EXPECT_EQ(mine.velocity, (std::vector<double>{0.0, -0.25, 0.25}));
+}
+
 TEST(PassThroughEngine, KeepsTheInvariants) {
     const InitialCondition start = random_ring(1000, 99);
     PassThroughEngine engine(start, CollisionModel{0.9, 0.01, Subthreshold::elastic});

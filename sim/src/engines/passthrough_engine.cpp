@@ -141,6 +141,10 @@ void PassThroughEngine::update_velocity_bounds() {
 }
 
 bool PassThroughEngine::advance_to(double t) {
+    // The state at t includes every collision at time <= t, as in the event
+    // engines, so lines that start at one point and close collide in the
+    // sample at the starting time: a window of length zero runs them first.
+    if (windows_ == 0) run_window(now_);
     while (now_ < t) {
         if (live_ != nullptr && live_->halt_requested()) return false;
         const double window_end = now_ + step_ < t ? now_ + step_ : t;
