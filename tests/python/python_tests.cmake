@@ -31,6 +31,15 @@ add_test(NAME python.schema COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/pyt
 set_tests_properties(python.schema PROPERTIES FIXTURES_REQUIRED python_run LABELS python TIMEOUT 60
                      SKIP_RETURN_CODE 77)
 
+# shockgas-sim against an independent plain event-driven reference written from the physics
+# (python/reference_gas.py): ~70 small starts across r, delta, both sub-threshold mechanisms, masses,
+# the seam, simultaneous collisions and collapse, every engine, at every sample (docs/reference-check.md;
+# ~10 s of CPU).
+add_test(NAME python.reference
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_reference_gas.py
+                 $<TARGET_FILE:shockgas-sim> "${_py_work}/reference")
+set_tests_properties(python.reference PROPERTIES LABELS python TIMEOUT 300 SKIP_RETURN_CODE 77)
+
 # Exact prefactor (label physics): the exact engine at N = 10^6, 20 realizations, to t = 10^4
 # (~25 s wall on 2 cores), T t^(2/3) against kappa from python/exact_ballistic.py.
 add_test(NAME physics.setup.exact_prefactor
