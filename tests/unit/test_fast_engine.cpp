@@ -228,4 +228,26 @@ TEST(FastEngine, SmallRingsAreIdentical) {
     }
 }
 
+// A dense start (spacing 1e-6, velocities of order 1: a million collisions
+// per particle per unit time) gets windows of its own scale from the first
+// one on. With a first window of 0.05 fixed in time, as before, the whole run
+// to t = 1e-2 (the same as t = 10^4 at unit spacing) was one window, and a real run of that kind
+// answered neither Ctrl-C nor the progress line for minutes. Results are the
+// reference's bit for bit, whatever the windows.
+TEST(FastEngine, ADenseStartGetsWindowsOfItsOwnScale) {
+    const std::int64_t particles = 100;
+    const auto dense = shockgas::generate_initial_condition(particles, 1e-6 * particles, 14, 0);
+    const CollisionModel model{0.9, 1e-2, Subthreshold::elastic};
+    FastEventEngine engine(dense, model, shockgas::CollapseCriterion{});
+    ASSERT_TRUE(engine.advance_to(1e-2));
+    // About target_events_per_cluster (0.3) events per cluster per window
+    // once adapted; 5 per cluster is far above that and far below the one
+    // window holding every collision (> 30 per particle) of a fixed first window.
+    constexpr double events_per_cluster_per_window_bound = 5.0;
+    EXPECT_GT(engine.collisions(), 30u * particles);
+    EXPECT_LT(static_cast<double>(engine.collisions()) / static_cast<double>(engine.windows()),
+              events_per_cluster_per_window_bound * particles);
+    compare({"dense-r0.9", model, true}, dense, {0.0, 1e-5, 1e-4, 1e-3, 1e-2});
+}
+
 }  // namespace

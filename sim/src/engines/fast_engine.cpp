@@ -63,8 +63,7 @@ FastEventEngine::FastEventEngine(const InitialCondition& initial, const Collisio
       ring_length_(initial.ring_length),
       particles_(initial.size()),
       alive_(initial.size()),
-      stall_window_(std::max<std::uint64_t>(collapse.stall_events_min, 10 * static_cast<std::uint64_t>(initial.size()))),
-      window_length_(first_window) {
+      stall_window_(std::max<std::uint64_t>(collapse.stall_events_min, 10 * static_cast<std::uint64_t>(initial.size()))) {
     validate(initial);
     if (!supports(initial, model, collapse))
         throw std::logic_error("FastEventEngine: run not supported, use EventEngine (see supports())");
@@ -74,6 +73,13 @@ FastEventEngine::FastEventEngine(const InitialCondition& initial, const Collisio
     for (std::int32_t i = 0; i < n; ++i) node_[static_cast<std::size_t>(i)].key = key_for(i);
     speed_bound_ = 0.0;
     for (const Node& c : node_) speed_bound_ = std::max(speed_bound_, std::abs(c.velocity));
+    // The first window, first_window in units of the mean spacing L/N over the
+    // speed scale max(1, |v|max): a dense or fast start (--ring-length << N, or
+    // an --init file with large velocities) would otherwise put billions of
+    // events into one window, and the stop flag and the progress line are
+    // looked at only between windows. For the paper's start (L = N, |v| < 1)
+    // this is first_window itself; later windows adapt (advance_to).
+    window_length_ = first_window * (initial.ring_length / static_cast<double>(n)) / std::max(1.0, speed_bound_);
 }
 
 double FastEventEngine::gap_at(std::int32_t slot, double t) const {
