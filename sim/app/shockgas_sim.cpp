@@ -231,7 +231,7 @@ int main(int argc, char** argv) {
                 if (plan.realizations_at_once == 0)
                     throw shockgas::InputError(fmt::format(
                         "not enough memory: one realization of N = {} needs about {}, but {} may be used ({}); "
-                        "lower N or the snapshots, or set --max-memory",
+                        "lower N, the snapshots or the histogram bins, or set --max-memory",
                         mine.particles, shockgas::format_bytes(plan.need_bytes(1)), shockgas::format_bytes(budget),
                         source));
                 if (plan.realizations_at_once < threads) {

@@ -66,7 +66,13 @@ void validate(const SimulationParameters& p) {
     if (p.first_realization < 0)
         throw InputError(fmt::format("first realization must be >= 0, got {}", p.first_realization));
     if (p.threads < 0) throw InputError(fmt::format("threads must be >= 0, got {}", p.threads));
-    if (p.histogram_bins < 1) throw InputError(fmt::format("histogram bins must be >= 1, got {}", p.histogram_bins));
+    // At most 10^7 bins: already 10^-6 of the range per bin, finer than the
+    // N R samples of any run can fill (the paper's Fig. 4 has 2·10^7), and a
+    // row of 80 MB per realization and time. A billion bins took 23 GiB and
+    // then failed in HDF5 (a chunk is at most 4 GiB), after 76 s (2026-11-26).
+    constexpr int most_histogram_bins = 10'000'000;
+    if (p.histogram_bins < 1 || p.histogram_bins > most_histogram_bins)
+        throw InputError(fmt::format("histogram bins must lie in [1, {}], got {}", most_histogram_bins, p.histogram_bins));
     if (!(p.histogram_range > 0.0) || !std::isfinite(p.histogram_range))
         throw InputError(fmt::format("histogram range must be positive, got {}", p.histogram_range));
     if (!(p.collapse.collapse_speed >= 0.0))

@@ -175,6 +175,20 @@ TEST(MemoryPlan, FewerRealizationsAtOnceWhenAllDoNotFitAndNoneWhenOneDoesNot) {
         << "without checkpoints a realization needs only its engine";
 }
 
+// Histograms: 16 bytes per bin for each realization (its row and the output's
+// copy) and 16 once (edges, the writer's buffer), as measured (memory.cpp).
+TEST(MemoryPlan, CountsTheHistogramsRowsAndTheirCopies) {
+    SimulationParameters p = small_run();
+    p.particles = 1000;
+    p.realizations = 4;
+    p.histogram_times = {10.0, 20.0};
+    p.histogram_bins = 1000000;
+    const auto plan = shockgas::plan_memory(p, 4, false, 1e15);
+    const double bins = 2.0 * (1000000 + 2);
+    EXPECT_GE(plan.shared_bytes, program + (16.0 + 4 * 16.0) * bins);
+    EXPECT_LT(plan.shared_bytes, program + (16.0 + 4 * 16.0) * bins + 1e5);
+}
+
 TEST(MemoryPlan, SizesParseInPowersOf1024AndNonsenseIsRefused) {
     EXPECT_EQ(shockgas::parse_memory_size("123456"), 123456.0);
     EXPECT_EQ(shockgas::parse_memory_size("500M"), 500.0 * 1024 * 1024);
