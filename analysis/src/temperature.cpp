@@ -104,10 +104,11 @@ DecayWindow automatic_decay_window(double restitution, double velocity_threshold
         // particles would not help; the data end before the scaling regime.
         if ((run_status == "collapsed" || run_status == "interrupted") && last_time <= window.t_lo)
             throw InsufficientData(fmt::format(
-                "{}, but the run {} at t = {:g}, before it{}: draw T(t) without a fit with --data-only, or choose "
-                "a window with --t-lo/--t-hi",
-                start, run_status == "collapsed" ? "stopped at inelastic collapse" : "was interrupted", last_time,
-                run_status == "collapsed" ? " (delta = 0 runs stop there)" : ""));
+                "{}, but the run's last sample is t = {:g}, before it: it {}; draw T(t) without a fit with "
+                "--data-only, or choose a window with --t-lo/--t-hi",
+                start, last_time,
+                run_status == "collapsed" ? "stopped at inelastic collapse (delta = 0 runs stop there)"
+                                          : "was interrupted"));
         throw InsufficientData(fmt::format("{}, but t_hi = {:g} (min of t_max, {:g} N^3/2, delta^-3); run longer or "
                                            "with more particles",
                                            start, window.t_hi, rule.end_factor));

@@ -131,6 +131,15 @@ TEST(AnalysisDecay, WindowRuleAndScan) {
     EXPECT_NEAR(window.t_lo, 10.0 * std::pow(0.05, -1.5), 1e-9);
     EXPECT_DOUBLE_EQ(window.t_hi, 1e5);  // min(t_last = 1e5, 0.01 N^3/2 = 1e7, delta^-3 = 1e6)
     EXPECT_THROW(sa::automatic_decay_window(0.99, 1e-2, 1e4, 1e3), sa::InsufficientData);
+    // A run that collapsed before the window: the message gives its last
+    // sample time as such (not as the time of the collapse, which lies after).
+    try {
+        sa::automatic_decay_window(0.5, 0.0, 100, 7.94328, {}, "collapsed");
+        ADD_FAILURE() << "an empty window must throw";
+    } catch (const sa::InsufficientData& error) {
+        EXPECT_NE(std::string(error.what()).find("last sample is t = 7.94328"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("stopped at inelastic collapse"), std::string::npos) << error.what();
+    }
     // The sticky gas (eps = 1/2, eps^-3/2 = 2.8) still starts at t = 100, after its own transient.
     EXPECT_DOUBLE_EQ(sa::automatic_decay_window(0.0, 1e-2, 1e6, 1e5).t_lo, 100.0);
     std::mt19937_64 random(7);

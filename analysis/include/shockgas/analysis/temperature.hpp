@@ -54,7 +54,8 @@ DecayWindow decay_window_bounds(double restitution, double velocity_threshold, d
                                 const WindowRule& rule = {});
 // The same, throwing InsufficientData that explains an empty window.
 // run_status: the run's status attribute; when it is "collapsed" or
-// "interrupted", last_time is where the run stopped, and an empty window says so.
+// "interrupted", last_time is its last sample (a collapse lies after it), and
+// an empty window says so.
 DecayWindow automatic_decay_window(double restitution, double velocity_threshold, double particles,
                                    double last_time, const WindowRule& rule = {},
                                    const std::string& run_status = "complete");
