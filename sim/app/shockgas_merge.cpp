@@ -30,8 +30,9 @@ int main(int argc, char** argv) {
         }
         const auto merged = shockgas::merge_outputs(parts, inputs);
         shockgas::write_output(output, merged.parameters, merged.result);
-        fmt::print(stderr, "shockgas-merge: {} realizations from {} parts -> {} ({})\n", merged.result.realizations,
-                   parts.size(), output, merged.result.status);
+        fmt::print(stderr, "shockgas-merge: {} realization{} from {} part{} -> {} ({})\n", merged.result.realizations,
+                   merged.result.realizations == 1 ? "" : "s", parts.size(), parts.size() == 1 ? "" : "s", output,
+                   merged.result.status);
         return 0;
     } catch (const std::exception& error) {
         fmt::print(stderr, "shockgas-merge: error: {}\n", error.what());
