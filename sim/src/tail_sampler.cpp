@@ -176,7 +176,7 @@ ChainRecord run_chain(const TailSamplerParameters& p, const WindowObservable& ob
                        std::vector<double>(biases, 0.0), std::vector<double>(biases, 0.0),
                        std::vector<double>(biases, 0.0), std::vector<double>(biases, 0.0)};
     std::vector<double> saved;
-    const std::int64_t interval = std::max<std::int64_t>(1, p.exchange_interval);
+    const std::int64_t interval = p.exchange_interval;
     const std::int64_t total = p.burn_in_steps + p.steps_per_bias;
     for (std::int64_t done = 0, round = 0; done < total; done += interval, ++round) {
         const std::int64_t steps = std::min(interval, total - done);
@@ -334,6 +334,14 @@ TailEstimate sample_far_tail(const TailSamplerParameters& p, const ObservableFac
     if (p.biases.empty() || p.biases.front() != 0.0)
         throw InputError("tail sampler: the bias ladder must start at 0 (plain sampling fixes the normalization)");
     if (!std::is_sorted(p.biases.begin(), p.biases.end())) throw InputError("tail sampler: biases must ascend");
+    if (!std::all_of(p.biases.begin(), p.biases.end(), [](double beta) { return std::isfinite(beta); }))
+        throw InputError("tail sampler: biases must be finite");
+    for (const auto& [name, probability] :
+         {std::pair<const char*, double>{"focus", p.focus_probability}, {"block", p.block_probability}})
+        if (!(probability >= 0.0 && probability <= 1.0))
+            throw InputError(fmt::format("tail sampler: the {} probability must lie in [0, 1], got {}", name, probability));
+    if (p.exchange_interval < 1)
+        throw InputError(fmt::format("tail sampler: the exchange interval must be >= 1 step, got {}", p.exchange_interval));
     if (p.chains < 2) throw InputError("tail sampler: need >= 2 chains for error bars");
     if (p.threads < 0) throw InputError(fmt::format("tail sampler: threads must be >= 0, got {}", p.threads));
     if (p.sites < 1 || p.focus_begin < 0 || p.focus_end > p.sites || p.focus_end <= p.focus_begin)

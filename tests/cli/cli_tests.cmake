@@ -14,7 +14,13 @@ function(shockgas_cli_error name regex)
 endfunction()
 
 # The far-tail sampler follows the same rule (status 2, one line, no file).
-foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;need >= 2 chains;--chains;1")
+foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;need >= 2 chains;--chains;1"
+                      "block_probability;block probability must lie in;--block-probability;1.5"
+                      "focus_probability;focus probability must lie in;--focus-probability;2"
+                      "exchange_zero;exchange interval must be;--exchange-interval;0"
+                      "bias_infinite;biases must be finite;--biases;0;inf"
+                      "focus_negative;--focus must be;--focus=-1"
+                      "bin_width_off_grid;multiple of the;--bin-width;0.0215")
   list(GET _case 0 _name)
   list(GET _case 1 _regex)
   list(SUBLIST _case 2 -1 _arguments)
@@ -24,6 +30,11 @@ foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;
            WORKING_DIRECTORY "${_cli_dir}")
   set_tests_properties(cli.error.tail_${_name} PROPERTIES LABELS cli)
 endforeach()
+add_test(NAME cli.error.tail_half_window_huge
+         COMMAND ${_expect} "--half-window must be at most" "${_cli_dir}/tail_half_window_huge.h5" --
+                 $<TARGET_FILE:shockgas-tail> -t 10 --half-window 100000000 -o "${_cli_dir}/tail_half_window_huge.h5"
+         WORKING_DIRECTORY "${_cli_dir}")
+set_tests_properties(cli.error.tail_half_window_huge PROPERTIES LABELS cli)
 shockgas_cli_error(restitution_above_one "restitution" -N 10 -r 1.5)
 shockgas_cli_error(restitution_negative "restitution" -N 10 -r -0.1)
 shockgas_cli_error(threshold_negative "threshold" -N 10 -d -1e-3)
