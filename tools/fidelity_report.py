@@ -43,6 +43,13 @@ progress = "--progress" in sys.argv[1:]
 build = arguments[0] if len(arguments) > 0 else "build"
 fidelity = arguments[1] if len(arguments) > 1 else "quick"
 base = os.path.join(build, "paper_targets", fidelity)
+# A wrong directory or fidelity would otherwise print empty tables and exit 0.
+if len(arguments) > 2 or any(a.startswith("-") for a in arguments):
+    sys.exit("usage: fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]")
+if fidelity not in ("quick", "paper"):
+    sys.exit(f"fidelity_report.py: error: the fidelity is quick or paper, not '{fidelity}'")
+if not os.path.isdir(os.path.join(build, "paper_targets")):
+    sys.exit(f"fidelity_report.py: error: '{build}' is not a configured build tree (no paper_targets/ in it)")
 
 
 def attrs(path, group):
