@@ -77,13 +77,6 @@ int main(int argc, char** argv) {
     try {
         p.law = shockgas::velocity_law_from_string(law);
         p.biases = biases.empty() ? shockgas::tail_bias_ladder(z_reach, z_step) : biases;
-        // The instanton starts hold one window per bias (8 bytes a site): 23
-        // biases of 2·10^6 + 1 sites are 370 MB. A cluster at time t spans
-        // ~ t^(2/3) particles, so 10^6 on each side would serve t ~ 10^9, far
-        // beyond what the chains reach; 10^8 took 7.5 GB within 20 s.
-        constexpr std::int64_t most_half_window = 1'000'000;
-        if (half_window > most_half_window)
-            throw shockgas::InputError(fmt::format("--half-window must be at most {}, got {}", most_half_window, half_window));
         if (focus < 0) throw shockgas::InputError(fmt::format("--focus must be >= 0 (0: the whole window), got {}", focus));
         const double fine_bins = bin_width / p.fine_bin_width;
         if (!(fine_bins >= 0.5) || std::abs(fine_bins - std::round(fine_bins)) > 1e-6)

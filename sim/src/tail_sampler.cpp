@@ -214,6 +214,14 @@ ChainRecord run_chain(const TailSamplerParameters& p, const WindowObservable& ob
 TaggedClusterVelocity::TaggedClusterVelocity(std::int64_t half_window, double time)
     : time_(time), scale_(std::cbrt(time)) {
     if (half_window < 1) throw InputError("tagged cluster: the half window must hold at least one particle");
+    // The instanton starts hold one window per bias (8 bytes a site): 23
+    // biases of 2·10^6 + 1 sites are 370 MB. A cluster at time t spans
+    // ~ t^(2/3) particles, so 10^6 on each side would serve t ~ 10^9, far
+    // beyond what the chains reach; 10^8 took 7.5 GB within 20 s (2026-11-26).
+    constexpr std::int64_t most_half_window = 1'000'000;
+    if (half_window > most_half_window)
+        throw InputError(fmt::format("tagged cluster: the half window must hold at most {} particles, got {}",
+                                     most_half_window, half_window));
     if (!(time > 0.0) || !std::isfinite(time)) throw InputError("tagged cluster: time must be positive and finite");
     position_.resize(static_cast<std::size_t>(2 * half_window + 1));
     for (std::size_t i = 0; i < position_.size(); ++i)

@@ -31,7 +31,7 @@ foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;
   set_tests_properties(cli.error.tail_${_name} PROPERTIES LABELS cli)
 endforeach()
 add_test(NAME cli.error.tail_half_window_huge
-         COMMAND ${_expect} "--half-window must be at most" "${_cli_dir}/tail_half_window_huge.h5" --
+         COMMAND ${_expect} "half window must hold at most 1000000 particles" "${_cli_dir}/tail_half_window_huge.h5" --
                  $<TARGET_FILE:shockgas-tail> -t 10 --half-window 100000000 -o "${_cli_dir}/tail_half_window_huge.h5"
          WORKING_DIRECTORY "${_cli_dir}")
 set_tests_properties(cli.error.tail_half_window_huge PROPERTIES LABELS cli)

@@ -64,7 +64,7 @@ for ((i = 0; i < 300; ++i)); do
   sleep 0.1
 done
 pgrep -g "$pid" -f "run.h5" >/dev/null || fail "the simulation did not start"
-# Stop it only once it catches SIGTERM (bit 15 of SigCgt): its handler writes the last checkpoint, and a
+# Stop it only once it catches SIGTERM (signal 15: bit 14 of SigCgt): its handler writes the last checkpoint, and a
 # signal before the handler is installed ends it with nothing to save. Under a sanitizer on a loaded
 # machine the start can take longer than the second below (CI, 2026-11-26: "left no checkpoint").
 sim_pid=$(pgrep -g "$pid" -x shockgas-sim | head -n 1)
