@@ -50,6 +50,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/cli.hpp"
 #include "shockgas/engine.hpp"
 #include "shockgas/event_engine.hpp"
 #include "shockgas/h5.hpp"
@@ -258,13 +259,9 @@ int main(int argc, char** argv) {
     app.add_option("--inject-momentum-error", inject_momentum_error,
                    "testing the check only: the engine starts from v[0] + this while P0 is the unperturbed one");
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& error) {
-        return app.exit(error);
-    }
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-drift"); status >= 0) return status;
 
-    try {
+    return shockgas::cli::run("shockgas-drift", [&] {
         p.collision.subthreshold = shockgas::subthreshold_from_string(subthreshold);
         shockgas::validate(p);
         if (!output.empty() && !ends_with(output, ".csv") && !ends_with(output, ".h5"))
@@ -493,14 +490,5 @@ int main(int argc, char** argv) {
             return ok ? 0 : 1;
         }
         return 0;
-    } catch (const InputError& error) {
-        fmt::print(stderr, "shockgas-drift: error: {}\n", error.what());
-        return 2;
-    } catch (const shockgas::h5::Error& error) {
-        fmt::print(stderr, "shockgas-drift: error: {}\n", error.what());
-        return 2;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "shockgas-drift: internal error: {}\n", error.what());
-        return 1;
-    }
+    });
 }

@@ -593,32 +593,24 @@ int main(int argc, char** argv) {
     far_tail->add_flag("--free-linear", free_linear, "fit the linear term b too (default: b from EB9)");
 
     if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
-    try {
-        // Refuse an unwritable output before the work, naming it (not a temporary file).
-        h5::check_writable(output);
-        if (*decay) run_decay(input, output, data, scan, t_lo, t_hi, window_rule, scan_width, scan_step, data_only);
-        if (*crossover) run_crossover(inputs, output, data, crossover_rule);
-        if (*scaling) run_scaling(inputs, output, data, tail_rule);
-        if (*shocks) run_shocks(input, output, data, shock_rule);
-        if (*collapse) run_collapse(inputs, output, data, versus, hazard);
-        if (*compare) run_compare(reference, inputs, output, data, curves);
-        if (*far_tail) run_far_tail(input, output, data, z_lo, z_hi, window_shift, free_linear);
-    } catch (const InputError& error) {  // every error a user's input causes: one form, exit 2
-        fmt::print(stderr, "shockgas-analyze: error: {}\n", error.what());
-        return cli::bad_input;
-    } catch (const h5::Error& error) {
-        fmt::print(stderr, "shockgas-analyze: error: {}\n", error.what());
-        return cli::bad_input;
-    } catch (const InsufficientData& error) {
-        // Estimator messages say what is missing; add which file it is missing from.
-        std::vector<std::string> files = inputs;
-        if (!input.empty()) files.insert(files.begin(), input);
-        if (!reference.empty()) files.insert(files.begin(), reference);
-        fmt::print(stderr, "shockgas-analyze: error: {}, in '{}'\n", error.what(), fmt::join(files, "', '"));
-        return cli::bad_input;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "shockgas-analyze: internal error: {}\n", error.what());
-        return 1;
-    }
-    return 0;
+    return cli::run("shockgas-analyze", [&] {
+        try {
+            // Refuse an unwritable output before the work, naming it (not a temporary file).
+            h5::check_writable(output);
+            if (*decay) run_decay(input, output, data, scan, t_lo, t_hi, window_rule, scan_width, scan_step, data_only);
+            if (*crossover) run_crossover(inputs, output, data, crossover_rule);
+            if (*scaling) run_scaling(inputs, output, data, tail_rule);
+            if (*shocks) run_shocks(input, output, data, shock_rule);
+            if (*collapse) run_collapse(inputs, output, data, versus, hazard);
+            if (*compare) run_compare(reference, inputs, output, data, curves);
+            if (*far_tail) run_far_tail(input, output, data, z_lo, z_hi, window_shift, free_linear);
+        } catch (const InsufficientData& error) {
+            // Estimator messages say what is missing; add which file it is missing from.
+            std::vector<std::string> files = inputs;
+            if (!input.empty()) files.insert(files.begin(), input);
+            if (!reference.empty()) files.insert(files.begin(), reference);
+            throw InputError(fmt::format("{}, in '{}'", error.what(), fmt::join(files, "', '")));
+        }
+        return 0;
+    });
 }

@@ -101,7 +101,18 @@ int main(int argc, char** argv) {
     app.add_option("--study", study, "convergence tables (nu -> 0, grid refinement)");
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-burgers"); status >= 0) return status;
 
-    try {
+    return shockgas::cli::run("shockgas-burgers", [&] {
+        // Written as !(x > 0) so that NaN is refused too.
+        if (cells_per_particle < 1) throw shockgas::InputError("--cells-per-particle must be at least 1");
+        if (time != 0.0 && !(time > 0.0 && std::isfinite(time)))
+            throw shockgas::InputError(fmt::format("--time must be positive and finite, not {}", time));
+        for (double nu : viscosities)
+            if (!(nu > 0.0 && std::isfinite(nu)))
+                throw shockgas::InputError(fmt::format("--viscosity must be positive and finite, not {}", nu));
+        if (!(jump_fraction >= 0.0 && std::isfinite(jump_fraction)))
+            throw shockgas::InputError(fmt::format("--jump-fraction must be >= 0 and finite, not {}", jump_fraction));
+        if (points < 0) throw shockgas::InputError("--points must be >= 0 (0: four per particle)");
+        if (realization < 0) throw shockgas::InputError("--realization must be >= 0");
         shockgas::InitialCondition initial;
         std::vector<shockgas::analysis::Snapshot> snapshots;
         if (!run_path.empty()) {
@@ -119,11 +130,11 @@ int main(int argc, char** argv) {
         if (!init_path.empty()) {
             initial = shockgas::read_initial_condition(init_path);
         } else {
-            if (particles < 2) throw std::invalid_argument("give --run, --init or --particles");
+            if (particles < 2) throw shockgas::InputError("give --run, --init or --particles (at least 2)");
             if (!(ring_length > 0.0)) ring_length = static_cast<double>(particles);
             initial = shockgas::generate_initial_condition(particles, ring_length, seed, realization);
         }
-        if (!(time > 0.0)) throw std::invalid_argument("no time: give --time or a run with snapshots");
+        if (!(time > 0.0)) throw shockgas::InputError("no time: give --time or a run with snapshots");
         const std::int64_t n = initial.size();
         const double length = initial.ring_length;
         if (points <= 0) points = 4 * n;
@@ -135,7 +146,7 @@ int main(int argc, char** argv) {
         const double v_rms = std::sqrt(solver.temperature(time));
 
         std::FILE* out = std::fopen(output.c_str(), "w");
-        if (!out) throw std::runtime_error("cannot write " + output);
+        if (!out) throw shockgas::InputError("cannot write " + output);
         fmt::print(out, "# Burgers profile at t = {:.9g}: N = {}, L = {:.9g}, {} cells per particle, v_rms = {:.6g}\n",
                    time, n, length, cells_per_particle, v_rms);
         fmt::print(out, "# x v_inviscid");
@@ -200,14 +211,14 @@ int main(int argc, char** argv) {
         }
         if (!summary.empty()) {
             std::FILE* file = std::fopen(summary.c_str(), "w");
-            if (!file) throw std::runtime_error("cannot write " + summary);
+            if (!file) throw shockgas::InputError("cannot write " + summary);
             fmt::print(file, "{}", vars);
             std::fclose(file);
         }
 
         if (!study.empty()) {
             std::FILE* file = std::fopen(study.c_str(), "w");
-            if (!file) throw std::runtime_error("cannot write " + study);
+            if (!file) throw shockgas::InputError("cannot write " + study);
             // (1) nu -> 0 at the run's grid: mean |v_nu - v_0| over the sample points.
             fmt::print(file, "# nu -> 0 at {} cells per particle, t = {:g}: nu mean|v_nu - v_0| (v_rms = {:.6g})\n",
                        cells_per_particle, time, v_rms);
@@ -231,9 +242,6 @@ int main(int argc, char** argv) {
             }
             std::fclose(file);
         }
-    } catch (const std::exception& error) {
-        std::fprintf(stderr, "shockgas-burgers: error: %s\n", error.what());
-        return 2;
-    }
-    return 0;
+        return 0;
+    });
 }

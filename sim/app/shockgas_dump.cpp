@@ -94,16 +94,13 @@ int main(int argc, char** argv) {
     bool recursive = false;
     vars->add_flag("--recursive", recursive, "also every subgroup, as PREFIX_<subgroup>_<name>");
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-dump"); status >= 0) return status;
-    try {
+    return shockgas::cli::run("shockgas-dump", [&] {
         std::FILE* out = stdout;
         if (!output.empty() && (out = std::fopen(output.c_str(), "w")) == nullptr)
-            throw std::runtime_error("cannot write '" + output + "'");
+            throw shockgas::InputError("cannot write '" + output + "'");
         if (*snapshots) dump_snapshots(out, input, realization);
         if (*vars) dump_gnuplot_vars(out, input, group_path, prefix, recursive);
-        if (out != stdout && std::fclose(out) != 0) throw std::runtime_error("cannot finish writing '" + output + "'");
+        if (out != stdout && std::fclose(out) != 0) throw shockgas::InputError("cannot finish writing '" + output + "'");
         return 0;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "shockgas-dump: error: {}\n", error.what());
-        return 2;
-    }
+    });
 }

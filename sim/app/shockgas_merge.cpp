@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", output, "merged HDF5 file (written atomically)")->required();
     app.add_option("inputs", inputs, "part files, in realization order")->required()->check(CLI::ExistingFile);
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-merge"); status >= 0) return status;
-    try {
+    return shockgas::cli::run("shockgas-merge", [&] {
         shockgas::h5::check_writable(output);
         std::vector<shockgas::OutputFile> parts;
         for (const auto& input : inputs) {
@@ -34,8 +34,5 @@ int main(int argc, char** argv) {
                    merged.result.realizations == 1 ? "" : "s", parts.size(), parts.size() == 1 ? "" : "s", output,
                    merged.result.status);
         return 0;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "shockgas-merge: error: {}\n", error.what());
-        return 2;
-    }
+    });
 }

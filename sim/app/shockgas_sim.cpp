@@ -161,7 +161,7 @@ int main(int argc, char** argv) {
     // and exit status 2, like the validation errors below.
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-sim"); status >= 0) return status;
 
-    try {
+    return shockgas::cli::run("shockgas-sim", [&] {
         p.collision.subthreshold = shockgas::subthreshold_from_string(subthreshold);
         p.initial_law = {shockgas::position_law_from_string(positions),
                          shockgas::velocity_law_from_string(velocity_distribution)};
@@ -303,14 +303,5 @@ int main(int argc, char** argv) {
             fmt::print(stderr, "shockgas-sim: realization {} collapsed at t = {:.6g} (cluster of {} particles, {})\n",
                        c.realization, c.report.time, c.report.cluster_mass, c.report.criterion);
         return result.status == "interrupted" ? 130 : 0;
-    } catch (const shockgas::InputError& error) {
-        fmt::print(stderr, "shockgas-sim: error: {}\n", error.what());
-        return 2;
-    } catch (const shockgas::h5::Error& error) {
-        fmt::print(stderr, "shockgas-sim: error: {}\n", error.what());
-        return 2;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "shockgas-sim: internal error: {}\n", error.what());
-        return 1;
-    }
+    });
 }

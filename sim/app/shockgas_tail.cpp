@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--output,-o", output, "output HDF5 file")->required();
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-tail"); status >= 0) return status;
-    try {
+    return shockgas::cli::run("shockgas-tail", [&] {
         p.law = shockgas::velocity_law_from_string(law);
         p.biases = biases.empty() ? shockgas::tail_bias_ladder(z_reach, z_step) : biases;
         if (focus < 0) throw shockgas::InputError(fmt::format("--focus must be >= 0 (0: the whole window), got {}", focus));
@@ -131,15 +131,6 @@ int main(int argc, char** argv) {
                    "{:.1f} s CPU, {:.1f} s wall\n",
                    output, time, p.biases.size(), p.chains, estimate.evaluations, deepest, deepest_z,
                    estimate.cpu_seconds, estimate.wall_seconds);
-    } catch (const shockgas::InputError& error) {
-        fmt::print(stderr, "shockgas-tail: error: {}\n", error.what());
-        return shockgas::cli::bad_input;
-    } catch (const shockgas::h5::Error& error) {
-        fmt::print(stderr, "shockgas-tail: error: {}\n", error.what());
-        return shockgas::cli::bad_input;
-    } catch (const std::exception& error) {
-        fmt::print(stderr, "shockgas-tail: internal error: {}\n", error.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "shockgas/parameters.hpp"
+
 namespace shockgas::burgers {
 
 namespace {
@@ -103,9 +105,9 @@ Grid grid_from_particles(const InitialCondition& initial, std::int64_t cells) {
     for (std::int64_t i = 0; i < n; ++i) {
         const double expected = initial.position[0] + static_cast<double>(i) * spacing;
         if (std::abs(initial.position[i] - expected) > 1e-9 * length)
-            throw std::invalid_argument("burgers: particles are not equally spaced (particle " + std::to_string(i) + ")");
+            throw InputError("burgers: particles are not equally spaced (particle " + std::to_string(i) + ")");
         if (!initial.mass.empty() && initial.mass[i] != initial.mass[0])
-            throw std::invalid_argument("burgers: particles have unequal masses");
+            throw InputError("burgers: particles have unequal masses");
     }
     Grid grid;
     grid.ring_length = length;
@@ -123,8 +125,8 @@ Grid grid_from_particles(const InitialCondition& initial, std::int64_t cells) {
             grid.velocity[c] = sum / static_cast<double>(per_cell);
         }
     } else {
-        throw std::invalid_argument("burgers: cells (" + std::to_string(cells) + ") must be a multiple or a divisor of N (" +
-                                    std::to_string(n) + ")");
+        throw InputError("burgers: cells (" + std::to_string(cells) + ") must be a multiple or a divisor of N (" +
+                            std::to_string(n) + ")");
     }
     return grid;
 }

@@ -13,6 +13,20 @@ function(shockgas_cli_error name regex)
   set_tests_properties(cli.error.${name} PROPERTIES LABELS cli)
 endfunction()
 
+# One bad-input case of another program, "name;regex;arguments...", as the test
+# cli.error.<prefix>_<name>: ARGN (the program and its fixed arguments), then the
+# case's arguments and -o <prefix>_<name>.out.h5, which must not be written.
+function(shockgas_error_case prefix case)
+  list(GET case 0 _name)
+  list(GET case 1 _regex)
+  list(SUBLIST case 2 -1 _arguments)
+  set(_output "${_cli_dir}/${prefix}_${_name}.out.h5")
+  add_test(NAME cli.error.${prefix}_${_name}
+           COMMAND ${_expect} "${_regex}" "${_output}" -- ${ARGN} ${_arguments} -o "${_output}"
+           WORKING_DIRECTORY "${_cli_dir}")
+  set_tests_properties(cli.error.${prefix}_${_name} PROPERTIES LABELS cli)
+endfunction()
+
 # The far-tail sampler follows the same rule (status 2, one line, no file).
 foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;need >= 2 chains;--chains;1"
                       "block_probability;block probability must lie in;--block-probability;1.5"
@@ -21,20 +35,21 @@ foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;
                       "bias_infinite;biases must be finite;--biases;0;inf"
                       "focus_negative;--focus must be;--focus=-1"
                       "bin_width_off_grid;multiple of the;--bin-width;0.0215")
-  list(GET _case 0 _name)
-  list(GET _case 1 _regex)
-  list(SUBLIST _case 2 -1 _arguments)
-  add_test(NAME cli.error.tail_${_name}
-           COMMAND ${_expect} "${_regex}" "${_cli_dir}/tail_${_name}.h5" -- $<TARGET_FILE:shockgas-tail> -t 10
-                   --half-window 20 --steps-per-bias 10 --burn-in 0 ${_arguments} -o "${_cli_dir}/tail_${_name}.h5"
-           WORKING_DIRECTORY "${_cli_dir}")
-  set_tests_properties(cli.error.tail_${_name} PROPERTIES LABELS cli)
+  shockgas_error_case(tail "${_case}" $<TARGET_FILE:shockgas-tail> -t 10 --half-window 20 --steps-per-bias 10
+                      --burn-in 0)
 endforeach()
 add_test(NAME cli.error.tail_half_window_huge
          COMMAND ${_expect} "half window must hold at most 1000000 particles" "${_cli_dir}/tail_half_window_huge.h5" --
                  $<TARGET_FILE:shockgas-tail> -t 10 --half-window 100000000 -o "${_cli_dir}/tail_half_window_huge.h5"
          WORKING_DIRECTORY "${_cli_dir}")
 set_tests_properties(cli.error.tail_half_window_huge PROPERTIES LABELS cli)
+# shockgas-burgers: the same rule, NaN included.
+foreach(_case IN ITEMS "time_nan;^shockgas-burgers: error: --time must be positive and finite, not nan$;-N;100;-t;nan"
+                      "cells_zero;--cells-per-particle must be at least 1;-N;100;-t;10;--cells-per-particle;0"
+                      "viscosity_negative;--viscosity must be positive and finite;-N;100;-t;10;--viscosity;0.1,-1"
+                      "one_particle;give --run, --init or --particles \\(at least 2\\);-N;1;-t;10")
+  shockgas_error_case(burgers "${_case}" $<TARGET_FILE:shockgas-burgers>)
+endforeach()
 shockgas_cli_error(restitution_above_one "restitution" -N 10 -r 1.5)
 shockgas_cli_error(restitution_negative "restitution" -N 10 -r -0.1)
 shockgas_cli_error(threshold_negative "threshold" -N 10 -d -1e-3)

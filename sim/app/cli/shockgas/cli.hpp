@@ -4,12 +4,15 @@
 // the executables (the libraries do not depend on CLI11).
 #pragma once
 
+#include <exception>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/h5.hpp"
+#include "shockgas/parameters.hpp"
 #include "shockgas/suggest.hpp"
 
 namespace shockgas::cli {
@@ -86,6 +89,29 @@ inline int parse(CLI::App& app, int argc, char** argv, const std::string& progra
             if (c == '\n' || c == '\r') c = ' ';
         fmt::print(stderr, "{}: error: {}\n", program, message);
         return bad_input;
+    }
+}
+
+// Runs a program's work (a callable returning its exit status) and gives what
+// it throws the house form. Input a user can get wrong, InputError, or an HDF5
+// error (which names the file), prints "<program>: error: <what>" and returns
+// bad_input; anything else is the program's own defect, printed as
+// "<program>: internal error: <what>" with status 1, so that a bug never passes
+// for bad input. A program that knows another exception to be the user's turns
+// it into an InputError inside `work` (shockgas-analyze's InsufficientData).
+template <class Work>
+int run(const std::string& program, Work&& work) {
+    try {
+        return work();
+    } catch (const InputError& error) {
+        fmt::print(stderr, "{}: error: {}\n", program, error.what());
+        return bad_input;
+    } catch (const h5::Error& error) {
+        fmt::print(stderr, "{}: error: {}\n", program, error.what());
+        return bad_input;
+    } catch (const std::exception& error) {
+        fmt::print(stderr, "{}: internal error: {}\n", program, error.what());
+        return 1;
     }
 }
 
