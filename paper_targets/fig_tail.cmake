@@ -18,7 +18,9 @@ file(MAKE_DIRECTORY "${fig_tail_DIR}")
 add_custom_command(
   OUTPUT "${fig_tail_DIR}/tail.h5"
   COMMAND shockgas-tail ${_tail_options} --z-reach 6 --z-step 0.25 -o "${fig_tail_DIR}/tail.h5"
-  DEPENDS shockgas-tail
+  # The simulator's source stamp, as every simulation (pipeline.cmake), not the
+  # binary, which relinks at every commit: the sampler reruns only when sim/ changes.
+  DEPENDS ${SHOCKGAS_SIM_STAMP}
   COMMENT "[fig_tail] far-tail sampler"
   VERBATIM)
 add_custom_command(

@@ -28,7 +28,7 @@ else()
     BYPRODUCTS ${SHOCKGAS_SIM_STAMP} ${SHOCKGAS_SIM_STAMP}.files
     COMMENT "Hashing the simulator's sources (simulations rerun only when they change)"
     VERBATIM)
-  add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge)
+  add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge shockgas-tail)
 endif()
 
 include(${PROJECT_SOURCE_DIR}/cmake/ShortestNumber.cmake)  # _shockgas_shortest_number
