@@ -124,6 +124,10 @@ if(GNUPLOT_EXECUTABLE)
   set_tests_properties(cli.look PROPERTIES FIXTURES_REQUIRED look_run LABELS cli
                        PASS_REGULAR_EXPRESSION "decay exponent .*scaling exponent.*shockgas-look: .*look.png")
 endif()
+# Its version is that of the programs it runs.
+add_test(NAME cli.look_version
+         COMMAND ${CMAKE_COMMAND} -E env SHOCKGAS_BUILD=${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR}/tools/shockgas-look --version)
+set_tests_properties(cli.look_version PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^shockgas-look [^ \n]+\n$")
 
 if(SHOCKGAS_PYTHON)
   # The README's results rows, generated from a (miniature) pipeline tree.

@@ -29,8 +29,9 @@ export PATH="$prefix/bin:$PATH"
 # Not grep -q: it stops reading at the match, and under pipefail the writer's SIGPIPE fails the line.
 shockgas-sim --help | grep -- "--restitution" >/dev/null || fail "shockgas-sim --help lacks --restitution"
 shockgas-sim --version | grep -q "^shockgas-sim " || fail "shockgas-sim --version: $(shockgas-sim --version)"
-for program in shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze; do
+for program in shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail shockgas-look; do
   "$program" --help >/dev/null || fail "$program --help"
+  "$program" --version | grep "^$program [^ ]" >/dev/null || fail "$program --version: $("$program" --version 2>&1)"
 done
 # The consumer's run: N = 1000, r = 0.9, delta = 1e-2, seed 1, realization 0, to t = 10.
 shockgas-sim -N 1000 -r 0.9 -d 1e-2 -s 1 -R 1 -t 10 -j 1 -q -o run.h5 || fail "the small run"
