@@ -609,8 +609,27 @@ void check_writable(const std::string& path) {
     if (!fs::is_directory(directory))
         throw Error(fmt::format("cannot write output '{}': directory '{}' does not exist", path, directory.string()));
     if (fs::is_directory(target)) throw Error(fmt::format("cannot write output '{}': it is a directory", path));
+    // symlink_status: the link itself, not what it points to.
+    const fs::file_status status = fs::symlink_status(target);
+    if (fs::is_symlink(status))
+        throw Error(fmt::format("cannot write output '{}': it is a symbolic link (give the file it points to)", path));
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw Error(fmt::format("cannot write output '{}': it exists and is not a regular file (a device or a FIFO "
+                                "would be replaced)",
+                                path));
     if (::access(directory.c_str(), W_OK) != 0)
         throw Error(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+}
+
+void check_not_an_input(const std::string& output, const std::vector<std::string>& inputs) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    if (!fs::exists(output, error)) return;
+    for (const auto& input : inputs) {
+        if (input.empty()) continue;
+        if (fs::equivalent(output, input, error))
+            throw Error(fmt::format("output '{}' is the input '{}': it would be overwritten", output, input));
+    }
 }
 
 }  // namespace shockgas::h5

@@ -174,7 +174,15 @@ std::vector<std::string> remove_stale_temporaries(const std::string& target);
 
 // Checks that a file can be created at path (its directory exists and is
 // writable) before a long run starts; throws Error naming the path otherwise.
+// Also refuses a path that exists and is not a regular file (a device such as
+// /dev/null, a FIFO) or is a symbolic link: an output is written beside its
+// target and renamed over it, which would replace the device or the link.
 void check_writable(const std::string& path);
+
+// Throws Error when output names the same file as one of inputs (compared as
+// files, so a different spelling or a hard link counts): writing it would
+// destroy an input. Inputs that do not exist are skipped.
+void check_not_an_input(const std::string& output, const std::vector<std::string>& inputs);
 
 [[noreturn]] void rethrow_write_failure(const std::string& target, const Error& error);
 
