@@ -173,7 +173,6 @@ private:
                 finished_[index].store(true);
             }
             progress_condition_.notify_all();
-            done_.fetch_add(1);
         }
         {
             std::lock_guard lock(progress_mutex_);
@@ -440,7 +439,6 @@ private:
                 live_[k].collisions.store(out.collisions);
             }
         }
-        done_.store(finished);
         previous_cpu_seconds_ = r.cpu_seconds;
         previous_wall_seconds_ = r.wall_seconds;
         std::size_t resumed = 0;
@@ -463,7 +461,6 @@ private:
     Progress snapshot_progress(std::chrono::steady_clock::time_point start) const {
         Progress p;
         p.realizations = parameters_.realizations;
-        p.realizations_done = done_.load();
         p.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         double work = 0.0;
         std::uint64_t collisions = 0;
@@ -471,11 +468,16 @@ private:
             const double t = live_[k].time.load(std::memory_order_relaxed);
             collisions += live_[k].collisions.load(std::memory_order_relaxed);
             p.latest_time = std::max(p.latest_time, t);
+            // A realization stopped by a signal has finished running but is not done: the
+            // last line of a stopped run must not read "1/1 100.0% ETA 0 s". (outputs_[k] is
+            // written before finished_[k] is set, so it is complete once that reads true.)
+            const bool done = finished_[k].load() && outputs_[k].status != RealizationStatus::interrupted;
+            p.realizations_done += done ? 1 : 0;
             // Collisions up to time t grow roughly as t^(2/3) once the gas
             // clusters, so (t / t_max)^(2/3) estimates the share of work done.
-            work += finished_[k].load() ? 1.0 : std::pow(std::min(1.0, t / parameters_.t_max), 2.0 / 3.0);
+            work += done ? 1.0 : std::pow(std::min(1.0, t / parameters_.t_max), 2.0 / 3.0);
         }
-        p.fraction_done = std::min(1.0, std::max(work, static_cast<double>(p.realizations_done)) / parameters_.realizations);
+        p.fraction_done = std::min(1.0, work / parameters_.realizations);
         p.collisions_per_second = p.elapsed_seconds > 0 ? static_cast<double>(collisions) / p.elapsed_seconds : 0.0;
         p.eta_seconds = p.fraction_done > 0.01 ? p.elapsed_seconds * (1.0 - p.fraction_done) / p.fraction_done : -1.0;
         return p;
@@ -530,7 +532,6 @@ private:
     std::exception_ptr failure_;  // the first worker or checkpoint exception, guarded by progress_mutex_
     std::atomic<bool> abort_{false};  // raised on failure: every realization stops between two events
     std::atomic<std::int64_t> next_{0};
-    std::atomic<std::int64_t> done_{0};
     int threads_ = 1;
     int finished_workers_ = 0;
     std::mutex progress_mutex_;
