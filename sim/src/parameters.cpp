@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -65,6 +66,10 @@ void validate(const SimulationParameters& p) {
         throw InputError(fmt::format("realizations must be at least 1, got {}", p.realizations));
     if (p.first_realization < 0)
         throw InputError(fmt::format("first realization must be >= 0, got {}", p.first_realization));
+    // Stored as a signed 64-bit attribute (output.cpp): larger seeds would
+    // read back negative everywhere but in shockgas's own reader.
+    if (p.seed > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+        throw InputError(fmt::format("seed must be below 2^63, got {}", p.seed));
     if (p.threads < 0) throw InputError(fmt::format("threads must be >= 0, got {}", p.threads));
     // At most 10^7 bins: already 10^-6 of the range per bin, finer than the
     // N R samples of any run can fill (the paper's Fig. 4 has 2·10^7), and a

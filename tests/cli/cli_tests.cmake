@@ -294,3 +294,30 @@ shockgas_cli_error(faults_memory_refused
 shockgas_cli_error(max_memory_not_a_size "--max-memory '3X' is not a size" -N 100 --max-memory 3X)
 shockgas_cli_error(checkpoint_interval_negative "checkpoint-interval" -N 10 --checkpoint-interval -1)
 shockgas_cli_error(checkpoint_unwritable "directory .* does not exist" -N 10 --checkpoint "${_cli_dir}/absent_dir/c.h5")
+
+# ---------------------------------------------------------------------------
+# Outputs never destroy inputs or other files; bad and damaged inputs are
+# refused with one line (defects found by probing commit 115c768). Kept in one
+# block at the end of this file.
+# ---------------------------------------------------------------------------
+# Seeds: CLI11 read 2^64 and 10^23 as 2^64 - 1 (three seeds, one run), and
+# seeds from 2^63 on were stored (signed) as negative numbers.
+shockgas_cli_error(seed_two_to_64 "--seed: must be an integer from 0 to 2\\^63 - 1 = 9223372036854775807, not '18446744073709551616'"
+                   -N 10 --seed 18446744073709551616)
+shockgas_cli_error(seed_huge "--seed: must be an integer from 0 to 2\\^63 - 1" -N 10 --seed 99999999999999999999999)
+shockgas_cli_error(seed_two_to_63 "--seed: must be an integer from 0 to 2\\^63 - 1" -N 10 --seed 9223372036854775808)
+shockgas_cli_error(seed_not_a_number "--seed: must be an integer" -N 10 --seed 12abc)
+# Intervals: nan passed CLI11's NonNegativeNumber.
+shockgas_cli_error(progress_interval_nan "--progress-interval: must be a finite number >= 0, not 'nan'"
+                   -N 10 --progress-interval nan)
+shockgas_cli_error(progress_interval_inf "--progress-interval: must be a finite number >= 0" -N 10 --progress-interval inf)
+shockgas_cli_error(checkpoint_interval_nan "--checkpoint-interval: must be a finite number >= 0"
+                   -N 10 --checkpoint-interval nan)
+# A config file's [section] header said "unknown option 'section.++'".
+file(WRITE "${_cli_dir}/config_section.toml" "[run]\nparticles = 10\n")
+file(WRITE "${_cli_dir}/config_dotted_key.toml" "particles = 10\nrun.t-max = 10\n")
+shockgas_cli_error(config_section
+                   "^shockgas-sim: error: section '\\[run\\]' in .*config_section.toml: sections are not supported \\(write every option at the top level\\)$"
+                   --config "${_cli_dir}/config_section.toml")
+shockgas_cli_error(config_dotted_key "unknown option 'run.t-max' in .*config_dotted_key.toml: sections and dotted keys are not supported"
+                   --config "${_cli_dir}/config_dotted_key.toml")

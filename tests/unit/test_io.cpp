@@ -283,3 +283,17 @@ TEST(H5, NumberedGroupsReadInNumericOrderPaddedOrNot) {
 }
 
 }  // namespace
+
+namespace {
+
+// Seeds are stored as signed 64-bit attributes: one from 2^63 on would read
+// back negative (h5py, h5dump), so the parameters refuse it.
+TEST(Parameters, SeedsFromTwoToTheSixtyThreeOnAreRefused) {
+    shockgas::SimulationParameters p;
+    p.seed = (std::uint64_t{1} << 63) - 1;
+    EXPECT_NO_THROW(shockgas::validate(p));
+    p.seed = std::uint64_t{1} << 63;
+    EXPECT_THROW(shockgas::validate(p), InputError);
+}
+
+}  // namespace

@@ -62,6 +62,17 @@ inline std::string unknown_key_message(const CLI::App& app, const std::string& c
     collect_names(app, long_names, short_names);
     const CLI::Option* config = app.get_config_ptr();
     const std::string file = config != nullptr && config->count() > 0 ? config->as<std::string>() : "the config file";
+    // CLI11 reads "[name]" as entering subcommand "name" ("name.++") and a
+    // dotted key a.b as key b of section a; no program here has
+    // configurable subcommands, so both are sections it does not have.
+    const std::string opened = ".++";
+    if (key.size() > opened.size() && key.compare(key.size() - opened.size(), opened.size(), opened) == 0)
+        return fmt::format("section '[{}]' in {}: sections are not supported (write every option at the top level)",
+                           key.substr(0, key.size() - opened.size()), file);
+    if (key.find('.') != std::string::npos)
+        return fmt::format("unknown option '{}' in {}: sections and dotted keys are not supported (write every "
+                           "option at the top level)",
+                           key, file);
     const std::string nearest = closest_name(key, long_names);
     return nearest.empty() ? fmt::format("unknown option '{}' in {}", key, file)
                            : fmt::format("unknown option '{}' in {} (did you mean {}?)", key, file, nearest);
