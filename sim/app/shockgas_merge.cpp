@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-merge"); status >= 0) return status;
     return shockgas::cli::run("shockgas-merge", [&] {
         shockgas::h5::check_writable(output);
+        // The merged file is renamed over the output: a part named as the
+        // output would be replaced by the merge.
+        shockgas::h5::check_not_an_input(output, inputs);
         std::vector<shockgas::OutputFile> parts;
         for (const auto& input : inputs) {
             parts.push_back(shockgas::read_output(input));

@@ -206,6 +206,7 @@ int main(int argc, char** argv) {
             p.snapshot_times.insert(p.snapshot_times.end(), every.begin(), every.end());
         }
         shockgas::InitialCondition initial;
+        const std::string init_given = p.init_file;  // as the user wrote it, for messages
         if (!p.init_file.empty()) {
             initial = shockgas::read_initial_condition(p.init_file);
             if (app.count("--particles") > 0 && p.particles != initial.size())
@@ -221,7 +222,10 @@ int main(int argc, char** argv) {
             p.init_file_sha256 = shockgas::file_sha256(p.init_file);
         }
         shockgas::validate(p);
-        if (session.is_root()) shockgas::h5::check_writable(output);
+        if (session.is_root()) {
+            shockgas::h5::check_writable(output);
+            shockgas::h5::check_not_an_input(output, {init_given});
+        }
         shockgas::SimulationParameters mine = session.share(p);
 
         // Each MPI rank keeps its own checkpoint of its own block.
@@ -235,12 +239,22 @@ int main(int argc, char** argv) {
             checkpoint.other_blocks = shockgas::other_block_checkpoints(base_checkpoint, checkpoint_file);
             checkpoint.gathered_from = &gathered_from;
         }
+        // Only checkpoints are removed (remove_checkpoints); a file that took a
+        // checkpoint's name during the run is kept, and said so.
+        const auto remove_own_checkpoints = [&] {
+            for (const auto& kept : shockgas::remove_checkpoints(checkpoint.path))
+                checkpoint.note(fmt::format("kept '{}': it is not a shockgas checkpoint", kept));
+        };
         const auto remove_gathered = [&] {
             shockgas::remove_gathered_checkpoints(gathered_from, base_checkpoint, session.ranks());
         };
         if (checkpoint.interval_seconds > 0.0 || checkpoint.resume) {
             checkpoint.path = checkpoint_file;
             shockgas::h5::check_writable(checkpoint.path);
+            // Saving renames over the checkpoint's files and the end of the
+            // run removes them: none may be the output, the init file, or a
+            // file that is not a checkpoint.
+            shockgas::check_checkpoint_path(checkpoint.path, {{"output", output}, {"init file", init_given}});
         }
         const bool terminal = isatty(STDERR_FILENO) != 0;
         checkpoint.note = [&session, terminal](const std::string& text) {
@@ -317,7 +331,7 @@ int main(int argc, char** argv) {
         const auto joined = session.reduce(mine, std::move(mine_result));
         if (!joined) {
             if (!mine_interrupted && !checkpoint.path.empty()) {
-                shockgas::remove_checkpoints(checkpoint.path);
+                remove_own_checkpoints();
                 remove_gathered();
             }
             return 0;
@@ -328,7 +342,7 @@ int main(int argc, char** argv) {
         session.record_provenance(output);
         // The output is safely in place: the checkpoint has served its purpose.
         if (result.status != "interrupted" && !checkpoint.path.empty()) {
-            shockgas::remove_checkpoints(checkpoint.path);
+            remove_own_checkpoints();
             remove_gathered();
         }
         if (!quiet) print_table(result);

@@ -27,9 +27,97 @@ void save_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
     write_checkpoint(path, checkpoint, previous_checkpoint_path(path));
 }
 
-void remove_checkpoints(const std::string& path) {
-    std::remove(path.c_str());
-    std::remove(previous_checkpoint_path(path).c_str());
+namespace {
+
+// Whether what is at path may be treated as a checkpoint generation:
+// nothing, a shockgas checkpoint, or an HDF5 file too damaged to tell (the
+// damaged checkpoint --resume passes over). Anything else is another file
+// that merely has the checkpoint's name.
+bool may_be_checkpoint(const h5::Probe& found) {
+    using Kind = h5::Probe::Kind;
+    return found.kind == Kind::absent || found.kind == Kind::damaged ||
+           (found.kind == Kind::hdf5 && found.holds("checkpoint"));
+}
+
+// A lock file holds the process id of its holder, or nothing.
+bool may_be_lock(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(path, error);
+    if (error || !fs::exists(status)) return true;
+    if (!fs::is_regular_file(status) || fs::file_size(path, error) > 32 || error) return false;
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (file == nullptr) return false;
+    char text[33] = {};
+    const std::size_t length = std::fread(text, 1, 32, file);
+    std::fclose(file);
+    return std::string(text, length).find_first_not_of("0123456789\n") == std::string::npos;
+}
+
+// Whether a and b name one file: compared as files where both exist (another
+// spelling, a hard link), else by their absolute, normalized names (a file
+// about to be written by both).
+bool same_file(const std::string& a, const std::string& b) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    if (fs::exists(a, error) && fs::exists(b, error)) return fs::equivalent(a, b, error);
+    const auto name = [](const std::string& path) {
+        // Absolute first: weakly_canonical leaves a relative name whose
+        // first component does not exist relative.
+        std::error_code ignored;
+        const fs::path absolute = fs::absolute(path, ignored).lexically_normal();
+        const fs::path canonical = fs::weakly_canonical(absolute, ignored);
+        return ignored ? absolute : canonical;
+    };
+    return name(a) == name(b);
+}
+
+}  // namespace
+
+std::vector<std::string> remove_checkpoints(const std::string& path) {
+    std::vector<std::string> kept;
+    for (const std::string& file : {path, previous_checkpoint_path(path)}) {
+        const h5::Probe found = h5::probe(file);
+        if (found.kind == h5::Probe::Kind::absent) continue;
+        if (may_be_checkpoint(found))
+            std::remove(file.c_str());
+        else
+            kept.push_back(file);
+    }
+    return kept;
+}
+
+void check_checkpoint_path(const std::string& path, const std::vector<std::pair<std::string, std::string>>& others) {
+    // Every file the checkpoint writes or removes: both generations and the
+    // lock. Each would destroy the run's output or init file of that name.
+    const std::string previous = previous_checkpoint_path(path), lock = CheckpointLock::lock_path(path);
+    for (const auto& [role, other] : others) {
+        if (other.empty()) continue;
+        std::string how;
+        if (same_file(path, other))
+            how = "is";
+        else if (same_file(previous, other))
+            how = fmt::format("keeps its older generation in '{}', which is", previous);
+        else if (same_file(lock, other))
+            how = fmt::format("is locked through '{}', which is", lock);
+        if (!how.empty())
+            throw InputError(fmt::format("checkpoint '{}' {} the {} '{}': give --checkpoint another path", path, how,
+                                         role, other));
+    }
+    for (const std::string& file : {path, previous}) {
+        const h5::Probe found = h5::probe(file);
+        if (may_be_checkpoint(found)) continue;
+        const char* what = found.kind == h5::Probe::Kind::not_regular ? "not a regular file"
+                           : found.kind == h5::Probe::Kind::not_hdf5  ? "not an HDF5 file"
+                                                                      : "an HDF5 file without /checkpoint";
+        throw InputError(fmt::format("'{}' exists and is not a shockgas checkpoint ({}): the checkpoint would "
+                                     "overwrite it; give --checkpoint another path",
+                                     file, what));
+    }
+    if (!may_be_lock(lock))
+        throw InputError(fmt::format("'{}' exists and is not a checkpoint lock: the checkpoint would overwrite it; "
+                                     "give --checkpoint another path",
+                                     lock));
 }
 
 namespace {
@@ -230,7 +318,7 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
     return out;
 }
 
-CheckpointLock::CheckpointLock(const std::string& checkpoint_path) : lock_path_(checkpoint_path + ".lock") {
+CheckpointLock::CheckpointLock(const std::string& checkpoint_path) : lock_path_(lock_path(checkpoint_path)) {
     // Open, lock, and check that the locked file is still the one at the
     // path: a holder that finished may have removed it between our open and
     // our lock, and a lock on a removed file protects nothing.

@@ -621,6 +621,52 @@ void check_writable(const std::string& path) {
         throw Error(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
 }
 
+bool Probe::holds(const std::string& name) const {
+    return std::find(root_names.begin(), root_names.end(), name) != root_names.end();
+}
+
+Probe probe(const std::string& path) {
+    namespace fs = std::filesystem;
+    Probe result;
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(path, error);
+    if (error || !fs::exists(status)) return result;
+    if (!fs::is_regular_file(status)) {
+        result.kind = Probe::Kind::not_regular;
+        return result;
+    }
+    const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    const Handle root(file.valid() ? H5Gopen2(file.id(), "/", H5P_DEFAULT) : H5I_INVALID_HID, H5Gclose);
+    if (!root.valid()) {
+        // The signature HDF5 writes at the start of every file without a user
+        // block, as shockgas's are: with it, a file HDF5 cannot open is a
+        // damaged HDF5 file; without it, it was never one of ours.
+        static constexpr char signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+        char head[8] = {};
+        std::size_t got = 0;
+        if (std::FILE* stream = std::fopen(path.c_str(), "rb")) {
+            got = std::fread(head, 1, sizeof head, stream);
+            std::fclose(stream);
+        }
+        result.kind = got == sizeof head && std::memcmp(head, signature, sizeof head) == 0 ? Probe::Kind::damaged
+                                                                                          : Probe::Kind::not_hdf5;
+        return result;
+    }
+    result.kind = Probe::Kind::damaged;
+    std::vector<std::string> names;
+    const herr_t listed = H5Literate(
+        root.id(), H5_INDEX_NAME, H5_ITER_INC, nullptr,
+        [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+            static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+            return 0;
+        },
+        &names);
+    if (listed < 0) return result;
+    result.kind = Probe::Kind::hdf5;
+    result.root_names = std::move(names);
+    return result;
+}
+
 void check_not_an_input(const std::string& output, const std::vector<std::string>& inputs) {
     namespace fs = std::filesystem;
     std::error_code error;

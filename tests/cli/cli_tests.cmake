@@ -300,6 +300,8 @@ shockgas_cli_error(checkpoint_unwritable "directory .* does not exist" -N 10 --c
 # refused with one line (defects found by probing commit 115c768). Kept in one
 # block at the end of this file.
 # ---------------------------------------------------------------------------
+set(_merge $<TARGET_FILE:shockgas-merge>)
+set(_dump $<TARGET_FILE:shockgas-dump>)
 # Seeds: CLI11 read 2^64 and 10^23 as 2^64 - 1 (three seeds, one run), and
 # seeds from 2^63 on were stored (signed) as negative numbers.
 shockgas_cli_error(seed_two_to_64 "--seed: must be an integer from 0 to 2\\^63 - 1 = 9223372036854775807, not '18446744073709551616'"
@@ -321,3 +323,14 @@ shockgas_cli_error(config_section
                    --config "${_cli_dir}/config_section.toml")
 shockgas_cli_error(config_dotted_key "unknown option 'run.t-max' in .*config_dotted_key.toml: sections and dotted keys are not supported"
                    --config "${_cli_dir}/config_dotted_key.toml")
+# --checkpoint naming the output: the run ended "complete" and left no output.
+shockgas_cli_error(checkpoint_is_output "checkpoint '.*checkpoint_is_output.h5' is the output '.*checkpoint_is_output.h5'"
+                   -N 10 -t 1 --checkpoint "${_cli_dir}/checkpoint_is_output.h5")
+# Refusals that must also leave the file at stake unchanged, and dump's outputs.
+foreach(_case IN ITEMS checkpoint_not_a_checkpoint checkpoint_is_init output_is_init checkpoint_removed
+                      merge_output_is_part)
+  add_test(NAME cli.io_safety.${_case}
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/io_safety_test.sh ${_case} "${_cli_dir}/io_safety" ${_sim} ${_merge}
+                   ${_dump} "${SHOCKGAS_PYTHON}")
+  set_tests_properties(cli.io_safety.${_case} PROPERTIES LABELS cli TIMEOUT 120)
+endforeach()

@@ -126,6 +126,79 @@ TEST(CheckpointLock, ASecondHolderIsRefusedUntilTheFirstLetsGo) {
     EXPECT_NO_THROW(shockgas::CheckpointLock again(path));
 }
 
+// shockgas-sim used to remove whatever had the checkpoint's name when a run
+// ended: an output given as --checkpoint, or the init file. Now only
+// checkpoints go (and HDF5 files too damaged to tell, which is what --resume
+// passes over); anything else is kept and returned.
+TEST(CheckpointFiles, OnlyCheckpointsAreRemoved) {
+    namespace fs = std::filesystem;
+    const SimulationParameters p = small_run();
+    const std::string path = "removal.checkpoint", previous = shockgas::previous_checkpoint_path(path);
+    fs::remove(path);
+    fs::remove(previous);
+    write_stopped_checkpoint(p, path);
+    shockgas::h5::write_atomically(previous, [](shockgas::h5::Group& root) { root.set_attribute("a", 1.0); });
+    EXPECT_EQ(shockgas::remove_checkpoints(path), std::vector<std::string>{previous});
+    EXPECT_FALSE(fs::exists(path)) << "the checkpoint is removed";
+    EXPECT_TRUE(fs::exists(previous)) << "an HDF5 file without /checkpoint is kept";
+
+    std::ofstream(path) << "notes, not a checkpoint\n";
+    write_stopped_checkpoint(p, "removal.damaged");
+    fs::rename("removal.damaged", previous);
+    fs::resize_file(previous, fs::file_size(previous) / 2);  // truncated: HDF5 cannot open it
+    EXPECT_EQ(shockgas::remove_checkpoints(path), std::vector<std::string>{path});
+    EXPECT_TRUE(fs::exists(path)) << "a text file is kept";
+    EXPECT_FALSE(fs::exists(previous)) << "a damaged checkpoint is removed";
+    fs::remove(path);
+}
+
+// Refused before a run starts: checkpoint files that are the run's output or
+// init file (saving renames over them, the end removes them), and files at
+// the checkpoint's names that are not checkpoints.
+TEST(CheckpointFiles, APathThatWouldDestroyAnotherFileIsRefused) {
+    namespace fs = std::filesystem;
+    const auto refusal = [](const std::string& path, const std::vector<std::pair<std::string, std::string>>& others) {
+        try {
+            shockgas::check_checkpoint_path(path, others);
+        } catch (const shockgas::InputError& error) {
+            return std::string(error.what());
+        }
+        return std::string();
+    };
+    const std::string path = "paths.checkpoint", previous = shockgas::previous_checkpoint_path(path),
+                      lock = path + ".lock";
+    for (const auto& file : {path, previous, lock}) fs::remove(file);
+    // Files not yet there are compared by name, existing ones as files.
+    EXPECT_NE(refusal(path, {{"output", path}}).find("checkpoint 'paths.checkpoint' is the output 'paths.checkpoint'"),
+              std::string::npos);
+    EXPECT_NE(refusal(path, {{"output", "./" + previous}}).find("keeps its older generation in 'paths.checkpoint.previous', which is the output"),
+              std::string::npos);
+    EXPECT_NE(refusal(path, {{"init file", fs::absolute(lock).string()}}).find("is locked through"), std::string::npos);
+    EXPECT_EQ(refusal(path, {{"output", "other.h5"}, {"init file", ""}}), "");
+
+    shockgas::h5::write_atomically(path, [](shockgas::h5::Group& root) { root.set_attribute("a", 1.0); });
+    EXPECT_NE(refusal(path, {}).find("is not a shockgas checkpoint (an HDF5 file without /checkpoint)"),
+              std::string::npos);
+    fs::remove(path);
+    std::ofstream(previous) << "text\n";
+    EXPECT_NE(refusal(path, {}).find("'paths.checkpoint.previous' exists and is not a shockgas checkpoint (not an "
+                                     "HDF5 file)"),
+              std::string::npos);
+    fs::remove(previous);
+    fs::create_directory(previous);
+    EXPECT_NE(refusal(path, {}).find("(not a regular file)"), std::string::npos);
+    fs::remove(previous);
+    std::ofstream(lock) << "a diary\n";
+    EXPECT_NE(refusal(path, {}).find("is not a checkpoint lock"), std::string::npos);
+    std::ofstream(lock) << "4242\n";  // a lock left by a killed run
+    write_stopped_checkpoint(small_run(), path);
+    EXPECT_EQ(refusal(path, {{"output", "paths.h5"}}), "") << "a checkpoint and a lock are what belong there";
+    fs::resize_file(path, fs::file_size(path) / 2);
+    EXPECT_EQ(refusal(path, {}), "") << "a damaged checkpoint is for --resume to pass over, not a refusal";
+    shockgas::remove_checkpoints(path);
+    fs::remove(lock);
+}
+
 // A full disk (ENOSPC), made real by pointing the temporary file at
 // /dev/full, whose every write fails so: one error naming the target and the
 // system's cause, the temporary file removed, no target left.

@@ -14,6 +14,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shockgas/output.hpp"
@@ -68,8 +69,17 @@ std::vector<std::string> other_block_checkpoints(const std::string& base, const 
 // current job's own ranks, which each rank removes itself.
 void remove_gathered_checkpoints(const std::vector<std::string>& sources, const std::string& base, int ranks);
 
-// Removes both generations (the output they served is safely written).
-void remove_checkpoints(const std::string& path);
+// Removes both generations (the output they served is safely written), each
+// only if it is a shockgas checkpoint or an HDF5 file too damaged to tell:
+// never another file that has the checkpoint's name. Returns those kept.
+std::vector<std::string> remove_checkpoints(const std::string& path);
+
+// Before a run uses the checkpoint at path: throws InputError if one of its
+// files (either generation, the lock) is one of `others` ({role, path}, such
+// as {"output", "run.h5"}; empty paths are skipped), or if a file already
+// there is not a checkpoint (or lock): saving would overwrite it and the end
+// of the run would remove it.
+void check_checkpoint_path(const std::string& path, const std::vector<std::pair<std::string, std::string>>& others);
 
 // An exclusive lock on the checkpoint at path, held while the object lives
 // (flock on PATH.lock, released by the kernel if the process dies). Throws
@@ -78,6 +88,7 @@ class CheckpointLock {
 public:
     explicit CheckpointLock(const std::string& checkpoint_path);
     ~CheckpointLock();
+    static std::string lock_path(const std::string& checkpoint_path) { return checkpoint_path + ".lock"; }
     CheckpointLock(const CheckpointLock&) = delete;
     CheckpointLock& operator=(const CheckpointLock&) = delete;
 

@@ -184,6 +184,24 @@ void check_writable(const std::string& path);
 // destroy an input. Inputs that do not exist are skipped.
 void check_not_an_input(const std::string& output, const std::vector<std::string>& inputs);
 
+// What is at a path, found by opening it without reading any data
+// (File::open_read reads every dataset to verify it, which is the right cost
+// for a file about to be used, not for deciding whether a file may be
+// replaced or removed).
+struct Probe {
+    enum class Kind {
+        absent,       // nothing at the path
+        not_regular,  // a directory, a device, a FIFO or a symbolic link
+        not_hdf5,     // a regular file that does not start with the HDF5 signature
+        damaged,      // the HDF5 signature, but HDF5 cannot open it or list its root (truncated, damaged)
+        hdf5,         // an HDF5 file whose root could be listed
+    };
+    Kind kind = Kind::absent;
+    std::vector<std::string> root_names;  // kind hdf5: the names at the file's root
+    bool holds(const std::string& name) const;
+};
+Probe probe(const std::string& path);
+
 [[noreturn]] void rethrow_write_failure(const std::string& target, const Error& error);
 
 template <typename Fill>
