@@ -246,7 +246,8 @@ Group Group::open_group(const std::string& name) const {
 std::vector<std::string> Group::numbered_children() const {
     std::vector<std::pair<unsigned long long, std::string>> numbered;
     for (const auto& name : children()) {
-        if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos)
+        // At most 19 digits: std::stoull would throw out_of_range on more.
+        if (name.empty() || name.size() > 19 || name.find_first_not_of("0123456789") != std::string::npos)
             throw Error(fmt::format("group {} holds '{}' where numbered groups were expected", where(""), name));
         numbered.emplace_back(std::stoull(name), name);
     }

@@ -1,5 +1,7 @@
 #include "shockgas/output.hpp"
 
+#include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include <fmt/format.h>
@@ -146,6 +148,20 @@ void write_output(const std::string& path, const SimulationParameters& parameter
     h5::write_atomically(path, [&](h5::Group& root) { write_result(root, parameters, result); });
 }
 
+namespace {
+
+// Datasets of one file must agree in shape before any is indexed by
+// another's: a damaged or hand-edited file with one dataset shorter than its
+// neighbours would otherwise be read beyond its end (garbage numbers).
+void expect_values(const std::string& file, const std::string& dataset, std::size_t got, std::size_t expected,
+                   const std::string& because) {
+    if (got != expected)
+        throw h5::Error(fmt::format("'{}' is inconsistent: dataset {} has {} values, expected {} ({})", file, dataset,
+                                    got, expected, because));
+}
+
+}  // namespace
+
 TimeSeries read_timeseries(const std::string& path) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
@@ -160,38 +176,63 @@ TimeSeries read_timeseries(const std::string& path) {
     out.collisions_per_particle = series.read_doubles("collisions_per_particle");
     out.clusters = series.read_doubles("clusters");
     out.kinetic_energy = series.read_doubles("kinetic_energy");
+    // at() indexes every table as the temperature's realizations x times.
+    const std::string shape = fmt::format("{} realizations x {} times", dims[0], dims[1]);
+    expect_values(path, "/timeseries/collisions_per_particle", out.collisions_per_particle.size(),
+                  out.temperature.size(), shape);
+    expect_values(path, "/timeseries/clusters", out.clusters.size(), out.temperature.size(), shape);
+    expect_values(path, "/timeseries/kinetic_energy", out.kinetic_energy.size(), out.temperature.size(), shape);
     out.status = root.attribute_string("status");
     return out;
 }
 
 namespace {
 
-std::vector<double> split_times(const std::string& text) {
+// The text attribute `name` ("10,100,1000", as write_parameter_attributes
+// writes it) as numbers; each item must be a whole finite number, and a
+// malformed one is named with its file (std::stod would say only "stod").
+std::vector<double> split_times(const h5::Group& root, const std::string& file, const std::string& name) {
+    const std::string text = root.attribute_string(name);
     std::vector<double> values;
     std::size_t start = 0;
     while (start < text.size()) {
         const std::size_t end = std::min(text.find(',', start), text.size());
-        values.push_back(std::stod(text.substr(start, end - start)));
+        const std::string item = text.substr(start, end - start);
+        char* stop = nullptr;
+        const double value = std::strtod(item.c_str(), &stop);
+        if (item.empty() || stop != item.c_str() + item.size() || !std::isfinite(value))
+            throw h5::Error(fmt::format("'{}': root attribute {} = '{}' is not a comma-separated list of times ('{}' "
+                                        "is not a number)",
+                                        file, name, text, item));
+        values.push_back(value);
         start = end + 1;
     }
     return values;
 }
 
-ClusterState read_state(const h5::Group& group) {
+}  // namespace
+
+ClusterState read_cluster_state(const h5::Group& group, const std::string& file) {
     ClusterState state;
     state.time = group.attribute_double("time");
     state.position = group.read_doubles("position");
     state.velocity = group.read_doubles("velocity");
     state.mass = group.read_doubles("mass");
     state.first_particle = group.read_integers("first_particle");
+    // One value per cluster in each: every reader walks them together.
+    const std::string because = fmt::format("one per cluster, as {}/position", group.path());
+    expect_values(file, group.path() + "/velocity", state.velocity.size(), state.position.size(), because);
+    expect_values(file, group.path() + "/mass", state.mass.size(), state.position.size(), because);
+    expect_values(file, group.path() + "/first_particle", state.first_particle.size(), state.position.size(), because);
     return state;
 }
 
-}  // namespace
-
 namespace {
 
-OutputFile read_result(const h5::Group& root) {
+// The output schema from root, checked for consistency: every dataset that
+// is indexed by realization, time, cluster or bin has the size the others
+// give it, so no reader of the result goes beyond a dataset's end.
+OutputFile read_result(const h5::Group& root, const std::string& file) {
     OutputFile out;
     SimulationParameters& p = out.parameters;
     p.particles = root.attribute_integer("particles");
@@ -204,12 +245,16 @@ OutputFile read_result(const h5::Group& root) {
     p.collapse.stall_events_min = static_cast<std::uint64_t>(root.attribute_integer("stall_events_min"));
     p.t_max = root.attribute_double("t_max");
     p.samples_per_decade = static_cast<int>(root.attribute_integer("samples_per_decade"));
-    p.sample_times = split_times(root.attribute_string("sample_times"));
-    p.snapshot_times = split_times(root.attribute_string("snapshot_times"));
-    p.histogram_times = split_times(root.attribute_string("histogram_times"));
+    p.sample_times = split_times(root, file, "sample_times");
+    p.snapshot_times = split_times(root, file, "snapshot_times");
+    p.histogram_times = split_times(root, file, "histogram_times");
     p.histogram_bins = static_cast<int>(root.attribute_integer("histogram_bins"));
     p.histogram_range = root.attribute_double("histogram_range");
-    p.realizations = static_cast<int>(root.attribute_integer("realizations"));
+    const std::int64_t realizations = root.attribute_integer("realizations");
+    if (realizations < 0 || realizations > std::numeric_limits<int>::max())
+        throw h5::Error(fmt::format("'{}': root attribute realizations = {} is not a number of realizations", file,
+                                    realizations));
+    p.realizations = static_cast<int>(realizations);
     p.first_realization = root.has_attribute("first_realization") ? root.attribute_integer("first_realization") : 0;
     p.seed = static_cast<std::uint64_t>(root.attribute_integer("seed"));
     p.init_file = root.attribute_string("init_file");
@@ -240,16 +285,38 @@ OutputFile read_result(const h5::Group& root) {
     r.engine_switch_time = series.has("engine_switch_time")
                                ? series.read_doubles("engine_switch_time")
                                : std::vector<double>(r.realization_status.size(), std::numeric_limits<double>::quiet_NaN());
+    const auto R = static_cast<std::size_t>(realizations);
+    const std::string rows = fmt::format("{} realizations x {} times", R, r.times.size());
+    expect_values(file, "/timeseries/temperature", r.temperature.size(), R * r.times.size(), rows);
+    expect_values(file, "/timeseries/collisions_per_particle", r.collisions_per_particle.size(), R * r.times.size(),
+                  rows);
+    expect_values(file, "/timeseries/clusters", r.clusters.size(), R * r.times.size(), rows);
+    expect_values(file, "/timeseries/kinetic_energy", r.kinetic_energy.size(), R * r.times.size(), rows);
+    const std::string one_each = fmt::format("one per realization, {} realizations", R);
+    expect_values(file, "/timeseries/realization_status", r.realization_status.size(), R, one_each);
+    expect_values(file, "/timeseries/engine_switch_time", r.engine_switch_time.size(), R, one_each);
+    const auto check_realization = [&](const std::string& where, std::int64_t k) {
+        if (k < 0 || k >= realizations)
+            throw h5::Error(fmt::format("'{}' is inconsistent: {} names realization {}, but the file has {}", file,
+                                        where, k, realizations));
+    };
     const auto snapshots = root.open_group("snapshots");
     // Groups are numbered (schemas 1-2: 0, 1, ...; schema 3 zero-padded): open them in numeric order.
     for (const auto& name : snapshots.numbered_children()) {
         const auto group = snapshots.open_group(name);
-        r.snapshots.push_back({group.attribute_integer("realization"), read_state(group)});
+        const std::int64_t realization = group.attribute_integer("realization");
+        check_realization(group.path(), realization);
+        r.snapshots.push_back({realization, read_cluster_state(group, file)});
     }
     const auto histograms = root.open_group("histograms");
     for (const auto& name : histograms.numbered_children()) {
         const auto group = histograms.open_group(name);
-        r.histograms.push_back({group.attribute_double("time"), group.read_doubles("edges"), group.read_doubles("counts")});
+        HistogramRecord record{group.attribute_double("time"), group.read_doubles("edges"), group.read_doubles("counts")};
+        // bins + 1 edges, and per realization the bins with under- and overflow.
+        expect_values(file, group.path() + "/counts", record.counts.size(), R * (record.edges.size() + 1),
+                      fmt::format("{} realizations x {} bins + 2, from {}/edges", R,
+                                  record.edges.empty() ? 0 : record.edges.size() - 1, group.path()));
+        r.histograms.push_back(std::move(record));
     }
     if (root.has("collapse")) {
         const auto collapse = root.open_group("collapse");
@@ -260,15 +327,22 @@ OutputFile read_result(const h5::Group& root) {
         const auto collisions = collapse.read_integers("collisions");
         const auto states = collapse.open_group("states");
         const auto state_names = states.numbered_children();
+        const std::string one_per_collapse = "one per collapse, as /collapse/time";
+        expect_values(file, "/collapse/realization", realization.size(), time.size(), one_per_collapse);
+        expect_values(file, "/collapse/cluster_mass", cluster_mass.size(), time.size(), one_per_collapse);
+        expect_values(file, "/collapse/relative_speed", relative_speed.size(), time.size(), one_per_collapse);
+        expect_values(file, "/collapse/collisions", collisions.size(), time.size(), one_per_collapse);
         if (state_names.size() != time.size())
-            throw h5::Error(fmt::format("/collapse has {} times but {} states", time.size(), state_names.size()));
+            throw h5::Error(fmt::format("'{}' is inconsistent: /collapse has {} times but {} states", file, time.size(),
+                                        state_names.size()));
         for (std::size_t c = 0; c < time.size(); ++c) {
             const auto group = states.open_group(state_names[c]);
+            check_realization("/collapse/realization", realization[c]);
             CollapseRecord record;
             record.realization = realization[c];
             record.report = {time[c], 0, cluster_mass[c], relative_speed[c], group.attribute_string("criterion")};
             record.collisions = static_cast<std::uint64_t>(collisions[c]);
-            record.state = read_state(group);
+            record.state = read_cluster_state(group, file);
             r.collapses.push_back(std::move(record));
         }
     }
@@ -279,7 +353,24 @@ OutputFile read_result(const h5::Group& root) {
 
 OutputFile read_output(const std::string& path) {
     const auto file = h5::File::open_read(path);
-    return read_result(file.root());
+    const auto root = file.root();
+    // A checkpoint holds the output schema too, but of a run in progress
+    // (realization_status 4): read as an output it would pass for a result.
+    if (root.has("checkpoint"))
+        throw InputError(fmt::format("'{}' is a shockgas-sim checkpoint (a run in progress), not an output: "
+                                     "continue the run with shockgas-sim --resume and the same options",
+                                     path));
+    OutputFile out = read_result(root, path);
+    const std::string& status = out.result.status;
+    if (status != "complete" && status != "collapsed" && status != "interrupted")
+        throw h5::Error(fmt::format("'{}': root attribute status = '{}' is none of complete, collapsed, interrupted",
+                                    path, status));
+    for (const std::int64_t code : out.result.realization_status)
+        if (code < 0 || code > static_cast<std::int64_t>(RealizationStatus::not_run))
+            throw h5::Error(fmt::format("'{}': /timeseries/realization_status holds {}, which is not a status of an "
+                                        "output (0 complete, 1 collapsed, 2 interrupted, 3 not run)",
+                                        path, code));
+    return out;
 }
 
 namespace {
@@ -330,6 +421,14 @@ std::string physics_signature(const SimulationParameters& p) {
 
 OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector<std::string>& names) {
     if (parts.empty()) throw InputError("merge: no input files");
+    // Only the statuses a finished run writes; anything else (a checkpoint's
+    // "checkpoint", a damaged attribute) must not come out as "complete".
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        const std::string& status = parts[i].result.status;
+        if (status != "complete" && status != "collapsed" && status != "interrupted")
+            throw InputError(fmt::format("merge: '{}' has status '{}', none of complete, collapsed, interrupted",
+                                         i < names.size() ? names[i] : std::to_string(i), status));
+    }
     OutputFile merged = parts.front();
     EnsembleResult& r = merged.result;
     const std::string signature = physics_signature(parts.front().parameters);
@@ -408,7 +507,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
     if (!root.has("checkpoint")) throw InputError(fmt::format("'{}' is not a shockgas checkpoint", path));
-    OutputFile partial = read_result(root);
+    OutputFile partial = read_result(root, path);
     Checkpoint out;
     out.parameters = std::move(partial.parameters);
     out.result = std::move(partial.result);

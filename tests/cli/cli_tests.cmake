@@ -326,11 +326,54 @@ shockgas_cli_error(config_dotted_key "unknown option 'run.t-max' in .*config_dot
 # --checkpoint naming the output: the run ended "complete" and left no output.
 shockgas_cli_error(checkpoint_is_output "checkpoint '.*checkpoint_is_output.h5' is the output '.*checkpoint_is_output.h5'"
                    -N 10 -t 1 --checkpoint "${_cli_dir}/checkpoint_is_output.h5")
+# shockgas-dump: a realization or snapshots the file does not have printed a
+# header alone with exit 0; the refusal leaves no output (it left an empty one).
+add_test(NAME cli.setup.dump_input
+         COMMAND ${_sim} -N 200 -t 10 -R 2 --sample-times 2 --snapshot-times 1,5 -q -o "${_cli_dir}/dump_input.h5")
+set_tests_properties(cli.setup.dump_input PROPERTIES FIXTURES_SETUP dump_input LABELS cli)
+shockgas_tool_error(dump_realization_beyond "^shockgas-dump: error: --realization 5: '.*dump_input.h5' has 2 realizations \\(0 to 1\\)$"
+                    ${_dump} snapshots "${_cli_dir}/dump_input.h5" --realization 5
+                    -o "${_cli_dir}/dump_realization_beyond.out.h5")
+shockgas_tool_error(dump_realization_negative "--realization must be >= 0"
+                    ${_dump} snapshots "${_cli_dir}/dump_input.h5" --realization -1
+                    -o "${_cli_dir}/dump_realization_negative.out.h5")
+shockgas_tool_error(dump_no_snapshots "^shockgas-dump: error: '.*one_realization.h5' has no snapshots"
+                    ${_dump} snapshots "${_cli_dir}/one_realization.h5" -o "${_cli_dir}/dump_no_snapshots.out.h5")
+# -o /dev/full: the full disk is an error (it exited 0). /dev/full itself is
+# not passed to expect_error.sh as the output, which it would remove.
+shockgas_tool_error(dump_full_disk "^shockgas-dump: error: cannot write '/dev/full': No space left on device$"
+                    ${_dump} snapshots "${_cli_dir}/dump_input.h5" -o /dev/full)
+set_tests_properties(cli.error.dump_realization_beyond cli.error.dump_realization_negative cli.error.dump_full_disk
+                     PROPERTIES FIXTURES_REQUIRED dump_input)
+set_tests_properties(cli.error.dump_no_snapshots PROPERTIES FIXTURES_REQUIRED analyze_inputs)
 # Refusals that must also leave the file at stake unchanged, and dump's outputs.
 foreach(_case IN ITEMS checkpoint_not_a_checkpoint checkpoint_is_init output_is_init checkpoint_removed
-                      merge_output_is_part)
+                      merge_output_is_part merge_checkpoint dump_output_is_input dump_outputs)
   add_test(NAME cli.io_safety.${_case}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/io_safety_test.sh ${_case} "${_cli_dir}/io_safety" ${_sim} ${_merge}
                    ${_dump} "${SHOCKGAS_PYTHON}")
   set_tests_properties(cli.io_safety.${_case} PROPERTIES LABELS cli TIMEOUT 120)
 endforeach()
+# Damaged or inconsistent files (h5py edits of a good run): one line naming the
+# file and the dataset or attribute, never numbers read beyond a dataset's end.
+if(SHOCKGAS_PYTHON)
+  add_test(NAME cli.setup.inconsistent_runs
+           COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/cli/make_inconsistent_runs.py
+                   "${_cli_dir}/dump_input.h5" "${_cli_dir}")
+  set_tests_properties(cli.setup.inconsistent_runs PROPERTIES FIXTURES_SETUP inconsistent_runs
+                       FIXTURES_REQUIRED dump_input LABELS cli)
+  shockgas_tool_error(dump_short_velocity
+                      "^shockgas-dump: error: '.*short_velocity.h5' is inconsistent: dataset /snapshots/0/velocity has [0-9]+ values, expected [0-9]+"
+                      ${_dump} snapshots "${_cli_dir}/short_velocity.h5" -o "${_cli_dir}/dump_short_velocity.out.h5")
+  shockgas_tool_error(merge_short_collisions
+                      "^shockgas-merge: error: '.*short_collisions.h5' is inconsistent: dataset /timeseries/collisions_per_particle has"
+                      ${_merge} "${_cli_dir}/short_collisions.h5" -o "${_cli_dir}/merge_short_collisions.out.h5")
+  shockgas_tool_error(merge_bad_sample_times
+                      "^shockgas-merge: error: '.*bad_sample_times.h5': root attribute sample_times = '2,abc' is not a comma-separated list of times"
+                      ${_merge} "${_cli_dir}/bad_sample_times.h5" -o "${_cli_dir}/merge_bad_sample_times.out.h5")
+  shockgas_tool_error(merge_unknown_status
+                      "^shockgas-merge: error: '.*unknown_status.h5': root attribute status = 'checkpoint' is none of complete, collapsed, interrupted$"
+                      ${_merge} "${_cli_dir}/unknown_status.h5" -o "${_cli_dir}/merge_unknown_status.out.h5")
+  set_tests_properties(cli.error.dump_short_velocity cli.error.merge_short_collisions cli.error.merge_bad_sample_times
+                       cli.error.merge_unknown_status PROPERTIES FIXTURES_REQUIRED inconsistent_runs)
+endif()

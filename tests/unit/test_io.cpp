@@ -1,4 +1,5 @@
 // The HDF5 layer, init files and the output schema.
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -285,6 +286,124 @@ TEST(H5, NumberedGroupsReadInNumericOrderPaddedOrNot) {
 }  // namespace
 
 namespace {
+
+// Rewrites one dataset (or a root attribute) of a file in place, as damage or
+// a hand edit would leave it: the readers must notice rather than index the
+// other datasets beyond its end.
+void rewrite_dataset(const std::string& file, const std::string& group, const std::string& name,
+                     const std::vector<double>& data) {
+    namespace h5 = shockgas::h5;
+    const h5::Handle handle(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+    ASSERT_TRUE(handle.valid()) << file;
+    h5::Group target(h5::Handle(H5Gopen2(handle.id(), group.c_str(), H5P_DEFAULT), H5Gclose), group);
+    ASSERT_GE(H5Ldelete(target.id(), name.c_str(), H5P_DEFAULT), 0) << group << "/" << name;
+    target.write(name, data);
+}
+
+void rewrite_root_attribute(const std::string& file, const std::string& name, const std::string& value) {
+    namespace h5 = shockgas::h5;
+    const h5::Handle handle(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+    ASSERT_TRUE(handle.valid()) << file;
+    h5::Group root(h5::Handle(H5Gopen2(handle.id(), "/", H5P_DEFAULT), H5Gclose), "/");
+    root.set_attribute(name, value);
+}
+
+template <typename Read>
+std::string read_error(Read&& read) {
+    try {
+        read();
+    } catch (const std::exception& error) {
+        return error.what();
+    }
+    return "(no error)";
+}
+
+// Found by probing: a snapshot whose velocity was shorter than its positions
+// printed heap garbage (1.89e+168), and a run whose collisions were shorter
+// than its times gave 1e-314. Every dataset indexed by another's size is
+// checked, and the error names the file and the dataset.
+TEST(Output, InconsistentDatasetsAreRefusedNamingFileAndDataset) {
+    shockgas::SimulationParameters p;
+    p.particles = 100;
+    p.t_max = 20;
+    p.realizations = 2;
+    p.snapshot_times = {5};
+    p.histogram_times = {10};
+    p.histogram_bins = 8;
+    const auto result = shockgas::run_ensemble(p, nullptr);
+    const auto good = temp_path("consistent.h5");
+    shockgas::write_output(good, p, result);
+    ASSERT_NO_THROW(shockgas::read_output(good));
+    const auto damaged = [&](const std::string& name) {
+        const auto path = temp_path(name);
+        fs::copy_file(good, path, fs::copy_options::overwrite_existing);
+        return path;
+    };
+    const auto expect_named = [](const std::string& message, const std::string& path, const std::string& what) {
+        EXPECT_NE(message.find("'" + path + "'"), std::string::npos) << message;
+        EXPECT_NE(message.find(what), std::string::npos) << message;
+    };
+
+    const auto short_velocity = damaged("short_velocity.h5");
+    rewrite_dataset(short_velocity, "/snapshots/0", "velocity", {0.5, -0.5});
+    expect_named(read_error([&] { shockgas::read_output(short_velocity); }), short_velocity,
+                 "dataset /snapshots/0/velocity has 2 values");
+
+    const auto short_collisions = damaged("short_collisions.h5");
+    rewrite_dataset(short_collisions, "/timeseries", "collisions_per_particle", {1.0, 2.0, 3.0});
+    for (const auto& message : {read_error([&] { shockgas::read_output(short_collisions); }),
+                                read_error([&] { shockgas::read_timeseries(short_collisions); })})
+        expect_named(message, short_collisions, "dataset /timeseries/collisions_per_particle has 3 values");
+
+    const auto short_status = damaged("short_status.h5");
+    rewrite_dataset(short_status, "/timeseries", "realization_status", {0.0});
+    expect_named(read_error([&] { shockgas::read_output(short_status); }), short_status,
+                 "/timeseries/realization_status has 1 values, expected 2");
+
+    const auto short_counts = damaged("short_counts.h5");
+    rewrite_dataset(short_counts, "/histograms/0", "counts", std::vector<double>(10, 1.0));
+    expect_named(read_error([&] { shockgas::read_output(short_counts); }), short_counts,
+                 "/histograms/0/counts has 10 values, expected 20");
+
+    // Found by probing: merge said only "error: stod".
+    const auto bad_times = damaged("bad_sample_times.h5");
+    rewrite_root_attribute(bad_times, "sample_times", "10,abc");
+    expect_named(read_error([&] { shockgas::read_output(bad_times); }), bad_times,
+                 "attribute sample_times = '10,abc' is not a comma-separated list of times ('abc' is not a number)");
+
+    const auto bad_status = damaged("bad_status.h5");
+    rewrite_root_attribute(bad_status, "status", "checkpoint");
+    expect_named(read_error([&] { shockgas::read_output(bad_status); }), bad_status,
+                 "status = 'checkpoint' is none of complete, collapsed, interrupted");
+}
+
+// Found by probing: shockgas-merge took a checkpoint (realization_status 4,
+// status "checkpoint") as a part and called the result "complete".
+TEST(Output, ACheckpointIsNoOutputAndAnUnknownStatusNeverMerges) {
+    shockgas::SimulationParameters p;
+    p.particles = 100;
+    p.t_max = 20;
+    p.realizations = 2;
+    const auto checkpoint = temp_path("a_run.checkpoint");
+    shockgas::CheckpointOptions options;
+    options.path = checkpoint;
+    options.interval_seconds = 0.0;
+    std::atomic<bool> stop{true};
+    shockgas::run_ensemble(p, nullptr, &stop, {}, options);
+    ASSERT_TRUE(fs::exists(checkpoint));
+    const std::string message = read_error([&] { shockgas::read_output(checkpoint); });
+    EXPECT_NE(message.find("is a shockgas-sim checkpoint (a run in progress), not an output"), std::string::npos)
+        << message;
+    EXPECT_THROW(shockgas::read_output(checkpoint), InputError);
+
+    const auto output = temp_path("merge_status.h5");
+    shockgas::write_output(output, p, shockgas::run_ensemble(p, nullptr));
+    auto part = shockgas::read_output(output);
+    part.result.status = "checkpoint";
+    const std::string merged = read_error([&] { shockgas::merge_outputs({part}, {output}); });
+    EXPECT_NE(merged.find("has status 'checkpoint', none of complete, collapsed, interrupted"), std::string::npos)
+        << merged;
+}
 
 // Seeds are stored as signed 64-bit attributes: one from 2^63 on would read
 // back negative (h5py, h5dump), so the parameters refuse it.

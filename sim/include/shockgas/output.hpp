@@ -47,7 +47,15 @@ struct OutputFile {
     EnsembleResult result;
     std::string version;  // provenance: git describe of the program that wrote it
 };
+// Refuses (InputError) a checkpoint, and (h5::Error, naming the file and
+// the dataset) a file whose datasets disagree in shape or whose statuses are
+// not an output's.
 OutputFile read_output(const std::string& path);
+
+// One stored ring state (a snapshot or a collapse state: time, position,
+// velocity, mass, first_particle) from its group; throws h5::Error naming
+// file and dataset if the four datasets do not have one value per cluster.
+ClusterState read_cluster_state(const h5::Group& group, const std::string& file);
 
 // Joins ensemble parts run with --first-realization k0, k0 + R0, ... into the
 // result a single run of all realizations gives (identical datasets). Throws
