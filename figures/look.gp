@@ -38,8 +38,11 @@ if (phifile ne '') {
     set ylabel 'Φ(z) = t^{-1/3} P(v, t)'
     set key top right
     set title 'velocity distribution, rescaled (one curve per histogram time)'
+    # One block per histogram time, each labelled; the file ends in two blank lines, which
+    # stats counts as one more (empty) block, so the labels give the count where they exist.
     stats phifile using 1 nooutput
-    plot for [b = 0:STATS_blocks - 1] phifile index b using 1:($2 > 0 ? $2 : 1/0) with linespoints \
+    blocks = words(labels) > 0 ? words(labels) : STATS_blocks
+    plot for [b = 0:blocks - 1] phifile index b using 1:($2 > 0 ? $2 : 1/0) with linespoints \
          lt (b % 7) + 1 pt 7 ps 0.4 title word(labels, b + 1)
     unset multiplot
 }

@@ -188,12 +188,13 @@ set_tests_properties(cli.passthrough_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "complete \\(passthrough engine")
 
 # A run stopped by a signal: its last progress line must not count the stopped
-# realization as done ("1/1 100.0% ETA 0 s", as it did until 2026-11-26).
+# realization as done ("1/1 100.0% ETA 0 s", as it did until 2026-11-26). Whether a
+# line follows the stop depends on the interval (a loaded machine may print none).
 add_test(NAME cli.progress_after_interrupt
          COMMAND bash -c "timeout -s INT 2 \"$0\" -N 100 -t 1e300 -R 1 -q -j 1 --progress-interval 1 -o \"$1\" 2>&1; true"
                  ${_sim} "${_cli_dir}/progress_interrupt.h5")
 set_tests_properties(cli.progress_after_interrupt PROPERTIES LABELS cli
-                     PASS_REGULAR_EXPRESSION "realizations 0/1 [^\n]*\nshockgas-sim: interrupted"
+                     PASS_REGULAR_EXPRESSION "shockgas-sim: interrupted"
                      FAIL_REGULAR_EXPRESSION "realizations 1/1")
 # A batch log (stderr not a terminal, as under ctest) gets whole progress lines, at least the last.
 add_test(NAME cli.progress_in_logs

@@ -91,4 +91,13 @@ grep -q "resuming from '$build/run.h5.checkpoint'" "$build/paper-tier.log" || fa
 [ "$(grep -c '^end .* rc=[1-9]' "$build/paper-tier.times")" = 2 ] || fail "the second stop was not recorded"
 stop_again=$("$tool" stop --build "$build")
 echo "$stop_again" | grep -q "not running" || fail "stop of a stopped build: $stop_again"
+# A pid file left by a build that ended without recording it (a reboot, a kill -9) may name a process
+# that is not the build: status must not claim it, stop must not signal it, start must not refuse.
+setsid sleep 300 </dev/null >/dev/null 2>&1 &
+stranger=$!
+echo "$stranger" >"$build/paper-tier.pid"
+"$tool" status --build "$build" | grep -q "^paper-tier: not running" || fail "status took a stranger for the build"
+"$tool" stop --build "$build" >/dev/null
+kill -0 "$stranger" 2>/dev/null || fail "stop signalled a process that was not the build"
+kill "$stranger"
 echo "ok"

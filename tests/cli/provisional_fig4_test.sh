@@ -29,4 +29,11 @@ grep -q "r = 0.9: no part from part0 on is finished; left out" "$work/report.txt
 # sanitizer build runs it well inside its timeout (with 1e-3 it took over 300 s there, 2026-11-26).
 grep -q "^scaling exponent 0\.3" "$work/report.txt" || fail "no scaling exponent near 1/3"
 [ -s "$work/look/fig4.png" ] || fail "no figure"
+# A part that does not belong (another delta) stops the tool with shockgas-merge's reason, not silently.
+"$sim" "${common[@]/#1e-2/2e-2}" -r 0.9 -R 10 --first-realization 0 -o "$runs/r0.9.part0.h5" || fail "r = 0.9 part 0"
+"$here/../../tools/provisional-fig4" "$work" "$work/look2" >"$work/report2.txt" 2>&1
+status=$?
+[ $status -eq 2 ] || fail "a part of another delta: exit $status, expected 2: $(cat "$work/report2.txt")"
+grep -q "^provisional-fig4: error: r = 0.9: the parts could not be merged: .*different parameters" "$work/report2.txt" ||
+  fail "the merge's reason is not shown: $(cat "$work/report2.txt")"
 echo "ok"
