@@ -228,7 +228,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--subthreshold", subthreshold, "sub-threshold mechanism: elastic or sticky")
         ->capture_default_str();
-    app.add_option("-s,--seed", p.seed, "random seed")->check(CLI::NonNegativeNumber)->capture_default_str();
+    app.add_option("-s,--seed", p.seed, "random seed, 0 .. 2^63 - 1")->check(shockgas::cli::seed_in_range)->capture_default_str();
     app.add_option("--realization", realization, "realization index (seed stream)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();

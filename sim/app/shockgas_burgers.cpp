@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     app.add_option("--init", init_path, "initial condition file (as shockgas-sim --init)")->check(CLI::ExistingFile);
     app.add_option("-N,--particles", particles, "particles (with --seed: shockgas-sim's initial condition)");
     app.add_option("-L,--ring-length", ring_length, "ring length (default N)");
-    app.add_option("-s,--seed", seed, "seed")->capture_default_str();
+    app.add_option("-s,--seed", seed, "seed (as shockgas-sim)")->check(shockgas::cli::seed_in_range)->capture_default_str();
     app.add_option("--realization", realization, "realization")->capture_default_str();
     app.add_option("-t,--time", time, "time (default: the run's first snapshot time)");
     app.add_option("--cells-per-particle", cells_per_particle, "grid cells per particle")->capture_default_str();

@@ -1,10 +1,8 @@
 // shockgas-sim: parses arguments, runs the ensemble, writes the HDF5 file.
 // Everything else lives in the shockgas_sim library.
-#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
-#include <limits>
 #include <filesystem>
 #include <cstdio>
 #include <iostream>
@@ -34,36 +32,6 @@ std::atomic<bool> interrupt_requested{false};
 
 extern "C" void on_interrupt(int) { interrupt_requested.store(true); }
 
-// CLI::NonNegativeNumber lets "nan" through (nan < 0 is false), and a NaN
-// interval would make every comparison with it false: progress lines never or
-// always. Intervals must be finite numbers >= 0.
-const CLI::Validator finite_non_negative(
-    [](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double value = std::strtod(text.c_str(), &end);
-        if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || value < 0.0)
-            return fmt::format("must be a finite number >= 0, not '{}'", text);
-        return "";
-    },
-    "NUMBER >= 0");
-
-// A seed is checked as text: CLI11 reads any number beyond 2^64 - 1 as
-// 2^64 - 1, so 2^64 and 10^23 both ran as that seed; and the file stores the
-// seed as a signed 64-bit attribute (the type every reader of the schema
-// knows, and that the archive's content hash covers), where a seed from 2^63
-// on reads back negative in h5py and h5dump. Seeds are 0 .. 2^63 - 1.
-const CLI::Validator seed_in_range(
-    [](std::string& text) -> std::string {
-        std::uint64_t value = 0;
-        const char* const last = text.data() + text.size();
-        const auto [end, error] = std::from_chars(text.data(), last, value);
-        if (text.empty() || error != std::errc() || end != last ||
-            value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
-            return fmt::format("must be an integer from 0 to 2^63 - 1 = {}, not '{}'",
-                               std::numeric_limits<std::int64_t>::max(), text);
-        return "";
-    },
-    "0 .. 2^63-1");
 
 void print_table(const shockgas::EnsembleResult& result) {
     fmt::print("# {:>12} {:>14} {:>14} {:>14}\n", "t", "T(t)", "coll/particle", "clusters");
@@ -134,7 +102,7 @@ int main(int argc, char** argv) {
     // Checked as text (seed_in_range): CLI11 would otherwise wrap "-5"
     // silently to 2^64 - 5 and read 2^64 and beyond as 2^64 - 1.
     app.add_option("-s,--seed", p.seed, "random seed, 0 .. 2^63 - 1; realization k uses splitmix64(seed, k)")
-        ->check(seed_in_range)
+        ->check(shockgas::cli::seed_in_range)
         ->capture_default_str();
     app.add_option("-j,--threads", p.threads, "threads for realizations; 0 means every core")->capture_default_str();
     std::string positions = "lattice", velocity_distribution = "uniform";
@@ -165,7 +133,7 @@ int main(int argc, char** argv) {
     std::string checkpoint_file;
     app.add_option("--checkpoint-interval", checkpoint.interval_seconds,
                    "write a checkpoint every this many seconds of wall time (0: never); also on Ctrl-C")
-        ->check(finite_non_negative)
+        ->check(shockgas::cli::finite_non_negative)
         ->capture_default_str();
     app.add_option("--checkpoint", checkpoint_file, "checkpoint file (default: OUTPUT.checkpoint)");
     app.add_flag("--resume", checkpoint.resume,
@@ -175,7 +143,7 @@ int main(int argc, char** argv) {
     app.add_option("--progress-interval", progress_interval,
                    "when stderr is not a terminal (a batch job's log), write a progress line every this many "
                    "seconds of wall time, and at each tenth of the run; 0: only at each tenth")
-        ->check(finite_non_negative)
+        ->check(shockgas::cli::finite_non_negative)
         ->capture_default_str();
     std::string max_memory;
     app.add_option("--max-memory", max_memory,

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--burn-in", p.burn_in_steps, "unrecorded steps before each bias")->capture_default_str();
     app.add_option("--chains", p.chains, "independent chains (jackknife error bars)")->capture_default_str();
-    app.add_option("--seed", p.seed)->capture_default_str();
+    app.add_option("--seed", p.seed, "random seed, 0 .. 2^63 - 1")->check(shockgas::cli::seed_in_range)->capture_default_str();
     p.threads = 0;
     app.add_option("-j,--threads", p.threads,
                    "chains run at once, one per thread; 0 means every core (the result does not depend on it)")

@@ -34,7 +34,8 @@ foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;
                       "exchange_zero;exchange interval must be;--exchange-interval;0"
                       "bias_infinite;biases must be finite;--biases;0;inf"
                       "focus_negative;--focus must be;--focus=-1"
-                      "bin_width_off_grid;multiple of the;--bin-width;0.0215")
+                      "bin_width_off_grid;multiple of the;--bin-width;0.0215"
+                      "seed_negative;--seed: must be an integer from 0 to 2\\^63 - 1;--seed;-1")
   shockgas_error_case(tail "${_case}" $<TARGET_FILE:shockgas-tail> -t 10 --half-window 20 --steps-per-bias 10
                       --burn-in 0)
 endforeach()
@@ -47,7 +48,8 @@ set_tests_properties(cli.error.tail_half_window_huge PROPERTIES LABELS cli)
 foreach(_case IN ITEMS "time_nan;^shockgas-burgers: error: --time must be positive and finite, not nan$;-N;100;-t;nan"
                       "cells_zero;--cells-per-particle must be at least 1;-N;100;-t;10;--cells-per-particle;0"
                       "viscosity_negative;--viscosity must be positive and finite;-N;100;-t;10;--viscosity;0.1,-1"
-                      "one_particle;give --run, --init or --particles \\(at least 2\\);-N;1;-t;10")
+                      "one_particle;give --run, --init or --particles \\(at least 2\\);-N;1;-t;10"
+                      "seed_beyond_64_bits;--seed: must be an integer from 0 to 2\\^63 - 1;-N;100;-t;1;-s;18446744073709551616")
   shockgas_error_case(burgers "${_case}" $<TARGET_FILE:shockgas-burgers>)
 endforeach()
 # shockgas-burgers --run rebuilds the run's own start (its velocity law, and the

@@ -4,7 +4,12 @@
 // the executables (the libraries do not depend on CLI11).
 #pragma once
 
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <exception>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -79,6 +84,37 @@ inline std::string unknown_key_message(const CLI::App& app, const std::string& c
 }
 
 }  // namespace detail
+
+// CLI::NonNegativeNumber lets "nan" through (nan < 0 is false), and a NaN
+// interval would make every comparison with it false: progress lines never or
+// always. Intervals must be finite numbers >= 0.
+inline const CLI::Validator finite_non_negative(
+    [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || value < 0.0)
+            return fmt::format("must be a finite number >= 0, not '{}'", text);
+        return "";
+    },
+    "NUMBER >= 0");
+
+// Every program's --seed. A seed is checked as text: CLI11 reads any number beyond 2^64 - 1 as
+// 2^64 - 1, so 2^64 and 10^23 both ran as that seed; and the file stores the
+// seed as a signed 64-bit attribute (the type every reader of the schema
+// knows, and that the archive's content hash covers), where a seed from 2^63
+// on reads back negative in h5py and h5dump. Seeds are 0 .. 2^63 - 1.
+inline const CLI::Validator seed_in_range(
+    [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const char* const last = text.data() + text.size();
+        const auto [end, error] = std::from_chars(text.data(), last, value);
+        if (text.empty() || error != std::errc() || end != last ||
+            value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+            return fmt::format("must be an integer from 0 to 2^63 - 1 = {}, not '{}'",
+                               std::numeric_limits<std::int64_t>::max(), text);
+        return "";
+    },
+    "0 .. 2^63-1");
 
 // Parses; returns -1 to go on, or the exit status: 0 after --help or
 // --version, bad_input after a parse error (printed as one line).
