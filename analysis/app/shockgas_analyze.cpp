@@ -3,10 +3,14 @@
 // gnuplot data files; no analysis happens here.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -30,6 +34,41 @@ namespace {
 using namespace shockgas;
 using namespace shockgas::analysis;
 
+// --- checks of what a user gives, made before any work (one line each) ---
+
+// Option values: written as !(x > 0) so that NaN fails every check.
+// meaning: what the value is, e.g. " (a multiple of v_rms)".
+void require_positive(const std::string& option, double value, const std::string& meaning = "") {
+    if (!(value > 0.0) || !std::isfinite(value))
+        throw InputError(fmt::format("{}{} must be positive and finite, not {}", option, meaning, value));
+}
+void require_non_negative(const std::string& option, double value, const std::string& meaning = "") {
+    if (!(value >= 0.0) || !std::isfinite(value))
+        throw InputError(fmt::format("{}{} must be finite and at least 0, not {}", option, meaning, value));
+}
+
+// Runs one input's part of the work: what it cannot estimate (InsufficientData)
+// names that input alone. Failures of fits over all inputs are named by the
+// catch in main, with every input.
+template <class Work>
+decltype(auto) on_input(const std::string& path, Work&& work) {
+    try {
+        return work();
+    } catch (const InsufficientData& error) {
+        throw InputError(fmt::format("{}, in '{}'", error.what(), path));
+    }
+}
+
+// A fit against eps or N through inputs that all share one value has no
+// slope (the fit refuses: "all x values are equal"); say which inputs and why.
+void require_distinct(const std::vector<double>& values, const std::vector<std::string>& inputs,
+                      const std::string& name, const std::string& purpose) {
+    if (values.size() < 2 || std::any_of(values.begin(), values.end(), [&](double v) { return v != values.front(); }))
+        return;
+    throw InputError(fmt::format("every input has {} = {:g} ('{}'): {} against {} needs 2 or more different values",
+                                 name, values.front(), fmt::join(inputs, "', '"), purpose, name));
+}
+
 struct RunParameters {
     double restitution, velocity_threshold, particles, t_max;
 };
@@ -46,48 +85,67 @@ std::string restitution_label(double restitution) {
     return out.str();
 }
 
-void write_temperature_data(const std::string& data, const std::string& input, const TemperatureHistory& history) {
-    DataFile file(data, "T(t) ensemble mean, " + input, {"time", "temperature", "temperature_sigma"});
+std::unique_ptr<DataFile> temperature_data(const std::string& data, const std::string& input,
+                                           const TemperatureHistory& history) {
+    auto file = std::make_unique<DataFile>(data, "T(t) ensemble mean, " + input,
+                                           std::vector<std::string>{"time", "temperature", "temperature_sigma"});
+    if (history.realizations < 2) file->comment("temperature_sigma nan: one realization, no scatter to estimate it");
     for (std::size_t k = 0; k < history.time.size(); ++k)
-        file.row({history.time[k], history.mean(k), history.standard_error(k)});
+        file->row({history.time[k], history.mean(k), history.standard_error(k)});
+    return file;
 }
 
+struct DecayOptions {
+    std::optional<double> t_lo, t_hi;  // window ends given by --t-lo, --t-hi
+    WindowRule rule;
+    double scan_width = 1.0, scan_step = 0.1;
+    bool scan_required = false;        // --scan or --scan-width given: an empty scan is an error
+    bool data_only = false;
+};
+
 void run_decay(const std::string& input, const std::string& output, const std::string& data, const std::string& scan,
-               double t_lo, double t_hi, const WindowRule& rule, double scan_width, double scan_step, bool data_only) {
-    const auto series = read_timeseries(input);
-    const auto history = TemperatureHistory::from(series);
-    if (history.time.empty()) throw InsufficientData("no sample time reached by every realization");
-    if (data_only) {
+               const DecayOptions& options) {
+    const TemperatureRun temperature = on_input(input, [&] { return read_temperature_run(input); });
+    const TimeSeries& series = temperature.series;
+    const TemperatureHistory& history = temperature.history;
+    if (options.data_only) {
         // Runs stopped by collapse (delta = 0) are drawn, not fitted.
-        write_temperature_data(data, input, history);
+        auto file = temperature_data(data, input, history);
+        commit_outputs(nullptr, {file.get()});
         return;
     }
     const auto run = run_parameters(input);
+    const bool manual = options.t_lo || options.t_hi;
     // A window given in full needs no rule; a fully automatic one explains itself when empty.
-    DecayWindow window = t_lo > 0.0 || t_hi > 0.0
-                             ? decay_window_bounds(run.restitution, run.velocity_threshold, run.particles,
-                                                   history.time.back(), rule)
-                             : automatic_decay_window(run.restitution, run.velocity_threshold, run.particles,
-                                                      history.time.back(), rule, series.status);
-    if (t_lo > 0.0) window.t_lo = t_lo;
-    if (t_hi > 0.0) window.t_hi = t_hi;
-    const DecayFit fit = fit_temperature_decay(history, window.t_lo, window.t_hi);
-    const auto windows = scan_decay_windows(history, scan_width, scan_step);
-    const double systematic = window_systematic(history, fit.t_lo, fit.t_hi);
+    DecayWindow window = on_input(input, [&] {
+        return manual ? decay_window_bounds(run.restitution, run.velocity_threshold, run.particles,
+                                            history.time.back(), options.rule)
+                      : automatic_decay_window(run.restitution, run.velocity_threshold, run.particles,
+                                               history.time.back(), options.rule, series.status);
+    });
+    if (options.t_lo) window.t_lo = *options.t_lo;
+    if (options.t_hi) window.t_hi = *options.t_hi;
+    const DecayFit fit = on_input(input, [&] { return fit_temperature_decay(history, window.t_lo, window.t_hi); });
+    const auto windows = scan_decay_windows(history, options.scan_width, options.scan_step);
+    const std::string no_scan =
+        windows.empty() ? fmt::format("no window of {:g} decades (--scan-width) with 3 samples lies between t = {:g} "
+                                      "and {:g}",
+                                      options.scan_width, history.time.front(), history.time.back())
+                        : "";
+    if (windows.empty() && options.scan_required) throw InputError(fmt::format("{}, in '{}'", no_scan, input));
+    const Measured systematic = window_systematic(history, fit.t_lo, fit.t_hi);
     ResultsFile results(output, "shockgas-analyze decay", {input});
     auto group = results.section("decay");
     group.set_attribute("exponent", fit.exponent);
-    group.set_attribute("exponent_sigma", fit.exponent_sigma);  // NaN for one realization
-    if (!std::isfinite(fit.exponent_sigma))
-        group.set_attribute("exponent_sigma_note", "one realization: the jackknife has nothing to leave out");
+    set_measured(group, "exponent_sigma", {fit.exponent_sigma, fit.exponent_sigma_note});
     group.set_attribute("exponent_fit_sigma", fit.fit_sigma);
-    group.set_attribute("exponent_window_systematic", systematic);
+    set_measured(group, "exponent_window_systematic", systematic);
     group.set_attribute("chi2_per_dof", fit.chi2_per_dof);
     group.set_attribute("prefactor", fit.prefactor);
     group.set_attribute("t_lo", fit.t_lo);
     group.set_attribute("t_hi", fit.t_hi);
     group.set_attribute("points", static_cast<std::int64_t>(fit.points));
-    group.set_attribute("window_rule", t_lo > 0.0 || t_hi > 0.0 ? "manual" : "automatic");
+    group.set_attribute("window_rule", manual ? "manual" : "automatic");
     std::vector<double> centre, exponent, sigma;
     for (const auto& w : windows) {
         centre.push_back(std::sqrt(w.t_lo * w.t_hi));
@@ -95,31 +153,37 @@ void run_decay(const std::string& input, const std::string& output, const std::s
         sigma.push_back(w.exponent_sigma);
     }
     auto scan_group = results.section("window_scan");
-    scan_group.set_attribute("width_decades", scan_width);
+    scan_group.set_attribute("width_decades", options.scan_width);
+    scan_group.set_attribute("step_decades", options.scan_step);
+    if (windows.empty()) scan_group.set_attribute("note", no_scan);
     scan_group.write("window_centre", centre);
     scan_group.write("exponent", exponent);
     scan_group.write("exponent_sigma", sigma);
-    results.commit();
-    if (!data.empty()) write_temperature_data(data, input, history);
+    std::unique_ptr<DataFile> data_file, scan_file;
+    if (!data.empty()) data_file = temperature_data(data, input, history);
     if (!scan.empty()) {
-        DataFile file(scan, "decay exponent in moving windows of " + std::to_string(scan_width) + " decades",
-                      {"t_centre", "t_lo", "t_hi", "exponent", "exponent_sigma", "chi2_per_dof", "points"});
+        scan_file = std::make_unique<DataFile>(
+            scan, fmt::format("decay exponent in moving windows of {:g} decades, moved by {:g}", options.scan_width,
+                              options.scan_step),
+            std::vector<std::string>{"t_centre", "t_lo", "t_hi", "exponent", "exponent_sigma", "chi2_per_dof",
+                                     "points"});
         for (const auto& w : windows)
-            file.row({std::sqrt(w.t_lo * w.t_hi), w.t_lo, w.t_hi, w.exponent, w.exponent_sigma, w.chi2_per_dof,
-                      static_cast<double>(w.points)});
+            scan_file->row({std::sqrt(w.t_lo * w.t_hi), w.t_lo, w.t_hi, w.exponent, w.exponent_sigma, w.chi2_per_dof,
+                            static_cast<double>(w.points)});
     }
+    commit_outputs(&results, {data_file.get(), scan_file.get()});
     // One realization: nothing to leave out, so no jackknife sigma; say so
-    // rather than print nan.
-    const std::string jackknife = std::isfinite(fit.exponent_sigma)
-                                      ? fmt::format("+- {:.4f} (jackknife)", fit.exponent_sigma)
-                                      : "+- n/a (jackknife: one realization, nothing to leave out; run -R 2 or more)";
-    fmt::print("decay exponent {:.4f} {} +- {:.4f} (window), chi2/dof {:.2f}, window [{:g}, {:g}], {} points\n",
-               fit.exponent, jackknife, systematic, fit.chi2_per_dof, fit.t_lo, fit.t_hi, fit.points);
+    // rather than print nan. Likewise a window too short for the systematic.
+    fmt::print("decay exponent {:.4f} +- {} +- {}, chi2/dof {:.2f}, window [{:g}, {:g}], {} points\n", fit.exponent,
+               format_measured({fit.exponent_sigma, fit.exponent_sigma_note}, "{:.4f}", "jackknife"),
+               format_measured(systematic, "{:.4f}", "window"), fit.chi2_per_dof, fit.t_lo, fit.t_hi, fit.points);
 }
 
 void run_crossover(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
                    const CrossoverRule& rule) {
     std::vector<double> inelasticity;
+    for (const auto& input : inputs) inelasticity.push_back((1.0 - run_parameters(input).restitution) / 2.0);
+    require_distinct(inelasticity, inputs, "eps", "fitting the crossovers");
     std::vector<Estimate> t_dissip, t_stick, temperature;
     ResultsFile results(output, "shockgas-analyze crossover", inputs);
     std::unique_ptr<DataFile> file;
@@ -129,10 +193,10 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
                                                                    "t_stick_sigma", "T_stick", "T_stick_sigma",
                                                                    "haff_rate", "haff_rate_sigma"});
     for (std::size_t k = 0; k < inputs.size(); ++k) {
-        const auto run = run_parameters(inputs[k]);
-        const double eps = (1.0 - run.restitution) / 2.0;
-        const auto crossovers = find_crossovers(TemperatureHistory::from(read_timeseries(inputs[k])), rule);
-        inelasticity.push_back(eps);
+        const double eps = inelasticity[k];
+        const auto crossovers = on_input(inputs[k], [&] {
+            return find_crossovers(read_temperature_run(inputs[k]).history, rule);
+        });
         t_dissip.push_back(crossovers.t_dissip);
         t_stick.push_back(crossovers.t_stick);
         temperature.push_back(crossovers.temperature_at_stick);
@@ -146,10 +210,10 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
             file->row({eps, crossovers.t_dissip.value, crossovers.t_dissip.sigma, crossovers.t_stick.value,
                        crossovers.t_stick.sigma, crossovers.temperature_at_stick.value,
                        crossovers.temperature_at_stick.sigma, crossovers.haff_rate.value, crossovers.haff_rate.sigma});
-        std::printf("eps %-8g t_dissip %.4g +- %.2g  t_stick %.4g +- %.2g  T(t_stick) %.4g +- %.2g\n", eps,
-                    crossovers.t_dissip.value, crossovers.t_dissip.sigma, crossovers.t_stick.value,
-                    crossovers.t_stick.sigma, crossovers.temperature_at_stick.value,
-                    crossovers.temperature_at_stick.sigma);
+        fmt::print("eps {:<8g} t_dissip {}  t_stick {}  T(t_stick) {}\n", eps,
+                   format_estimate(crossovers.t_dissip, "{:.4g}", "{:.2g}"),
+                   format_estimate(crossovers.t_stick, "{:.4g}", "{:.2g}"),
+                   format_estimate(crossovers.temperature_at_stick, "{:.4g}", "{:.2g}"));
     }
     if (inputs.size() >= 2) {
         auto group = results.section("scaling_in_eps");
@@ -159,18 +223,27 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
         set_power_law(group, "t_dissip", dissip_fit);
         set_power_law(group, "t_stick", stick_fit);
         set_power_law(group, "temperature_at_stick", temperature_fit);
-        std::printf("t_dissip ~ eps^(%.3f +- %.3f), t_stick ~ eps^(%.3f +- %.3f), T(t_stick) ~ eps^(%.3f +- %.3f)\n",
-                    dissip_fit.slope, dissip_fit.slope_sigma(), stick_fit.slope, stick_fit.slope_sigma(),
-                    temperature_fit.slope, temperature_fit.slope_sigma());
+        // The three fits share their points: chi2/dof is there for all or for none.
+        const std::string chi2 =
+            dissip_fit.degrees_of_freedom() > 0
+                ? fmt::format("{:.2f}, {:.2f}, {:.2f}", dissip_fit.chi2_per_dof(), stick_fit.chi2_per_dof(),
+                              temperature_fit.chi2_per_dof())
+                : format_measured(dissip_fit.reduced_chi2(), "{:.2f}");
+        fmt::print("t_dissip ~ eps^({:.3f} +- {:.3f}), t_stick ~ eps^({:.3f} +- {:.3f}), T(t_stick) ~ eps^({:.3f} +- "
+                   "{:.3f}); chi2/dof {}\n",
+                   dissip_fit.slope, dissip_fit.slope_sigma(), stick_fit.slope, stick_fit.slope_sigma(),
+                   temperature_fit.slope, temperature_fit.slope_sigma(), chi2);
     }
-    results.commit();
+    commit_outputs(&results, {file.get()});
 }
 
 void run_scaling(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
                  const TailRule& tail_rule) {
     std::vector<VelocityHistogram> histograms;
     for (const auto& input : inputs) {
-        const auto these = read_histograms(input, restitution_label(run_parameters(input).restitution));
+        const auto these = on_input(input, [&] {
+            return read_histograms(input, restitution_label(run_parameters(input).restitution));
+        });
         histograms.insert(histograms.end(), these.begin(), these.end());
     }
     if (histograms.empty()) throw InsufficientData("no /histograms in the inputs (run with --histogram-times)");
@@ -184,7 +257,8 @@ void run_scaling(const std::vector<std::string>& inputs, const std::string& outp
         auto group = results.section("histogram" + std::to_string(h));
         group.set_attribute("label", histogram.label);
         group.set_attribute("time", histogram.time);
-        set_estimate(group, "kurtosis", velocity_kurtosis(histogram));
+        const auto kurtosis = velocity_kurtosis(histogram);
+        set_estimate(group, "kurtosis", kurtosis);
         try {
             const TailFit tail = fit_tail(histogram, tail_rule);
             set_estimate(group, "tail_gamma", tail.gamma);
@@ -193,15 +267,14 @@ void run_scaling(const std::vector<std::string>& inputs, const std::string& outp
             group.set_attribute("tail_bins", static_cast<std::int64_t>(tail.bins));
             group.set_attribute("tail_range_lo", tail.z_lo);
             group.set_attribute("tail_range_hi", tail.z_hi);
-            std::printf("%-16s tail gamma %.3f +- %.3f (chi2/dof %.2f, %zu bins, |z|/rms in [%.2f, %.2f])",
-                        histogram.label.c_str(), tail.gamma.value, tail.gamma.sigma, tail.chi2_per_dof, tail.bins,
-                        tail.z_lo, tail.z_hi);
+            fmt::print("{:<16} tail gamma {} (chi2/dof {:.2f}, {} bins, |z|/rms in [{:.2f}, {:.2f}])",
+                       histogram.label, format_estimate(tail.gamma, "{:.3f}"), tail.chi2_per_dof, tail.bins, tail.z_lo,
+                       tail.z_hi);
         } catch (const InsufficientData& error) {
             group.set_attribute("tail_error", error.what());
-            std::printf("%-16s tail: %s", histogram.label.c_str(), error.what());
+            fmt::print("{:<16} tail: n/a ({})", histogram.label, error.what());
         }
-        const auto kurtosis = velocity_kurtosis(histogram);
-        std::printf("  kurtosis %.3f +- %.3f\n", kurtosis.value, kurtosis.sigma);
+        fmt::print("  kurtosis {}\n", format_estimate(kurtosis, "{:.3f}"));
         if (file) {
             const auto phi = scaled_distribution(histogram);
             file->comment(histogram.label);
@@ -216,16 +289,18 @@ void run_scaling(const std::vector<std::string>& inputs, const std::string& outp
         group.set_attribute("distance_at_best", collapse.distance_at_best);
         group.set_attribute("distance_at_one_third", collapse.distance_at_one_third);
         group.set_attribute("max_deviation_at_one_third", collapse.max_deviation_at_one_third);
-        std::printf("scaling exponent %.4f +- %.4f; collapse distance %.3g at 1/3, max |dG| %.3g\n",
-                    collapse.beta.value, collapse.beta.sigma, collapse.distance_at_one_third,
-                    collapse.max_deviation_at_one_third);
+        fmt::print("scaling exponent {}; collapse distance {:.3g} at 1/3, max |dG| {:.3g}\n",
+                   format_estimate(collapse.beta, "{:.4f}"), collapse.distance_at_one_third,
+                   collapse.max_deviation_at_one_third);
+    } else {
+        fmt::print("scaling exponent n/a (one histogram: a collapse needs histograms at 2 or more times)\n");
     }
-    results.commit();
+    commit_outputs(&results, {file.get()});
 }
 
 void run_shocks(const std::string& input, const std::string& output, const std::string& data,
                 const ShockRule& rule) {
-    const auto snapshots = read_snapshots(input);
+    const auto snapshots = on_input(input, [&] { return read_snapshots(input); });
     if (snapshots.empty()) throw InsufficientData("no /snapshots (run with --snapshot-times)");
     ResultsFile results(output, "shockgas-analyze shocks", {input});
     // Group snapshots by time.
@@ -236,7 +311,7 @@ void run_shocks(const std::string& input, const std::string& output, const std::
         std::vector<Snapshot> at_time;
         for (const auto& s : snapshots)
             if (s.time == times[k]) at_time.push_back(s);
-        const auto summary = summarize_shocks(at_time, rule);
+        const auto summary = on_input(input, [&] { return summarize_shocks(at_time, rule); });
         auto group = results.section("shocks" + std::to_string(k));
         group.set_attribute("time", summary.time);
         set_estimate(group, "shock_count", summary.shocks);
@@ -245,31 +320,33 @@ void run_shocks(const std::string& input, const std::string& output, const std::
         set_estimate(group, "density_corrected_slope_times_t", summary.density_corrected_slope_times_t);
         group.set_attribute("segments", static_cast<std::int64_t>(summary.segments));
         group.set_attribute("dense_segments", static_cast<std::int64_t>(summary.dense_segments));
-        std::printf("t %g: %.2f +- %.2f shocks (N t^-2/3 = %.2f); segment slope x t = %.3f +- %.3f (%zu sparse "
-                    "segments; %zu dense runs left out)\n",
-                    summary.time, summary.shocks.value, summary.shocks.sigma, summary.expected_shocks,
-                    summary.slope_times_t.value, summary.slope_times_t.sigma, summary.segments,
-                    summary.dense_segments);
+        fmt::print("t {:g}: shocks {} (N t^-2/3 = {:.2f}); segment slope x t = {} ({} sparse segments; {} dense runs "
+                   "left out)\n",
+                   summary.time, format_estimate(summary.shocks, "{:.2f}"), summary.expected_shocks,
+                   format_estimate(summary.slope_times_t, "{:.3f}"), summary.segments, summary.dense_segments);
     }
-    results.commit();
+    std::unique_ptr<DataFile> file;
     if (!data.empty()) {
         const auto& first = snapshots.front();
         const auto profile = find_shocks(first, rule);
-        DataFile file(data, "velocity profile of the first snapshot (t = " + std::to_string(first.time) +
-                                "); block 1: shocks; block 2: fitted segments",
-                      {"position", "velocity", "mass"});
+        file = std::make_unique<DataFile>(data,
+                                          fmt::format("velocity profile of the first snapshot (t = {:g}); block 1: "
+                                                      "shocks; block 2: fitted segments",
+                                                      first.time),
+                                          std::vector<std::string>{"position", "velocity", "mass"});
         for (std::size_t i = 0; i < first.velocity.size(); ++i)
-            file.row({first.position[i], first.velocity[i], first.mass[i]});
-        file.blank_line();
-        file.comment("shock_position shock_drop");
+            file->row({first.position[i], first.velocity[i], first.mass[i]});
+        file->blank_line();
+        file->comment("shock_position shock_drop");
         for (std::size_t i = 0; i < profile.shock_position.size(); ++i)
-            file.row({std::fmod(profile.shock_position[i], first.ring_length), profile.shock_drop[i]});
-        file.blank_line();
-        file.comment("x_lo x_hi points slope slope_sigma");
+            file->row({std::fmod(profile.shock_position[i], first.ring_length), profile.shock_drop[i]});
+        file->blank_line();
+        file->comment("x_lo x_hi points slope slope_sigma");
         for (const auto& segment : profile.segments)
-            file.row({segment.x_lo, segment.x_hi, static_cast<double>(segment.points), segment.slope,
-                      segment.slope_sigma});
+            file->row({segment.x_lo, segment.x_hi, static_cast<double>(segment.points), segment.slope,
+                       segment.slope_sigma});
     }
+    commit_outputs(&results, {file.get()});
 }
 
 void set_collapse_forms(ResultsFile& results, const std::string& section, const std::vector<CollapseForm>& forms) {
@@ -284,19 +361,22 @@ void set_collapse_forms(ResultsFile& results, const std::string& section, const 
         group.set_attribute("formula", form.formula);
         group.set_attribute("prefactor", form.prefactor);
         set_estimate(group, "exponent", form.exponent);
-        group.set_attribute("exponent_sigma_scaled", form.exponent_sigma_scaled);
+        const Measured chi2_per_dof = form.fit.reduced_chi2();
+        const Measured scaled{form.exponent_sigma_scaled, chi2_per_dof.note};
+        set_measured(group, "exponent_sigma_scaled", scaled);
         group.set_attribute("parameters", static_cast<std::int64_t>(form.fit.parameters));
         group.set_attribute("points", static_cast<std::int64_t>(form.fit.points));
         group.set_attribute("chi2", form.fit.chi2);
-        group.set_attribute("chi2_per_dof", form.fit.chi2_per_dof());
+        set_measured(group, "chi2_per_dof", chi2_per_dof);
         group.set_attribute("aic", form.fit.aic());
         group.set_attribute("bic", form.fit.bic());
         group.set_attribute("delta_aic", form.fit.aic() - best_aic);
         group.set_attribute("delta_bic", form.fit.bic() - best_bic);
-        std::printf("  %-15s %-28s exponent %8.4f +- %.4f (scaled %.4f)  chi2/dof %6.2f  dAIC %6.2f  dBIC %6.2f\n",
-                    form.name.c_str(), form.formula.c_str(), form.exponent.value, form.exponent.sigma,
-                    form.exponent_sigma_scaled, form.fit.chi2_per_dof(), form.fit.aic() - best_aic,
-                    form.fit.bic() - best_bic);
+        // The reason is printed once, with chi2/dof; the scaled sigma needs it.
+        fmt::print("  {:<15} {:<28} exponent {:8.4f} +- {:.4f} (scaled {})  chi2/dof {}  dAIC {:6.2f}  dBIC {:6.2f}\n",
+                   form.name, form.formula, form.exponent.value, form.exponent.sigma,
+                   scaled.known() ? fmt::format("{:.4f}", scaled.value) : "n/a",
+                   format_measured(chi2_per_dof, "{:6.2f}"), form.fit.aic() - best_aic, form.fit.bic() - best_bic);
     }
 }
 
@@ -304,11 +384,18 @@ void set_collapse_forms(ResultsFile& results, const std::string& section, const 
 // against eps, with --vs N the first-collapse statistics across N.
 void run_collapse(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
                   const std::string& versus, const std::string& hazard_data) {
-    ResultsFile results(output, "shockgas-analyze collapse", inputs);
     std::vector<CollapseEvents> runs;
-    std::vector<double> inelasticity;
+    std::vector<double> inelasticity, particles;
+    for (const auto& input : inputs) {
+        runs.push_back(read_collapse_events(input));
+        inelasticity.push_back(runs.back().inelasticity);
+        particles.push_back(static_cast<double>(runs.back().particles));
+    }
+    if (versus == "eps") require_distinct(inelasticity, inputs, "eps", "fitting the collapse forms (--vs eps)");
+    if (versus == "N") require_distinct(particles, inputs, "N", "fitting the first-collapse statistics (--vs N)");
+    ResultsFile results(output, "shockgas-analyze collapse", inputs);
     std::vector<Estimate> time, mass;
-    std::unique_ptr<DataFile> file;
+    std::unique_ptr<DataFile> file, curves;
     if (!data.empty())
         file = std::make_unique<DataFile>(data, "inelastic collapse per input (mean and SE over realizations)",
                                           std::vector<std::string>{"eps", "particles", "collapse_time",
@@ -316,9 +403,7 @@ void run_collapse(const std::vector<std::string>& inputs, const std::string& out
                                                                    "cluster_mass_sigma", "collapsed", "realizations",
                                                                    "collapse_time_spread"});
     for (std::size_t k = 0; k < inputs.size(); ++k) {
-        runs.push_back(read_collapse_events(inputs[k]));
-        const auto summary = summarize_collapse(runs.back());
-        inelasticity.push_back(summary.inelasticity);
+        const auto summary = on_input(inputs[k], [&] { return summarize_collapse(runs[k]); });
         time.push_back(summary.time);
         mass.push_back(summary.cluster_mass);
         auto group = results.section("collapse" + std::to_string(k));
@@ -333,18 +418,20 @@ void run_collapse(const std::vector<std::string>& inputs, const std::string& out
                        summary.time.sigma, summary.cluster_mass.value, summary.cluster_mass.sigma,
                        static_cast<double>(summary.collapsed), static_cast<double>(summary.realizations),
                        summary.time_spread});
-        std::printf("eps %-8g N %-8lld collapse time %.4g +- %.2g (spread %.2g), cluster mass %.4g +- %.2g "
-                    "(%zu/%zu collapsed)\n",
-                    summary.inelasticity, static_cast<long long>(summary.particles), summary.time.value,
-                    summary.time.sigma, summary.time_spread, summary.cluster_mass.value, summary.cluster_mass.sigma,
-                    summary.collapsed, summary.realizations);
+        fmt::print("eps {:<8g} N {:<8} collapse time {} (spread {:.2g}), cluster mass {} ({}/{} collapsed)\n",
+                   summary.inelasticity, summary.particles, format_estimate(summary.time, "{:.4g}", "{:.2g}"),
+                   summary.time_spread, format_estimate(summary.cluster_mass, "{:.4g}", "{:.2g}"), summary.collapsed,
+                   summary.realizations);
     }
+    const std::string one_input = "one input: give runs of 2 or more ";
     if (versus == "eps" && inputs.size() >= 2) {
-        std::printf("collapse time against eps:\n");
+        fmt::print("collapse time against eps:\n");
         set_collapse_forms(results, "time_forms", fit_collapse_forms(CollapseQuantity::time, inelasticity, time));
-        std::printf("cluster mass against eps:\n");
+        fmt::print("cluster mass against eps:\n");
         set_collapse_forms(results, "mass_forms",
                            fit_collapse_forms(CollapseQuantity::cluster_mass, inelasticity, mass));
+    } else if (versus == "eps") {
+        fmt::print("forms against eps: n/a ({}eps)\n", one_input);
     }
     if (versus == "N" && inputs.size() >= 2) {
         const auto scaling = fit_first_collapse_scaling(runs);
@@ -357,47 +444,54 @@ void run_collapse(const std::vector<std::string>& inputs, const std::string& out
         set_estimate(group, "predicted_mean_time_exponent", scaling.predicted_mean_time_exponent);
         group.set_attribute("gumbel_min_regions", gumbel_min_regions);
         group.set_attribute("gumbel_runs", static_cast<std::int64_t>(scaling.gumbel_runs));
-        if (scaling.gumbel_runs >= 2) {
+        if (scaling.gumbel_note.empty()) {
             group.set_attribute("gumbel_intercept", scaling.gumbel.intercept);
-            group.set_attribute("gumbel_chi2_per_dof", scaling.gumbel.chi2_per_dof());
+            set_measured(group, "gumbel_chi2_per_dof", scaling.gumbel.reduced_chi2());
             set_estimate(group, "gumbel_tau", scaling.gumbel_tau);
             set_estimate(group, "gumbel_predicted_spread", scaling.gumbel_predicted_spread);
             set_estimate(group, "gumbel_measured_spread", scaling.gumbel_measured_spread);
-            std::printf("%zu runs with N/<m> >= %g: <t_collapse> = %.4g - (%.4g +- %.2g) ln N (chi2/dof %.2f); Gumbel "
-                        "spread pi tau/sqrt 6 = %.4g +- %.2g, measured %.4g +- %.2g\n",
-                        scaling.gumbel_runs, gumbel_min_regions, scaling.gumbel.intercept, scaling.gumbel_tau.value,
-                        scaling.gumbel_tau.sigma, scaling.gumbel.chi2_per_dof(), scaling.gumbel_predicted_spread.value,
-                        scaling.gumbel_predicted_spread.sigma, scaling.gumbel_measured_spread.value,
-                        scaling.gumbel_measured_spread.sigma);
+            fmt::print("{} runs with N/<m> >= {:g}: <t_collapse> = {:.4g} - ({}) ln N (chi2/dof {}); Gumbel spread pi "
+                       "tau/sqrt 6 = {}, measured {}\n",
+                       scaling.gumbel_runs, gumbel_min_regions, scaling.gumbel.intercept,
+                       format_estimate(scaling.gumbel_tau, "{:.4g}"),
+                       format_measured(scaling.gumbel.reduced_chi2(), "{:.2f}"),
+                       format_estimate(scaling.gumbel_predicted_spread, "{:.4g}"),
+                       format_estimate(scaling.gumbel_measured_spread, "{:.4g}"));
+        } else {
+            group.set_attribute("gumbel_note", scaling.gumbel_note);
+            fmt::print("Gumbel fit of <t_collapse> against ln N: n/a ({})\n", scaling.gumbel_note);
         }
-        std::printf("<t_collapse> ~ N^(%.4f +- %.4f) (chi2/dof %.2f); hazard per particle ~ t^(%.3f +- %.3f), "
-                    "which predicts N^(%.4f +- %.4f); <m> ~ N^(%.4f +- %.4f)\n",
-                    scaling.mean_time.slope, scaling.mean_time.slope_sigma(), scaling.mean_time.chi2_per_dof(),
-                    scaling.hazard.slope, scaling.hazard.slope_sigma(), scaling.predicted_mean_time_exponent.value,
-                    scaling.predicted_mean_time_exponent.sigma, scaling.cluster_mass.slope,
-                    scaling.cluster_mass.slope_sigma());
-        if (!hazard_data.empty()) {
-            DataFile curves(hazard_data,
-                            "Nelson-Aalen cumulative collapse hazard per particle H(t)/N, one block per input",
-                            {"time", "hazard_per_particle", "hazard_per_particle_sigma", "particles"});
-            for (const auto& run : runs) {
-                const auto curve = cumulative_hazard_per_particle(run);
-                curves.comment("N = " + std::to_string(run.particles));
-                for (std::size_t i = 0; i < curve.time.size(); ++i)
-                    curves.row({curve.time[i], curve.per_particle[i], curve.per_particle_sigma[i],
-                                static_cast<double>(run.particles)});
-                curves.blank_line();
-                curves.blank_line();
-            }
+        fmt::print("<t_collapse> ~ N^({:.4f} +- {:.4f}) (chi2/dof {}); hazard per particle ~ t^({:.3f} +- {:.3f}), "
+                   "which predicts N^({}); <m> ~ N^({:.4f} +- {:.4f})\n",
+                   scaling.mean_time.slope, scaling.mean_time.slope_sigma(),
+                   format_measured(scaling.mean_time.reduced_chi2(), "{:.2f}"), scaling.hazard.slope,
+                   scaling.hazard.slope_sigma(), format_estimate(scaling.predicted_mean_time_exponent, "{:.4f}"),
+                   scaling.cluster_mass.slope, scaling.cluster_mass.slope_sigma());
+    } else if (versus == "N") {
+        fmt::print("first-collapse statistics across N: n/a ({}N)\n", one_input);
+    }
+    // One curve per input; with several N they should coincide.
+    if (!hazard_data.empty()) {
+        curves = std::make_unique<DataFile>(
+            hazard_data, "Nelson-Aalen cumulative collapse hazard per particle H(t)/N, one block per input",
+            std::vector<std::string>{"time", "hazard_per_particle", "hazard_per_particle_sigma", "particles"});
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            const auto curve = on_input(inputs[k], [&] { return cumulative_hazard_per_particle(runs[k]); });
+            curves->comment("N = " + std::to_string(runs[k].particles));
+            for (std::size_t i = 0; i < curve.time.size(); ++i)
+                curves->row({curve.time[i], curve.per_particle[i], curve.per_particle_sigma[i],
+                             static_cast<double>(runs[k].particles)});
+            curves->blank_line();
+            curves->blank_line();
         }
     }
-    results.commit();
+    commit_outputs(&results, {file.get(), curves.get()});
 }
 
 // The speed/accuracy trade: each input against the reference run (P5).
 void run_compare(const std::string& reference_path, const std::vector<std::string>& inputs, const std::string& output,
                  const std::string& data, const std::string& curves) {
-    const auto reference = TemperatureHistory::from(read_timeseries(reference_path));
+    const auto reference = on_input(reference_path, [&] { return read_temperature_run(reference_path); }).history;
     std::vector<std::string> all{reference_path};
     all.insert(all.end(), inputs.begin(), inputs.end());
     ResultsFile results(output, "shockgas-analyze compare", all);
@@ -411,47 +505,60 @@ void run_compare(const std::string& reference_path, const std::vector<std::strin
         deviation_curves = std::make_unique<DataFile>(curves, "<T>/<T_ref> - 1 per input, one block each",
                                                       std::vector<std::string>{"time", "deviation", "sigma"});
     for (std::size_t i = 0; i < inputs.size(); ++i) {
-        const auto series = read_timeseries(inputs[i]);
-        const auto comparison = compare_temperatures(TemperatureHistory::from(series), reference);
+        const auto [comparison, collisions] = on_input(inputs[i], [&] {
+            const TemperatureRun run = read_temperature_run(inputs[i]);
+            const TimeSeries& series = run.series;
+            // Collisions per particle at the last sample every realization reached.
+            const auto last = static_cast<std::size_t>(
+                std::find(series.time.begin(), series.time.end(), run.history.time.back()) - series.time.begin());
+            std::vector<double> counts;
+            for (std::int64_t r = 0; r < series.realizations; ++r) {
+                const double value = series.at(series.collisions_per_particle, r, last);
+                if (std::isfinite(value)) counts.push_back(value);
+            }
+            Measured mean_count =
+                counts.empty() ? Measured::missing(fmt::format("no realization recorded its collisions at t = {:g}",
+                                                               run.history.time.back()))
+                               : Measured{mean_and_standard_error(counts).value, ""};
+            return std::pair{compare_temperatures(run.history, reference), mean_count};
+        });
         const auto file = h5::File::open_read(inputs[i]);
         const auto root = file.root();
         const double delta = root.attribute_double("velocity_threshold");
         const bool sticky = root.attribute_string("subthreshold") == "sticky";
         const double cpu = root.attribute_double("cpu_seconds");
-        // Collisions per particle at the last sample every realization reached.
-        double collisions = 0.0;
-        std::int64_t counted = 0;
-        for (std::int64_t r = 0; r < series.realizations; ++r) {
-            const double value = series.at(series.collisions_per_particle, r, series.time.size() - 1);
-            if (std::isfinite(value)) collisions += value, ++counted;
-        }
-        collisions = counted > 0 ? collisions / static_cast<double>(counted) : 0.0;
         const double t_valid = delta > 0.0 ? std::pow(delta, -3.0) : INFINITY;
         auto group = results.section("compare" + std::to_string(i));
         group.set_attribute("input", inputs[i]);
         group.set_attribute("velocity_threshold", delta);
         group.set_attribute("subthreshold", sticky ? "sticky" : "elastic");
-        group.set_attribute("collisions_per_particle", collisions);
+        set_measured(group, "collisions_per_particle", collisions);
         group.set_attribute("cpu_seconds", cpu);
         group.set_attribute("max_abs_deviation", comparison.max_abs_deviation);
         group.set_attribute("time_of_max", comparison.time_of_max);
-        group.set_attribute("departure_time", comparison.departure_time);
+        group.set_attribute("departure_time", comparison.departure_time);  // inf: never departs
+        if (!comparison.sigma_note.empty()) group.set_attribute("deviation_sigma_note", comparison.sigma_note);
         group.set_attribute("t_valid", t_valid);
-        std::printf("%-40s delta %-8g %-7s %10.4g coll/particle %8.2f s CPU  max |dT/T| %.3g at t = %g, departs at %g "
-                    "(delta^-3 = %g)\n",
-                    inputs[i].c_str(), delta, sticky ? "sticky" : "elastic", collisions, cpu,
-                    comparison.max_abs_deviation, comparison.time_of_max, comparison.departure_time, t_valid);
+        fmt::print("{:<40} delta {:<8g} {:<7} {} coll/particle {:8.2f} s CPU  max |dT/T| {:.3g} at t = {:g}, {} "
+                   "(delta^-3 = {})\n",
+                   inputs[i], delta, sticky ? "sticky" : "elastic", format_measured(collisions, "{:10.4g}"), cpu,
+                   comparison.max_abs_deviation, comparison.time_of_max,
+                   std::isinf(comparison.departure_time) ? std::string("never departs")
+                                                         : fmt::format("departs at {:g}", comparison.departure_time),
+                   delta > 0.0 ? fmt::format("{:g}", t_valid) : std::string("inf: delta = 0"));
         if (table)
-            table->row({delta, sticky ? 1.0 : 0.0, collisions, cpu, comparison.max_abs_deviation, comparison.time_of_max,
-                        comparison.departure_time, t_valid});
+            table->row({delta, sticky ? 1.0 : 0.0, collisions.value, cpu, comparison.max_abs_deviation,
+                        comparison.time_of_max, comparison.departure_time, t_valid});
         if (deviation_curves) {
             deviation_curves->comment(inputs[i]);
+            if (!comparison.sigma_note.empty()) deviation_curves->comment("sigma nan: " + comparison.sigma_note);
             for (std::size_t k = 0; k < comparison.time.size(); ++k)
-                deviation_curves->row({comparison.time[k], comparison.relative_deviation[k], comparison.relative_sigma[k]});
+                deviation_curves->row(
+                    {comparison.time[k], comparison.relative_deviation[k], comparison.relative_sigma[k]});
             deviation_curves->blank_line();
         }
     }
-    results.commit();
+    commit_outputs(&results, {table.get(), deviation_curves.get()});
 }
 
 // gamma of the far tail (Eq. (5)) from shockgas-tail output, and ln Phi for gnuplot.
@@ -460,11 +567,13 @@ void run_far_tail(const std::string& input, const std::string& output, const std
     const FarTail tail = read_far_tail(input);
     const std::optional<double> linear_coefficient =
         free_linear ? std::nullopt : std::optional<double>(exact_tail_linear_coefficient);
-    const TailExponent gamma = estimate_tail_exponent(tail, z_lo, z_hi, window_shift, linear_coefficient);
+    const TailExponent gamma = on_input(input, [&] {
+        return estimate_tail_exponent(tail, z_lo, z_hi, window_shift, linear_coefficient);
+    });
     ResultsFile results(output, "shockgas-analyze far-tail", {input});
     auto group = results.section("far_tail");
     set_estimate(group, "gamma", gamma.gamma);
-    group.set_attribute("gamma_window_systematic", gamma.window_systematic);
+    set_measured(group, "gamma_window_systematic", gamma.window_systematic);
     group.set_attribute("gamma_fit_sigma", gamma.fit.gamma_fit_sigma);
     group.set_attribute("a", gamma.fit.a);
     group.set_attribute("b", gamma.fit.b);
@@ -474,22 +583,27 @@ void run_far_tail(const std::string& input, const std::string& output, const std
     group.set_attribute("z_lo", gamma.fit.z_lo);
     group.set_attribute("z_hi", gamma.fit.z_hi);
     group.set_attribute("time", tail.time);
-    results.commit();
-    std::printf("%s: t = %g, gamma = %.3f +- %.3f (jackknife over chains) +- %.3f (window), fit over z in [%.2f, %.2f], "
-                "%zu bins, chi2/dof = %.2f; a = %.3f, b = %.3f (%s)\n",
-                input.c_str(), tail.time, gamma.gamma.value, gamma.gamma.sigma, gamma.window_systematic, gamma.fit.z_lo,
-                gamma.fit.z_hi, gamma.fit.points, gamma.fit.chi2_per_dof, gamma.fit.a, gamma.fit.b,
-                free_linear ? "fitted" : "EB9");
-    if (data.empty()) return;
-    DataFile table(data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (5) form",
-                   {"z", "log_phi", "log_phi_sigma", "fitted_log_phi", "local_exponent"});
-    for (std::size_t i = 0; i < tail.z.size(); ++i) {
-        if (!std::isfinite(tail.log_phi[i])) continue;
-        const double z = tail.z[i];
-        const double fitted = gamma.fit.c - 2.0 * std::log(z) - gamma.fit.a * std::pow(z, gamma.fit.gamma) - gamma.fit.b * z;
-        const double local = z >= 1.0 ? local_tail_exponent(tail.z, tail.log_phi, z) : NAN;
-        table.row({z, tail.log_phi[i], tail.log_phi_sigma[i], z > 0.0 ? fitted : NAN, local});
+    std::unique_ptr<DataFile> table;
+    if (!data.empty()) {
+        table = std::make_unique<DataFile>(
+            data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (5) form",
+            std::vector<std::string>{"z", "log_phi", "log_phi_sigma", "fitted_log_phi", "local_exponent"});
+        for (std::size_t i = 0; i < tail.z.size(); ++i) {
+            if (!std::isfinite(tail.log_phi[i])) continue;
+            const double z = tail.z[i];
+            // Eq. (5) with EB9's prefactor and linear term: ln Phi = c - 2 ln z - a z^gamma - b z.
+            const double fitted =
+                gamma.fit.c - 2.0 * std::log(z) - gamma.fit.a * std::pow(z, gamma.fit.gamma) - gamma.fit.b * z;
+            const double local = z >= 1.0 ? local_tail_exponent(tail.z, tail.log_phi, z) : NAN;
+            table->row({z, tail.log_phi[i], tail.log_phi_sigma[i], z > 0.0 ? fitted : NAN, local});
+        }
     }
+    commit_outputs(&results, {table.get()});
+    fmt::print("{}: t = {:g}, gamma = {} (jackknife over chains) +- {}, fit over z in [{:.2f}, {:.2f}], {} bins, "
+               "chi2/dof = {:.2f}; a = {:.3f}, b = {:.3f} ({})\n",
+               input, tail.time, format_estimate(gamma.gamma, "{:.3f}"),
+               format_measured(gamma.window_systematic, "{:.3f}", "window"), gamma.fit.z_lo, gamma.fit.z_hi,
+               gamma.fit.points, gamma.fit.chi2_per_dof, gamma.fit.a, gamma.fit.b, free_linear ? "fitted" : "EB9");
 }
 
 }  // namespace
@@ -501,33 +615,37 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 
     std::string input, output = "analysis.h5", data, scan;
-    bool data_only = false;
     std::vector<std::string> inputs;
-    double t_lo = 0.0, t_hi = 0.0, scan_width = 1.0, scan_step = 0.1;
-    WindowRule window_rule;
+    double t_lo = 0.0, t_hi = 0.0;
+    DecayOptions decay_options;
     auto* decay = app.add_subcommand("decay", "T ~ t^-alpha: exponent +- jackknife sigma over the automatic window");
     decay->add_option("input", input, "shockgas-sim output")->required()->check(CLI::ExistingFile);
     decay->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
     decay->add_option("--data", data, "T(t) data file for gnuplot");
     decay->add_option("--scan", scan, "window-scan data file for gnuplot");
-    decay->add_flag("--data-only", data_only, "write the T(t) data file only, no fit (for runs stopped by collapse)");
-    decay->add_option("--t-lo", t_lo, "override the window start");
-    decay->add_option("--t-hi", t_hi, "override the window end");
-    decay->add_option("--start-factor", window_rule.start_factor,
-                      fmt::format("t_lo = factor * max({:g}, eps^-3/2), eps = (1 - r)/2", window_rule.scaling_onset))
+    decay->add_flag("--data-only", decay_options.data_only,
+                    "write the T(t) data file (--data) only, no fit (for runs stopped by collapse)");
+    auto* t_lo_option = decay->add_option("--t-lo", t_lo, "override the window start (> 0)");
+    auto* t_hi_option = decay->add_option("--t-hi", t_hi, "override the window end (> --t-lo)");
+    decay->add_option("--start-factor", decay_options.rule.start_factor,
+                      fmt::format("t_lo = factor * max({:g}, eps^-3/2), eps = (1 - r)/2", decay_options.rule.scaling_onset))
         ->capture_default_str();
-    decay->add_option("--end-factor", window_rule.end_factor, "t_hi <= factor * N^3/2")->capture_default_str();
-    decay->add_option("--scan-width", scan_width, "scan window width, decades")->capture_default_str();
-    decay->add_option("--scan-step", scan_step, "scan window step, decades")->capture_default_str();
+    decay->add_option("--end-factor", decay_options.rule.end_factor, "t_hi <= factor * N^3/2")->capture_default_str();
+    auto* scan_width_option =
+        decay->add_option("--scan-width", decay_options.scan_width, "scan window width, decades (> 0)")
+            ->capture_default_str();
+    decay->add_option("--scan-step", decay_options.scan_step,
+                      fmt::format("scan window step, decades (>= {:g})", min_scan_step_decades))
+        ->capture_default_str();
 
     CrossoverRule crossover_rule;
     auto* crossover = app.add_subcommand("crossover", "t_dissip, t_stick, T(t_stick) per file and their powers of eps");
     crossover->add_option("inputs", inputs, "shockgas-sim outputs, one per eps")->required()->check(CLI::ExistingFile);
     crossover->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
     crossover->add_option("--data", data, "crossover table for gnuplot");
-    crossover->add_option("--haff-floor", crossover_rule.haff_floor, "Haff fit on T >= floor * T0")
+    crossover->add_option("--haff-floor", crossover_rule.haff_floor, "Haff fit on T >= floor * T0 (0 < floor < 1)")
         ->capture_default_str();
-    crossover->add_option("--stick-ratio", crossover_rule.stick_ratio, "t_stick: T / T_Haff reaches this")
+    crossover->add_option("--stick-ratio", crossover_rule.stick_ratio, "t_stick: T / T_Haff reaches this (> 1)")
         ->capture_default_str();
 
     TailRule tail_rule;
@@ -541,6 +659,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
 
     ShockRule shock_rule;
+    // Signed, so that a negative value is refused rather than wrapped around to 2^64 - 1.
+    std::int64_t merge_gap = static_cast<std::int64_t>(shock_rule.merge_gap_points);
     auto* shocks = app.add_subcommand("shocks", "shock count and segment slopes of every snapshot time");
     shocks->add_option("input", input, "shockgas-sim output with /snapshots")->required()->check(CLI::ExistingFile);
     shocks->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
@@ -552,8 +672,8 @@ int main(int argc, char** argv) {
     shocks->add_option("--coarse-grain", shock_rule.coarse_grain_mass,
                        "merge consecutive clusters into cells of at least this mass first (0: off)")
         ->capture_default_str();
-    shocks->add_option("--merge-gap", shock_rule.merge_gap_points,
-                       "compressive runs at most this many expanding pairs apart are one shock")
+    shocks->add_option("--merge-gap", merge_gap,
+                       "compressive runs at most this many expanding pairs apart are one shock (UINT)")
         ->capture_default_str();
 
     std::string versus = "eps", hazard;
@@ -594,22 +714,101 @@ int main(int argc, char** argv) {
 
     if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
     return cli::run("shockgas-analyze", [&] {
+        // Every input the subcommand reads, for the checks of the outputs.
+        std::vector<std::string> all_inputs = inputs;
+        if (!input.empty()) all_inputs.insert(all_inputs.begin(), input);
+        if (!reference.empty()) all_inputs.insert(all_inputs.begin(), reference);
         try {
-            // Refuse an unwritable output before the work, naming it (not a temporary file).
-            h5::check_writable(output);
-            if (*decay) run_decay(input, output, data, scan, t_lo, t_hi, window_rule, scan_width, scan_step, data_only);
-            if (*crossover) run_crossover(inputs, output, data, crossover_rule);
-            if (*scaling) run_scaling(inputs, output, data, tail_rule);
-            if (*shocks) run_shocks(input, output, data, shock_rule);
-            if (*collapse) run_collapse(inputs, output, data, versus, hazard);
-            if (*compare) run_compare(reference, inputs, output, data, curves);
-            if (*far_tail) run_far_tail(input, output, data, z_lo, z_hi, window_shift, free_linear);
+            // Option values, then every output path, before any work: a bad
+            // value or an unwritable path never costs a long analysis, and
+            // no output may replace an input or another output.
+            if (*decay) {
+                if (t_lo_option->count() > 0) {
+                    require_positive("--t-lo", t_lo);
+                    decay_options.t_lo = t_lo;
+                }
+                if (t_hi_option->count() > 0) {
+                    require_positive("--t-hi", t_hi);
+                    decay_options.t_hi = t_hi;
+                }
+                if (decay_options.t_lo && decay_options.t_hi && !(t_hi > t_lo))
+                    throw InputError(fmt::format("--t-hi ({:g}) must be larger than --t-lo ({:g})", t_hi, t_lo));
+                require_positive("--start-factor", decay_options.rule.start_factor);
+                require_positive("--end-factor", decay_options.rule.end_factor);
+                require_positive("--scan-width", decay_options.scan_width, " (in decades)");
+                if (!(decay_options.scan_step >= min_scan_step_decades) || !std::isfinite(decay_options.scan_step))
+                    throw InputError(fmt::format("--scan-step must be finite and at least {:g} decades, not {} (a "
+                                                 "smaller step repeats windows over the same samples, {:g} fits per "
+                                                 "decade and more)",
+                                                 min_scan_step_decades, decay_options.scan_step,
+                                                 1.0 / min_scan_step_decades));
+                decay_options.scan_required = !scan.empty() || scan_width_option->count() > 0;
+                if (decay_options.data_only && data.empty())
+                    throw InputError("--data-only needs --data FILE: it writes the T(t) table there and nothing else");
+                if (decay_options.data_only && !scan.empty())
+                    throw InputError("--data-only writes only the --data table: no fit, so no --scan");
+                // --data-only writes no results file: -o is not an output then.
+                check_outputs({{"-o", decay_options.data_only ? "" : output, false},
+                               {"--data", data, true},
+                               {"--scan", scan, true}},
+                              all_inputs);
+                run_decay(input, output, data, scan, decay_options);
+            }
+            if (*crossover) {
+                require_positive("--haff-floor", crossover_rule.haff_floor, " (a fraction of T0)");
+                if (!(crossover_rule.haff_floor < 1.0))
+                    throw InputError(fmt::format("--haff-floor must be below 1 (a fraction of T0, which T only falls "
+                                                 "from), not {}",
+                                                 crossover_rule.haff_floor));
+                if (!(crossover_rule.stick_ratio > 1.0) || !std::isfinite(crossover_rule.stick_ratio))
+                    throw InputError(fmt::format("--stick-ratio must be finite and above 1 (T / T_Haff starts at 1 "
+                                                 "and rises), not {}",
+                                                 crossover_rule.stick_ratio));
+                check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
+                run_crossover(inputs, output, data, crossover_rule);
+            }
+            if (*scaling) {
+                require_positive("--tail-start", tail_rule.tail_start, " (in units of the rms of z)");
+                require_positive("--tail-max-error", tail_rule.max_relative_error);
+                check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
+                run_scaling(inputs, output, data, tail_rule);
+            }
+            if (*shocks) {
+                require_positive("--jump-fraction", shock_rule.jump_fraction, " (a multiple of v_rms)");
+                require_positive("--segment-break", shock_rule.segment_break_fraction, " (a multiple of v_rms)");
+                require_non_negative("--coarse-grain", shock_rule.coarse_grain_mass, " (a mass; 0: off)");
+                if (merge_gap < 0)
+                    throw InputError(fmt::format("--merge-gap must be a whole number at least 0, not {}", merge_gap));
+                shock_rule.merge_gap_points = static_cast<std::size_t>(merge_gap);
+                check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
+                run_shocks(input, output, data, shock_rule);
+            }
+            if (*collapse) {
+                if (!hazard.empty() && versus != "N")
+                    throw InputError("--hazard needs --vs N: the hazard per particle compares runs of different N at "
+                                     "one eps");
+                check_outputs({{"-o", output, false}, {"--data", data, true}, {"--hazard", hazard, true}},
+                              all_inputs);
+                run_collapse(inputs, output, data, versus, hazard);
+            }
+            if (*compare) {
+                check_outputs({{"-o", output, false}, {"--data", data, true}, {"--curves", curves, true}},
+                              all_inputs);
+                run_compare(reference, inputs, output, data, curves);
+            }
+            if (*far_tail) {
+                require_non_negative("--z-lo", z_lo);
+                if (!(z_hi > z_lo) || !std::isfinite(z_hi))
+                    throw InputError(fmt::format("--z-hi must be finite and larger than --z-lo ({:g}), not {}", z_lo,
+                                                 z_hi));
+                require_non_negative("--window-shift", window_shift);
+                check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
+                run_far_tail(input, output, data, z_lo, z_hi, window_shift, free_linear);
+            }
         } catch (const InsufficientData& error) {
-            // Estimator messages say what is missing; add which file it is missing from.
-            std::vector<std::string> files = inputs;
-            if (!input.empty()) files.insert(files.begin(), input);
-            if (!reference.empty()) files.insert(files.begin(), reference);
-            throw InputError(fmt::format("{}, in '{}'", error.what(), fmt::join(files, "', '")));
+            // Estimator messages say what is missing. Work on one input names
+            // that input (on_input); what is left failed on all of them together.
+            throw InputError(fmt::format("{}, in '{}'", error.what(), fmt::join(all_inputs, "', '")));
         }
         return 0;
     });

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "shockgas/h5.hpp"
 
@@ -20,6 +23,19 @@ CollapseEvents read_collapse_events(const std::string& path) {
     const auto group = root.open_group("collapse");
     events.time = group.read_doubles("time");
     events.cluster_mass = group.read_doubles("cluster_mass");
+    // A damaged or hand-made /collapse would pair times with the wrong masses
+    // or average impossible values: refused, named.
+    std::string problem;
+    if (events.cluster_mass.size() != events.time.size())
+        problem = fmt::format("cluster_mass holds {} values but time {}", events.cluster_mass.size(), events.time.size());
+    else if (events.time.size() > events.realizations)
+        problem = fmt::format("{} collapses, more than the {} realizations", events.time.size(), events.realizations);
+    else if (!std::all_of(events.time.begin(), events.time.end(), [](double t) { return t > 0.0 && std::isfinite(t); }))
+        problem = "time holds a value that is not positive and finite";
+    else if (!std::all_of(events.cluster_mass.begin(), events.cluster_mass.end(),
+                          [](double m) { return m >= 1.0 && std::isfinite(m); }))
+        problem = "cluster_mass holds a value below one particle";
+    if (!problem.empty()) throw h5::Error(fmt::format("/collapse: {} in '{}'", problem, path));
     return events;
 }
 
@@ -29,8 +45,7 @@ CollapseSummary summarize_collapse(const CollapseEvents& events) {
     summary.particles = events.particles;
     summary.collapsed = events.time.size();
     summary.realizations = events.realizations;
-    const std::string which = "eps = " + std::to_string(events.inelasticity) + ", N = " +
-                              std::to_string(events.particles) + ": ";
+    const std::string which = fmt::format("eps = {:g}, N = {}: ", events.inelasticity, events.particles);
     if (events.time.size() < 2)
         throw InsufficientData(which + std::to_string(events.time.size()) +
                                " realizations collapsed; an error bar needs 2 or more (more particles: collapse "
@@ -76,9 +91,12 @@ CollapseForm fit_form(std::string name, std::string formula, const std::vector<d
                            : weighted_linear_fit(regressor, shifted, log_sigma);
     form.prefactor = std::exp(form.fit.intercept);
     form.exponent = {form.fit.slope, form.fit.slope_sigma()};
-    const double chi2_per_dof = form.fit.chi2_per_dof();
-    form.exponent_sigma_scaled =
-        form.exponent.sigma * (std::isfinite(chi2_per_dof) && chi2_per_dof > 1.0 ? std::sqrt(chi2_per_dof) : 1.0);
+    // The PDG scale factor needs chi2/dof; a form through every point (2
+    // points, 2 parameters) has none, and its scaled sigma is not known.
+    const Measured chi2_per_dof = form.fit.reduced_chi2();
+    form.exponent_sigma_scaled = chi2_per_dof.known()
+                                     ? form.exponent.sigma * (chi2_per_dof.value > 1.0 ? std::sqrt(chi2_per_dof.value) : 1.0)
+                                     : std::numeric_limits<double>::quiet_NaN();
     return form;
 }
 
@@ -173,7 +191,16 @@ FirstCollapseScaling fit_first_collapse_scaling(const std::vector<CollapseEvents
     // d(-1/k)/dk = 1/k^2.
     scaling.predicted_mean_time_exponent = {-1.0 / k, scaling.hazard.slope_sigma() / (k * k)};
     scaling.gumbel_runs = gumbel_log_n.size();
-    if (scaling.gumbel_runs >= 2) {
+    // Runs of one N among those with many regions give no slope in ln N.
+    const bool distinct_n = std::any_of(gumbel_log_n.begin(), gumbel_log_n.end(),
+                                        [&](double log_n) { return log_n != gumbel_log_n.front(); });
+    if (scaling.gumbel_runs >= 2 && !distinct_n)
+        scaling.gumbel_note = fmt::format("the {} runs with N/<m> >= {:g} all have N = {:g}", scaling.gumbel_runs,
+                                          gumbel_min_regions, std::exp(gumbel_log_n.front()));
+    else if (scaling.gumbel_runs < 2)
+        scaling.gumbel_note = fmt::format("{} run{} with N/<m> >= {:g}; the Gumbel fit needs 2 N", scaling.gumbel_runs,
+                                          scaling.gumbel_runs == 1 ? "" : "s", gumbel_min_regions);
+    if (scaling.gumbel_runs >= 2 && distinct_n) {
         scaling.gumbel = weighted_linear_fit(gumbel_log_n, gumbel_time, gumbel_sigma);
         scaling.gumbel_tau = {-scaling.gumbel.slope, scaling.gumbel.slope_sigma()};
         const double pi_over_root6 = std::acos(-1.0) / std::sqrt(6.0);  // s.d. of the standard Gumbel law

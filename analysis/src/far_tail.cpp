@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <utility>
+
+#include <fmt/format.h>
 
 #include "shockgas/h5.hpp"
 
@@ -12,7 +16,8 @@ FarTail read_far_tail(const std::string& path) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
     if (!root.has_attribute("kind") || root.attribute_string("kind") != "far_tail")
-        throw InsufficientData(path + " is not a far-tail file (shockgas-tail output)");
+        throw h5::Error("not a far-tail file (shockgas-tail output has the root attribute kind = far_tail) in '" +
+                        path + "'");
     FarTail tail;
     tail.z = root.read_doubles("z");
     tail.log_phi = root.read_doubles("log_phi");
@@ -20,7 +25,23 @@ FarTail read_far_tail(const std::string& path) {
     tail.time = root.attribute_double("time");
     std::vector<hsize_t> dims;
     const auto leave_one_out = root.read_doubles("log_phi_leave_one_chain_out", &dims);
-    if (dims.size() != 2 || dims[1] != tail.z.size()) throw InsufficientData(path + ": leave-one-out has the wrong shape");
+    // Every table is one value per z bin. A damaged or hand-made file with a
+    // short table would be read past its end (a gamma that looks measured):
+    // refused, with the dataset and the file named.
+    auto damaged = [&](const std::string& what) { return h5::Error(fmt::format("{} in '{}'", what, path)); };
+    for (const auto& [name, table] : {std::pair<const char*, const std::vector<double>*>{"log_phi", &tail.log_phi},
+                                      {"log_phi_sigma", &tail.log_phi_sigma}})
+        if (table->size() != tail.z.size())
+            throw damaged(fmt::format("/{} holds {} values but /z holds {}: one per z bin expected", name,
+                                      table->size(), tail.z.size()));
+    if (dims.size() != 2 || dims[1] != tail.z.size())
+        throw damaged(fmt::format("/log_phi_leave_one_chain_out is not chains x z bins (z holds {} bins)",
+                                  tail.z.size()));
+    if (!std::all_of(tail.z.begin(), tail.z.end(), [](double z) { return std::isfinite(z); }) ||
+        std::adjacent_find(tail.z.begin(), tail.z.end(), std::greater_equal<>()) != tail.z.end())
+        throw damaged("/z is not finite and increasing");
+    if (std::none_of(tail.log_phi.begin(), tail.log_phi.end(), [](double v) { return std::isfinite(v); }))
+        throw damaged("/log_phi holds no finite value: the sampler measured no bin");
     for (hsize_t c = 0; c < dims[0]; ++c)
         tail.log_phi_leave_one_chain_out.emplace_back(leave_one_out.begin() + static_cast<std::ptrdiff_t>(c * dims[1]),
                                                       leave_one_out.begin() + static_cast<std::ptrdiff_t>((c + 1) * dims[1]));
@@ -120,7 +141,7 @@ double local_tail_exponent(const std::vector<double>& z, const std::vector<doubl
     return weighted_linear_fit(log_z, log_excess, unit, ErrorModel::scale_by_residuals).slope;
 }
 
-double TailExponent::total_sigma() const { return std::hypot(gamma.sigma, window_systematic); }
+double TailExponent::total_sigma() const { return std::hypot(gamma.sigma, window_systematic.value); }
 
 TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_hi, double window_shift,
                                     std::optional<double> linear_coefficient) {
@@ -136,8 +157,10 @@ TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_h
             .gamma;
     });
     double lowest = result.fit.gamma, highest = result.fit.gamma;
+    std::size_t shifted = 0;  // windows other than the given one that could be fitted
     for (double lo_shift : {-window_shift, 0.0, window_shift})
         for (double hi_shift : {-window_shift, 0.0, window_shift}) {
+            if (lo_shift == 0.0 && hi_shift == 0.0) continue;  // the given window: result.fit
             try {
                 const double g =
                     fit_tail_exponent(tail.z, tail.log_phi, tail.log_phi_sigma, z_lo + lo_shift, z_hi + hi_shift,
@@ -145,11 +168,18 @@ TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_h
                         .gamma;
                 lowest = std::min(lowest, g);
                 highest = std::max(highest, g);
+                ++shifted;
             } catch (const InsufficientData&) {
                 // a shifted window beyond the data: not counted
             }
         }
-    result.window_systematic = (highest - lowest) / 2.0;
+    // The spread of the given window alone is not 0 but unknown.
+    result.window_systematic =
+        shifted > 0 ? Measured{(highest - lowest) / 2.0, ""}
+                    : Measured::missing(window_shift > 0.0
+                                            ? fmt::format("no window with its ends moved by +-{:g} holds 6 usable bins",
+                                                          window_shift)
+                                            : std::string("window shift 0: no other window to compare with"));
     return result;
 }
 

@@ -1,10 +1,12 @@
 #include "shockgas/analysis/fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
 #include <gsl/gsl_multifit.h>
@@ -13,9 +15,16 @@ namespace shockgas::analysis {
 
 double LinearFit::slope_sigma() const { return std::sqrt(slope_variance); }
 double LinearFit::intercept_sigma() const { return std::sqrt(intercept_variance); }
+Measured LinearFit::reduced_chi2() const {
+    if (degrees_of_freedom() == 0)
+        return Measured::missing("need at least " + std::to_string(parameters + 1) + " points for chi2, got " +
+                                 std::to_string(points));
+    return {chi2 / static_cast<double>(degrees_of_freedom()), ""};
+}
 double LinearFit::chi2_per_dof() const {
-    return points > parameters ? chi2 / static_cast<double>(points - parameters)
-                               : std::numeric_limits<double>::quiet_NaN();
+    const Measured reduced = reduced_chi2();
+    if (!reduced.known()) throw InsufficientData(reduced.note);
+    return reduced.value;
 }
 double LinearFit::aic() const { return chi2 + 2.0 * static_cast<double>(parameters); }
 double LinearFit::bic() const {
@@ -44,6 +53,15 @@ LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double>
     if (x.size() < 2)
         throw InsufficientData("a straight-line fit needs at least 2 points, got " + std::to_string(x.size()));
     const std::vector<double> weight = fit_weights(x, y, sigma);
+    // Equal x leave the slope undefined: the normal equations are singular,
+    // and gsl_fit_wlinear divides by their zero determinant without an error.
+    if (std::all_of(x.begin(), x.end(), [&](double value) { return value == x.front(); }))
+        throw InsufficientData(fmt::format("all x values are equal ({:g}): a straight line through {} points at "
+                                           "one x has no slope",
+                                           x.front(), x.size()));
+    if (model == ErrorModel::scale_by_residuals && x.size() < 3)
+        throw InsufficientData("need at least 3 points for chi2: the error bars come from the scatter about the "
+                               "line, and a line through 2 points has none");
     LinearFit fit;
     fit.points = x.size();
     const int status = gsl_fit_wlinear(x.data(), 1, weight.data(), 1, y.data(), 1, x.size(), &fit.intercept,
@@ -52,7 +70,7 @@ LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double>
     if (status != GSL_SUCCESS)
         throw InsufficientData(std::string("gsl_fit_wlinear failed: ") + gsl_strerror(status) +
                                " (are all x equal?)");
-    if (model == ErrorModel::scale_by_residuals && fit.points > 2) {
+    if (model == ErrorModel::scale_by_residuals) {
         // Unknown absolute errors: estimate them from the scatter about the line.
         const double residual_variance = fit.chi2 / static_cast<double>(fit.points - 2);
         fit.intercept_variance *= residual_variance;
@@ -168,7 +186,8 @@ Estimate mean_and_standard_error(std::span<const double> values) {
     for (double v : values) mean += v;
     const double n = static_cast<double>(values.size());
     mean /= n;
-    if (values.size() < 2) return {mean, std::numeric_limits<double>::quiet_NaN()};
+    if (values.size() < 2)
+        return {mean, std::numeric_limits<double>::quiet_NaN(), "one value: no scatter to estimate an error from"};
     double sum_squares = 0.0;
     for (double v : values) sum_squares += (v - mean) * (v - mean);
     return {mean, std::sqrt(sum_squares / (n - 1.0) / n)};

@@ -1,10 +1,14 @@
 #include "shockgas/analysis/results.hpp"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstring>
-#include <iomanip>
+#include <filesystem>
 #include <stdexcept>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -30,34 +34,179 @@ h5::Group ResultsFile::section(const std::string& name) {
     return root.has(name) ? root.open_group(name) : root.create_group(name);
 }
 
+void set_measured(h5::Group& group, const std::string& name, const Measured& value) {
+    group.set_attribute(name, value.value);
+    if (!value.known()) group.set_attribute(name + "_note", value.note.empty() ? "not measured" : value.note);
+}
+
 void set_estimate(h5::Group& group, const std::string& name, const Estimate& estimate) {
     group.set_attribute(name, estimate.value);
     group.set_attribute(name + "_sigma", estimate.sigma);
+    const std::string note = estimate.note.empty() ? "not measured" : estimate.note;
+    if (std::isnan(estimate.value))
+        group.set_attribute(name + "_note", note);
+    else if (std::isnan(estimate.sigma))
+        group.set_attribute(name + "_sigma_note", note);
 }
 
 void set_power_law(h5::Group& group, const std::string& name, const LinearFit& fit) {
     group.set_attribute(name + "_exponent", fit.slope);
     group.set_attribute(name + "_exponent_sigma", fit.slope_sigma());
     group.set_attribute(name + "_prefactor", std::exp(fit.intercept));
-    group.set_attribute(name + "_chi2_per_dof", fit.chi2_per_dof());
+    set_measured(group, name + "_chi2_per_dof", fit.reduced_chi2());
     group.set_attribute(name + "_points", static_cast<std::int64_t>(fit.points));
 }
 
+std::string format_measured(const Measured& value, const std::string& spec, const std::string& label) {
+    const std::string note = value.note.empty() ? "not measured" : value.note;
+    if (!value.known()) return label.empty() ? "n/a (" + note + ")" : "n/a (" + label + ": " + note + ")";
+    const std::string number = fmt::format(fmt::runtime(spec), value.value);
+    return label.empty() ? number : number + " (" + label + ")";
+}
+
+std::string format_estimate(const Estimate& estimate, const std::string& spec, const std::string& sigma_spec) {
+    if (std::isnan(estimate.value)) return format_measured({estimate.value, estimate.note}, spec);
+    return fmt::format(fmt::runtime(spec), estimate.value) + " +- " +
+           format_measured({estimate.sigma, estimate.note}, sigma_spec.empty() ? spec : sigma_spec);
+}
+
+namespace {
+
+InputError data_file_error(const std::string& path, const std::string& why) {
+    return InputError(fmt::format("cannot write data file '{}': {}", path, why));
+}
+
+}  // namespace
+
+bool writes_through(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(path, error);
+    return fs::exists(status) && !fs::is_regular_file(status);
+}
+
+void check_data_file_writable(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    if (!writes_through(path)) {
+        h5::check_writable(path);  // a new or regular file, written beside and renamed
+        return;
+    }
+    const fs::file_status target = fs::status(path, error);  // what a link points to
+    if (!fs::exists(target)) throw data_file_error(path, "it is a symbolic link to nothing");
+    if (fs::is_directory(target)) throw data_file_error(path, "it is a directory");
+    if (::access(path.c_str(), W_OK) != 0) throw data_file_error(path, std::strerror(errno));
+}
+
+void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {
+    namespace fs = std::filesystem;
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const OutputPath& output = outputs[i];
+        if (output.path.empty()) continue;
+        if (output.text)
+            check_data_file_writable(output.path);
+        else
+            h5::check_writable(output.path);
+        h5::check_not_an_input(output.path, inputs);
+        // Two outputs at one path: the second written would replace the first.
+        // Devices (/dev/null twice) take both.
+        if (writes_through(output.path)) continue;
+        // Absolute first: weakly_canonical leaves a relative path whose first
+        // element does not exist as it is, so "t.dat" and "./t.dat" differed.
+        auto resolved = [](const std::string& path) {
+            std::error_code error;
+            return fs::weakly_canonical(fs::absolute(path, error), error);
+        };
+        const fs::path here = resolved(output.path);
+        for (std::size_t j = 0; j < i; ++j) {
+            const OutputPath& other = outputs[j];
+            if (other.path.empty() || writes_through(other.path)) continue;
+            if (resolved(other.path) == here)
+                throw InputError(fmt::format("{} and {} name the same file '{}': one would overwrite the other",
+                                             other.option, output.option, output.path));
+        }
+    }
+}
+
 DataFile::DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& columns)
-    : out_(path), path_(path) {
-    if (!out_) throw InputError(fmt::format("cannot write data file '{}': {}", path, std::strerror(errno)));
-    out_ << "# " << description << "\n#";
-    for (const auto& column : columns) out_ << ' ' << column;
-    out_ << '\n' << std::setprecision(10);
+    : target_(path) {
+    // Beyond a file-size limit (ulimit -f) the kernel would kill the process
+    // with SIGXFSZ; ignored, the write fails with EFBIG and is reported (as
+    // h5::AtomicFile does).
+    std::signal(SIGXFSZ, SIG_IGN);
+    check_data_file_writable(path);
+    if (!writes_through(path)) temporary_ = path + ".tmp." + std::to_string(::getpid());
+    const std::string& opened = temporary_.empty() ? target_ : temporary_;
+    file_ = std::fopen(opened.c_str(), "w");
+    if (file_ == nullptr) fail(errno);
+    std::string header = "# " + description + "\n#";
+    for (const auto& column : columns) header += ' ' + column;
+    put(header + '\n');
+}
+
+DataFile::~DataFile() {
+    if (file_ != nullptr) std::fclose(file_);
+    if (!committed_ && !temporary_.empty()) std::remove(temporary_.c_str());
+}
+
+void DataFile::fail(int error) {
+    // The message names the file the user asked for; the temporary one goes.
+    if (file_ != nullptr) std::fclose(file_);
+    file_ = nullptr;
+    if (!temporary_.empty()) std::remove(temporary_.c_str());
+    // stdio need not set errno on a short write; an unknown cause is an I/O error.
+    throw data_file_error(target_, std::strerror(error != 0 ? error : EIO));
+}
+
+void DataFile::put(const std::string& text) {
+    if (file_ == nullptr) throw std::logic_error("DataFile: write after close: " + target_);
+    errno = 0;
+    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) fail(errno);
 }
 
 void DataFile::row(const std::vector<double>& values) {
-    for (std::size_t i = 0; i < values.size(); ++i) out_ << (i ? " " : "") << values[i];
-    out_ << '\n';
-    if (!out_) throw std::runtime_error("write failed: " + path_);
+    std::string line;
+    for (std::size_t i = 0; i < values.size(); ++i) line += fmt::format("{}{:.10g}", i ? " " : "", values[i]);
+    put(line + '\n');
 }
 
-void DataFile::comment(const std::string& text) { out_ << "# " << text << '\n'; }
-void DataFile::blank_line() { out_ << "\n\n"; }
+void DataFile::comment(const std::string& text) { put("# " + text + '\n'); }
+void DataFile::blank_line() { put("\n\n"); }
+
+void DataFile::close() {
+    if (file_ == nullptr) return;
+    // stdio buffers: a full disk often shows only at the flush.
+    errno = 0;
+    if (std::fflush(file_) != 0) fail(errno);
+    // A regular file's bytes reach the disk before it is renamed into place;
+    // devices and FIFOs have nothing to sync (fsync fails on them).
+    if (!temporary_.empty() && ::fsync(::fileno(file_)) != 0) fail(errno);
+    std::FILE* file = file_;
+    file_ = nullptr;
+    if (std::fclose(file) != 0) {
+        const int error = errno;
+        if (!temporary_.empty()) std::remove(temporary_.c_str());
+        throw data_file_error(target_, std::strerror(error));
+    }
+}
+
+void DataFile::commit() {
+    if (committed_) return;
+    close();
+    if (!temporary_.empty() && std::rename(temporary_.c_str(), target_.c_str()) != 0) {
+        const int error = errno;
+        std::remove(temporary_.c_str());
+        throw data_file_error(target_, std::strerror(error));
+    }
+    committed_ = true;
+}
+
+void commit_outputs(ResultsFile* results, std::initializer_list<DataFile*> data_files) {
+    for (DataFile* file : data_files)
+        if (file != nullptr) file->close();
+    if (results != nullptr) results->commit();
+    for (DataFile* file : data_files)
+        if (file != nullptr) file->commit();
+}
 
 }  // namespace shockgas::analysis

@@ -5,6 +5,10 @@
 #include <numeric>
 #include <sstream>
 
+#include <fmt/format.h>
+
+#include "shockgas/h5.hpp"
+
 #include "shockgas/output.hpp"
 #include "shockgas/ring_kinematics.hpp"
 
@@ -23,7 +27,31 @@ std::vector<Snapshot> snapshots_from(const EnsembleResult& result, double ring_l
 std::vector<Snapshot> read_snapshots(const std::string& path) {
     // The schema is read in one place (shockgas::read_output).
     const OutputFile file = read_output(path);
-    return snapshots_from(file.result, file.parameters.effective_ring_length());
+    auto snapshots = snapshots_from(file.result, file.parameters.effective_ring_length());
+    // A damaged or hand-made snapshot would give nan (no mass: v_rms = 0/0)
+    // or read past the end of a short dataset: refused, named.
+    for (std::size_t i = 0; i < snapshots.size(); ++i) {
+        const Snapshot& snapshot = snapshots[i];
+        std::string problem;
+        if (snapshot.position.size() != snapshot.velocity.size() || snapshot.mass.size() != snapshot.velocity.size())
+            problem = fmt::format("position, velocity and mass hold {}, {} and {} values", snapshot.position.size(),
+                                  snapshot.velocity.size(), snapshot.mass.size());
+        else if (!std::all_of(snapshot.mass.begin(), snapshot.mass.end(), [](double m) { return m > 0.0 && std::isfinite(m); }))
+            problem = "mass holds a value that is not positive and finite";
+        else if (!(snapshot.total_mass() > 0.0))
+            problem = "mass is empty: no particle to find shocks among";
+        else if (!std::all_of(snapshot.velocity.begin(), snapshot.velocity.end(), [](double v) { return std::isfinite(v); }) ||
+                 !std::all_of(snapshot.position.begin(), snapshot.position.end(), [](double x) { return std::isfinite(x); }))
+            problem = "position or velocity holds a value that is not finite";
+        else if (!(snapshot.time > 0.0) || !std::isfinite(snapshot.time))
+            problem = fmt::format("its time {} is not positive and finite", snapshot.time);
+        if (problem.empty()) continue;
+        // The group's name as stored (schemas 1-2 unpadded, 3 on zero-padded).
+        const auto names = h5::File::open_read(path).root().open_group("snapshots").numbered_children();
+        throw h5::Error(fmt::format("/snapshots/{}: {} in '{}'", i < names.size() ? names[i] : std::to_string(i),
+                                    problem, path));
+    }
+    return snapshots;
 }
 
 Snapshot coarse_grained(const Snapshot& snapshot, double cell_mass) {
@@ -184,10 +212,24 @@ ShockSummary summarize_shocks(const std::vector<Snapshot>& snapshots, const Shoc
         }
     }
     summary.shocks = mean_and_standard_error(counts);
+    if (counts.size() < 2) summary.shocks.note = "one snapshot at this time: no scatter between realizations";
     summary.expected_shocks = snapshots.front().total_mass() * std::pow(summary.time, -2.0 / 3.0);
     summary.segments = slopes.size();
-    if (!slopes.empty()) summary.slope_times_t = mean_and_standard_error(slopes);
-    if (!corrected.empty()) summary.density_corrected_slope_times_t = mean_and_standard_error(corrected);
+    if (slopes.empty()) {
+        // No sparse segment: the slope was not measured (it is not 0).
+        const std::string why = fmt::format("no sparse segment: no run of >= {} points between drops of {:g} v_rms "
+                                            "with density < 1/2",
+                                            rule.min_segment_points, rule.segment_break_fraction);
+        summary.slope_times_t = Estimate::missing(why);
+        summary.density_corrected_slope_times_t = Estimate::missing(why);
+        return summary;
+    }
+    summary.slope_times_t = mean_and_standard_error(slopes);
+    summary.density_corrected_slope_times_t = mean_and_standard_error(corrected);
+    if (slopes.size() < 2) {
+        summary.slope_times_t.note = "one sparse segment: no scatter to estimate an error from";
+        summary.density_corrected_slope_times_t.note = summary.slope_times_t.note;
+    }
     return summary;
 }
 

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
+
+#include "shockgas/h5.hpp"
 
 namespace shockgas::analysis {
 
@@ -68,6 +72,25 @@ TemperatureHistory TemperatureHistory::from(const std::vector<double>& time, std
     return history;
 }
 
+TemperatureRun read_temperature_run(const std::string& path) {
+    TemperatureRun run{read_timeseries(path), {}};
+    const TimeSeries& series = run.series;
+    const auto rows = static_cast<std::size_t>(std::max<std::int64_t>(series.realizations, 0));
+    // A damaged or hand-made file: tables that are not realizations x times
+    // would be read past their end or mis-assigned to times.
+    const std::pair<const char*, const std::vector<double>*> tables[] = {
+        {"temperature", &series.temperature}, {"collisions_per_particle", &series.collisions_per_particle}};
+    for (const auto& [name, table] : tables)
+        if (table->size() != rows * series.time.size())
+            throw h5::Error(fmt::format("/timeseries/{} holds {} values, not realizations x times = {} x {} in '{}'",
+                                        name, table->size(), rows, series.time.size(), path));
+    if (series.realizations <= 0) throw InsufficientData("the file holds no realization (/timeseries has 0 rows)");
+    run.history = TemperatureHistory::from(series);
+    if (run.history.time.empty())
+        throw InsufficientData("no sample time t > 0 was reached with T > 0 by every realization");
+    return run;
+}
+
 TemperatureHistory TemperatureHistory::from(const TimeSeries& series) {
     return from(series.time, series.realizations, series.temperature);
 }
@@ -119,8 +142,8 @@ DecayWindow automatic_decay_window(double restitution, double velocity_threshold
 DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, double t_hi) {
     const auto inside = indices_in_window(history.time, t_lo, t_hi);
     if (inside.size() < 3)
-        throw InsufficientData("the window [" + std::to_string(t_lo) + ", " + std::to_string(t_hi) + "] holds " +
-                               std::to_string(inside.size()) + " sample times; a decay fit needs at least 3");
+        throw InsufficientData(fmt::format("the window [{:g}, {:g}] holds {} sample times; a decay fit needs at least 3",
+                                           t_lo, t_hi, inside.size()));
     std::vector<double> time, mean_temperature, temperature_error;
     for (std::size_t k : inside) {
         time.push_back(history.time[k]);
@@ -149,17 +172,29 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
         result.exponent_sigma = jack.sigma;
     } else {
         result.exponent_sigma = std::numeric_limits<double>::quiet_NaN();
+        result.exponent_sigma_note = "one realization: the jackknife has nothing to leave out; run -R 2 or more";
     }
     return result;
 }
 
 std::vector<DecayFit> scan_decay_windows(const TemperatureHistory& history, double width_decades,
                                          double step_decades) {
+    // !(x > 0) also refuses NaN.
+    if (!(width_decades > 0.0) || !std::isfinite(width_decades) || !(step_decades >= min_scan_step_decades) ||
+        !std::isfinite(step_decades))
+        throw std::invalid_argument(fmt::format("scan_decay_windows: width {} and step {} decades", width_decades,
+                                                step_decades));
     std::vector<DecayFit> scan;
     if (history.time.empty()) return scan;
     const double first = std::log10(history.time.front());
     const double last = std::log10(history.time.back());
-    for (double start = first; start + width_decades <= last + 1e-9; start += step_decades) {
+    constexpr double rounding = 1e-9;  // decades: a window ending at the last sample counts
+    if (first + width_decades > last + rounding) return scan;
+    // Window i starts at first + i step: counted, not accumulated, so that a
+    // step below the spacing of doubles near `first` cannot loop forever.
+    const auto windows = static_cast<std::size_t>(std::floor((last + rounding - first - width_decades) / step_decades));
+    for (std::size_t i = 0; i <= windows; ++i) {
+        const double start = first + static_cast<double>(i) * step_decades;
         try {
             scan.push_back(fit_temperature_decay(history, std::pow(10.0, start), std::pow(10.0, start + width_decades)));
         } catch (const InsufficientData&) {
@@ -169,14 +204,19 @@ std::vector<DecayFit> scan_decay_windows(const TemperatureHistory& history, doub
     return scan;
 }
 
-double window_systematic(const TemperatureHistory& history, double t_lo, double t_hi) {
+Measured window_systematic(const TemperatureHistory& history, double t_lo, double t_hi) {
     double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
     for (const auto& w : scan_decay_windows(history, 1.0, 0.1)) {
         if (w.t_lo < t_lo * (1.0 - 1e-9) || w.t_hi > t_hi * (1.0 + 1e-9)) continue;
         lowest = std::min(lowest, w.exponent);
         highest = std::max(highest, w.exponent);
     }
-    return highest >= lowest ? (highest - lowest) / 2.0 : 0.0;
+    // No window inside: the spread of nothing is not 0, it is unknown.
+    if (!(highest >= lowest))
+        return Measured::missing(fmt::format("no one-decade window with 3 samples lies inside the fit window [{:g}, "
+                                             "{:g}]",
+                                             t_lo, t_hi));
+    return {(highest - lowest) / 2.0, ""};
 }
 
 namespace {
@@ -219,8 +259,10 @@ CrossoverValues crossovers_of(const TemperatureHistory& history, const std::vect
         haff_sigma.push_back(0.5 * std::sqrt(initial / mean[k]) * weights_sigma[k] / mean[k]);
     }
     if (haff_time.size() < 3)
-        throw InsufficientData("fewer than 3 samples with T >= T0/4: the homogeneous (Haff) regime is not resolved; "
-                               "sample more densely (--samples-per-decade) or use a smaller inelasticity");
+        throw InsufficientData(fmt::format("fewer than 3 samples with T >= {:g} T0 (--haff-floor): the homogeneous "
+                                           "(Haff) regime is not resolved; sample more densely (--samples-per-decade), "
+                                           "use a smaller inelasticity or a lower floor",
+                                           rule.haff_floor));
     const LinearFit haff = weighted_linear_fit(haff_time, haff_y, haff_sigma);
     const double rate = haff.slope;
     std::vector<double> ratio(samples);
@@ -232,8 +274,9 @@ CrossoverValues crossovers_of(const TemperatureHistory& history, const std::vect
     while (after_dissip < samples && history.time[after_dissip] < *dissip) ++after_dissip;
     const auto stick = first_crossing(history.time, ratio, rule.stick_ratio, after_dissip, true);
     if (!stick)
-        throw InsufficientData("<T> never exceeds the Haff curve by the factor " + std::to_string(rule.stick_ratio) +
-                               " before the last sample; t_stick is beyond t_max");
+        throw InsufficientData(fmt::format("<T> never exceeds the Haff curve by the factor {:g} (--stick-ratio) "
+                                           "before the last sample; t_stick is beyond t_max",
+                                           rule.stick_ratio));
     // <T> at t_stick, log-log interpolated.
     std::size_t k = 1;
     while (k + 1 < samples && history.time[k] < *stick) ++k;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
@@ -97,9 +100,34 @@ std::vector<VelocityHistogram> read_histograms(const std::string& path, const st
     const OutputFile file = read_output(path);
     const auto realizations = static_cast<std::size_t>(file.result.realizations);
     std::vector<VelocityHistogram> out;
-    for (const auto& record : file.result.histograms) {
-        if (record.counts.size() != realizations * (record.edges.size() + 1))
-            throw h5::Error(path + ": a /histograms counts table is not realizations x (bins + 2)");
+    for (std::size_t index = 0; index < file.result.histograms.size(); ++index) {
+        const auto& record = file.result.histograms[index];
+        // A damaged or hand-made histogram would give numbers that look
+        // measured (all counts 0: a "scaling exponent" of the grid's edge):
+        // refused, with the group and the file named.
+        std::string problem;
+        const auto& edges = record.edges;
+        if (edges.size() < 2)
+            problem = fmt::format("edges holds {} values; a histogram needs at least 2", edges.size());
+        else if (record.counts.size() != realizations * (edges.size() + 1))
+            problem = fmt::format("counts holds {} values, not realizations x (bins + 2) = {} x {}",
+                                  record.counts.size(), realizations, edges.size() + 1);
+        else if (!std::all_of(edges.begin(), edges.end(), [](double e) { return std::isfinite(e); }) ||
+                 std::adjacent_find(edges.begin(), edges.end(), std::greater_equal<>()) != edges.end())
+            problem = "edges are not finite and increasing";
+        else if (!std::all_of(record.counts.begin(), record.counts.end(),
+                              [](double c) { return c >= 0.0 && std::isfinite(c); }))
+            problem = "counts holds a value that is negative or not finite";
+        else if (!std::any_of(record.counts.begin(), record.counts.end(), [](double c) { return c > 0.0; }))
+            problem = "every count is 0: no mass to form P(v,t) from";
+        else if (!(record.time > 0.0) || !std::isfinite(record.time))
+            problem = fmt::format("its time {} is not positive and finite (z = v t^(1/3) needs t > 0)", record.time);
+        if (!problem.empty()) {
+            // The group's name as stored (schemas 1-2 unpadded, 3 on zero-padded).
+            const auto names = h5::File::open_read(path).root().open_group("histograms").numbered_children();
+            throw h5::Error(fmt::format("/histograms/{}: {} in '{}'",
+                                        index < names.size() ? names[index] : std::to_string(index), problem, path));
+        }
         VelocityHistogram h;
         h.time = record.time;
         h.label = time_label(label_prefix, h.time);
@@ -196,7 +224,9 @@ Estimate velocity_kurtosis(const VelocityHistogram& histogram) {
         fourth /= mass;
         return fourth / (second * second);  // 3 for a Gaussian
     };
-    if (groups < 2) return {kurtosis(std::nullopt), std::numeric_limits<double>::quiet_NaN()};
+    if (groups < 2)
+        return {kurtosis(std::nullopt), std::numeric_limits<double>::quiet_NaN(),
+                "one realization: the group jackknife has nothing to leave out"};
     return jackknife(groups, kurtosis);
 }
 

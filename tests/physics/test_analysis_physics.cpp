@@ -61,7 +61,9 @@ void expect_two_thirds(double restitution) {
     // Statistical (jackknife) and window-choice (window_systematic) errors in
     // quadrature: at this N the local exponent wanders by ~0.01 between decades
     // (corrections to scaling), more than the jackknife error (README, "Decay").
-    const double systematic = sa::window_systematic(history, fit.t_lo, fit.t_hi);
+    const auto window_spread = sa::window_systematic(history, fit.t_lo, fit.t_hi);
+    ASSERT_TRUE(window_spread.known()) << window_spread.note;
+    const double systematic = window_spread.value;
     const double total_sigma = std::hypot(fit.exponent_sigma, systematic);
     std::printf("r = %g: alpha = %.4f +- %.4f (stat) +- %.4f (window), chi2/dof %.2f over [%g, %g]\n", restitution,
                 fit.exponent, fit.exponent_sigma, systematic, fit.chi2_per_dof, fit.t_lo, fit.t_hi);

@@ -73,7 +73,7 @@ TEST(FarTailPhysics, PhiOnTheExactCurveAndGammaThreeAtTimeOneHundred) {
     constexpr double gamma_target_tolerance = 0.1;
     const auto gamma = shockgas::analysis::estimate_tail_exponent(tail, 2.0, 5.5);
     std::printf("gamma = %.3f +- %.3f (stat) +- %.3f (window), a = %.3f\n", gamma.gamma.value, gamma.gamma.sigma,
-                gamma.window_systematic, gamma.fit.a);
+                gamma.window_systematic.value, gamma.fit.a);
     EXPECT_NEAR(gamma.gamma.value, 3.0, gamma_target_tolerance);
     EXPECT_LT(gamma.total_sigma(), gamma_target_tolerance);
 }

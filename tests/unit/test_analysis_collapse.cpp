@@ -301,3 +301,28 @@ TEST(AnalysisCollapse, FirstCollapseWithExponentialHazardIsGumbel) {
     for (auto& run : runs) run.cluster_mass.assign(run.cluster_mass.size(), static_cast<double>(run.particles));
     EXPECT_EQ(sa::fit_first_collapse_scaling(runs).gumbel_runs, 0u);
 }
+
+TEST(AnalysisCollapse, GumbelFitOfOneNIsMissingNotDegenerate) {
+    // Only the two runs of N = 10^5 have many regions: no slope in ln N to
+    // fit (the fit gave nan and inf), so the Gumbel fit is missing, with why.
+    constexpr double tau = 100.0, rate = 1e-9;
+    auto runs = synthetic_first_collapses(1519, [&](double hazard) { return tau * std::log(hazard / rate); }, 10.0);
+    runs[3].particles = runs[2].particles;
+    for (std::size_t k = 0; k < 2; ++k)
+        runs[k].cluster_mass.assign(runs[k].cluster_mass.size(), static_cast<double>(runs[k].particles));
+    const auto scaling = sa::fit_first_collapse_scaling(runs);
+    EXPECT_EQ(scaling.gumbel_runs, 2u);
+    EXPECT_NE(scaling.gumbel_note.find("all have N = 100000"), std::string::npos) << scaling.gumbel_note;
+    EXPECT_TRUE(std::isnan(scaling.gumbel_tau.value));
+}
+
+TEST(AnalysisCollapse, FreeFormsThroughTwoPointsHaveNoChi2) {
+    const std::vector<double> eps{0.1, 0.01};
+    const std::vector<sa::Estimate> times{{30.0, 1.0}, {1000.0, 30.0}};
+    for (const auto& form : sa::fit_collapse_forms(sa::CollapseQuantity::time, eps, times)) {
+        const bool free = form.fit.parameters == 2;
+        EXPECT_EQ(form.fit.reduced_chi2().known(), !free) << form.name;
+        // The PDG scale factor needs chi2/dof: unknown for the free forms, not 1.
+        EXPECT_EQ(std::isnan(form.exponent_sigma_scaled), free) << form.name;
+    }
+}

@@ -44,4 +44,26 @@ TEST(Compare, FindsTheDepartureAndTheLargestDeviation) {
     EXPECT_TRUE(std::isinf(close.departure_time));
 }
 
+TEST(Compare, RunsWithoutACommonTimeAreNotInAgreement) {
+    // Perfect agreement ("max |dT/T| 0") was reported for runs that share no
+    // sample time: nothing was compared.
+    const auto reference = history({1, 10, 100}, 1.0, 0);
+    const auto run = history({0.5, 0.9}, 1.0, 0);
+    EXPECT_THROW(compare_temperatures(run, reference), shockgas::analysis::InsufficientData);
+}
+
+TEST(Compare, OneRealizationHasNoSigmaNotAZeroOne) {
+    const std::vector<double> time{1, 10, 100};
+    std::vector<double> temperature;
+    for (double t : time) temperature.push_back(std::pow(t, -2.0 / 3.0) * 1.01);
+    const auto single = TemperatureHistory::from(time, 1, temperature);
+    const auto comparison = compare_temperatures(single, history(time, 1.0, 0));
+    for (double sigma : comparison.relative_sigma) EXPECT_TRUE(std::isnan(sigma));
+    EXPECT_FALSE(comparison.sigma_note.empty());
+    // 1% off: inside the 2% floor, which alone judges the departure then.
+    EXPECT_TRUE(std::isinf(comparison.departure_time));
+    EXPECT_NEAR(comparison.max_abs_deviation, 0.01, 1e-3);
+    EXPECT_EQ(comparison.time_of_max, 1.0);
+}
+
 }  // namespace

@@ -6,14 +6,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "shockgas/analysis/fit.hpp"
+#include "shockgas/analysis/results.hpp"
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
 #include "shockgas/analysis/velocity_distribution.hpp"
+#include "shockgas/h5.hpp"
 #include "shockgas/observables.hpp"
+#include "shockgas/output.hpp"
+#include "shockgas/parameters.hpp"
 
 namespace sa = shockgas::analysis;
 
@@ -314,4 +322,274 @@ TEST(AnalysisShocks, IdealSawtooth) {
         for (const auto& segment : moved_profile.segments)
             EXPECT_NEAR(segment.slope * time, 1.0, 1e-9) << "shift " << shift;
     }
+}
+
+// --- What the data cannot determine is refused or reported missing, never a
+// number that looks measured (nan, inf, or 0). ---
+
+TEST(AnalysisFit, EqualXHaveNoSlope) {
+    // gsl_fit_wlinear returns nan and inf here without an error status.
+    const std::vector<double> x{0.25, 0.25, 0.25}, y{1.0, 2.0, 3.0}, sigma{0.1, 0.1, 0.1};
+    try {
+        sa::weighted_linear_fit(x, y, sigma);
+        ADD_FAILURE() << "equal x must be refused";
+    } catch (const sa::InsufficientData& error) {
+        EXPECT_NE(std::string(error.what()).find("all x values are equal"), std::string::npos) << error.what();
+    }
+    EXPECT_THROW(sa::fit_power_law(x, y, sigma), sa::InsufficientData);
+}
+
+TEST(AnalysisFit, TwoPointsLeaveNoChi2) {
+    const std::vector<double> x{1.0, 2.0}, y{1.0, 3.0}, sigma{0.1, 0.1};
+    const auto line = sa::weighted_linear_fit(x, y, sigma);
+    EXPECT_NEAR(line.slope, 2.0, 1e-12);  // the slope is determined ...
+    EXPECT_EQ(line.degrees_of_freedom(), 0u);
+    const auto reduced = line.reduced_chi2();  // ... its chi2 says nothing
+    EXPECT_FALSE(reduced.known());
+    EXPECT_NE(reduced.note.find("need at least 3 points for chi2"), std::string::npos) << reduced.note;
+    EXPECT_THROW(line.chi2_per_dof(), sa::InsufficientData);
+    // Error bars from the scatter about a line through 2 points: none.
+    EXPECT_THROW(sa::weighted_linear_fit(x, y, sigma, sa::ErrorModel::scale_by_residuals), sa::InsufficientData);
+    // A fixed slope leaves one degree of freedom to 2 points.
+    EXPECT_TRUE(sa::fixed_slope_fit(x, y, sigma, 2.0).reduced_chi2().known());
+}
+
+TEST(AnalysisFit, UnsetEstimateIsNotANumberNotZero) {
+    const sa::Estimate unset;
+    EXPECT_TRUE(std::isnan(unset.value));
+    EXPECT_TRUE(std::isnan(unset.sigma));
+    const std::vector<double> one{4.0};
+    const auto single = sa::mean_and_standard_error(one);
+    EXPECT_EQ(single.value, 4.0);
+    EXPECT_TRUE(std::isnan(single.sigma));
+    EXPECT_FALSE(single.note.empty());
+    // How every subcommand prints them.
+    EXPECT_EQ(sa::format_estimate({1.5, 0.25}, "{:.2f}"), "1.50 +- 0.25");
+    EXPECT_EQ(sa::format_estimate(single, "{:.1f}"), "4.0 +- n/a (" + single.note + ")");
+    EXPECT_EQ(sa::format_estimate(sa::Estimate::missing("why"), "{:.1f}"), "n/a (why)");
+    EXPECT_EQ(sa::format_measured({0.5, ""}, "{:.1f}", "window"), "0.5 (window)");
+    EXPECT_EQ(sa::format_measured(sa::Measured::missing("why"), "{:.1f}", "window"), "n/a (window: why)");
+}
+
+TEST(AnalysisDecay, ScanStepsAreCountedAndBounded) {
+    std::mt19937_64 random(17);
+    const auto history = synthetic_history(random, 2.0 / 3.0, 4);  // t = 1 ... 10^4
+    // A step of 0 looped forever, a tiny one for 10^9 windows: refused.
+    EXPECT_THROW(sa::scan_decay_windows(history, 1.0, 0.0), std::invalid_argument);
+    EXPECT_THROW(sa::scan_decay_windows(history, 1.0, -0.1), std::invalid_argument);
+    EXPECT_THROW(sa::scan_decay_windows(history, 1.0, 1e-9), std::invalid_argument);
+    EXPECT_THROW(sa::scan_decay_windows(history, 0.0, 0.1), std::invalid_argument);
+    EXPECT_THROW(sa::scan_decay_windows(history, std::nan(""), 0.1), std::invalid_argument);
+    // Wider than the data: no window (the CLI refuses an empty scan it was asked for).
+    EXPECT_TRUE(sa::scan_decay_windows(history, 50.0, 0.1).empty());
+    // The smallest step: windows start at 0, 0.001, ..., 3 decades.
+    EXPECT_EQ(sa::scan_decay_windows(history, 1.0, sa::min_scan_step_decades).size(), 3001u);
+}
+
+TEST(AnalysisDecay, WindowSystematicOfAShortWindowIsMissing) {
+    std::mt19937_64 random(19);
+    const auto history = synthetic_history(random, 2.0 / 3.0, 4);
+    // [1, 5] holds no one-decade window: the spread is unknown, not 0.
+    const auto short_window = sa::window_systematic(history, 1.0, 5.0);
+    EXPECT_FALSE(short_window.known());
+    EXPECT_NE(short_window.note.find("[1, 5]"), std::string::npos) << short_window.note;
+    const auto long_window = sa::window_systematic(history, 1.0, 1e4);
+    ASSERT_TRUE(long_window.known());
+    EXPECT_GT(long_window.value, 0.0);
+    // One realization: the jackknife sigma is missing, with the reason.
+    const auto single = sa::fit_temperature_decay(synthetic_history(random, 2.0 / 3.0, 1), 10.0, 1e4);
+    EXPECT_TRUE(std::isnan(single.exponent_sigma));
+    EXPECT_NE(single.exponent_sigma_note.find("one realization"), std::string::npos);
+}
+
+TEST(AnalysisShocks, NoSparseSegmentIsNotASlopeOfZero) {
+    // Every pair compressive but one: no segment of 5 points anywhere.
+    sa::Snapshot snapshot;
+    snapshot.time = 100.0;
+    snapshot.ring_length = 8.0;
+    for (int i = 0; i < 8; ++i) {
+        snapshot.position.push_back(i);
+        snapshot.velocity.push_back(i % 2 == 0 ? 1.0 : -1.0);
+        snapshot.mass.push_back(1.0);
+    }
+    const auto summary = sa::summarize_shocks({snapshot});
+    EXPECT_EQ(summary.segments, 0u);
+    EXPECT_TRUE(std::isnan(summary.slope_times_t.value));
+    EXPECT_NE(summary.slope_times_t.note.find("no sparse segment"), std::string::npos);
+    EXPECT_TRUE(std::isnan(summary.density_corrected_slope_times_t.value));
+    // One snapshot: the count has no scatter to give an error.
+    EXPECT_TRUE(std::isnan(summary.shocks.sigma));
+    EXPECT_NE(summary.shocks.note.find("one snapshot"), std::string::npos);
+}
+
+namespace {
+
+// A shockgas-sim output of one realization (three sample times) holding the
+// given snapshots and histograms, written through the output schema.
+// realizations 0 writes empty tables; temperature overrides T(t) of the one realization.
+std::string write_run(const std::string& name, const std::vector<shockgas::SnapshotRecord>& snapshots,
+                      const std::vector<shockgas::HistogramRecord>& histograms, int realizations = 1,
+                      std::vector<double> temperature = {0.3, 0.1, 0.05}) {
+    shockgas::SimulationParameters parameters;
+    parameters.particles = 8;
+    parameters.realizations = realizations;
+    parameters.t_max = 100.0;
+    shockgas::EnsembleResult result;
+    result.realizations = realizations;
+    result.times = {1.0, 10.0, 100.0};
+    const bool one = realizations == 1;
+    result.temperature = one ? temperature : std::vector<double>{};
+    result.collisions_per_particle = one ? std::vector<double>{1.0, 2.0, 3.0} : std::vector<double>{};
+    result.clusters = one ? std::vector<double>{8.0, 6.0, 4.0} : std::vector<double>{};
+    result.kinetic_energy = one ? std::vector<double>{0.15, 0.05, 0.025} : std::vector<double>{};
+    result.realization_status = one ? std::vector<std::int64_t>{0} : std::vector<std::int64_t>{};
+    result.status = "complete";
+    result.engine = "event";
+    result.snapshots = snapshots;
+    result.histograms = histograms;
+    const auto path = (std::filesystem::temp_directory_path() / ("shockgas_estimators_" + name + ".h5")).string();
+    shockgas::write_output(path, parameters, result);
+    return path;
+}
+
+// The message of the h5::Error that reading path with read throws.
+template <class Read>
+std::string refusal(const std::string& path, Read read) {
+    try {
+        read(path);
+    } catch (const shockgas::h5::Error& error) {
+        return error.what();
+    }
+    return "(nothing thrown)";
+}
+
+}  // namespace
+
+TEST(AnalysisReaders, DamagedSnapshotsAndHistogramsAreRefusedByName) {
+    // A snapshot without mass gave nan shocks (v_rms = 0/0).
+    shockgas::SnapshotRecord massless;
+    massless.state.time = 10.0;
+    massless.state.position = {0.0, 1.0, 2.0, 3.0};
+    massless.state.velocity = {0.1, -0.1, 0.2, -0.2};
+    massless.state.mass = {0.0, 0.0, 0.0, 0.0};
+    massless.state.first_particle = {0, 2, 4, 6};
+    const auto snapshot_path = write_run("massless", {massless}, {});
+    const std::string snapshot_message = refusal(snapshot_path, sa::read_snapshots);
+    EXPECT_NE(snapshot_message.find("/snapshots/0"), std::string::npos) << snapshot_message;
+    EXPECT_NE(snapshot_message.find("mass"), std::string::npos) << snapshot_message;
+    EXPECT_NE(snapshot_message.find(snapshot_path), std::string::npos) << snapshot_message;
+    // A histogram of zeros gave a "scaling exponent" of 0.0625 (the grid's edge).
+    shockgas::HistogramRecord empty;
+    empty.time = 10.0;
+    empty.edges = {-1.0, -0.5, 0.0, 0.5, 1.0};
+    empty.counts.assign(6, 0.0);
+    const auto histogram_path = write_run("empty_histogram", {}, {empty});
+    const std::string histogram_message =
+        refusal(histogram_path, [](const std::string& path) { return sa::read_histograms(path); });
+    EXPECT_NE(histogram_message.find("/histograms/0"), std::string::npos) << histogram_message;
+    EXPECT_NE(histogram_message.find("every count is 0"), std::string::npos) << histogram_message;
+    EXPECT_NE(histogram_message.find(histogram_path), std::string::npos) << histogram_message;
+    std::filesystem::remove(snapshot_path);
+    std::filesystem::remove(histogram_path);
+}
+
+TEST(AnalysisReaders, TemperatureRunNeedsRealizationsAndCommonTimes) {
+    const auto path = write_run("timeseries", {}, {});
+    EXPECT_EQ(sa::read_temperature_run(path).history.time.size(), 3u);
+    // No realization: compare reported perfect agreement with such a file.
+    const auto empty = write_run("no_realization", {}, {}, 0);
+    EXPECT_THROW(sa::read_temperature_run(empty), sa::InsufficientData);
+    // No sample time with T > 0: nothing to fit or compare.
+    const auto never = write_run("no_time", {}, {}, 1, {std::nan(""), std::nan(""), std::nan("")});
+    EXPECT_THROW(sa::read_temperature_run(never), sa::InsufficientData);
+    for (const auto& file : {path, empty, never}) std::filesystem::remove(file);
+}
+
+// --- data files: atomic, checked, and never written over an input ---
+
+namespace {
+
+std::filesystem::path scratch_directory(const std::string& name) {
+    const auto directory = std::filesystem::temp_directory_path() / ("shockgas_results_" + name);
+    std::filesystem::remove_all(directory);
+    std::filesystem::create_directories(directory);
+    return directory;
+}
+
+bool has_temporary(const std::filesystem::path& directory) {
+    for (const auto& entry : std::filesystem::directory_iterator(directory))
+        if (entry.path().filename().string().find(".tmp.") != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST(AnalysisResults, DataFileAppearsWhole) {
+    const auto directory = scratch_directory("atomic");
+    const auto target = (directory / "table.dat").string();
+    {
+        // A run that fails before commit() (an exception, here the scope's
+        // end) leaves neither the table nor its temporary file.
+        sa::DataFile file(target, "test table", {"x", "y"});
+        file.row({1.0, 2.0});
+        EXPECT_FALSE(std::filesystem::exists(target));
+    }
+    EXPECT_FALSE(std::filesystem::exists(target));
+    EXPECT_FALSE(has_temporary(directory));
+    {
+        sa::DataFile file(target, "test table", {"x", "y"});
+        file.row({1.0, 2.5});
+        file.commit();
+    }
+    std::ifstream in(target);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, "# test table\n# x y\n1 2.5\n");
+    EXPECT_FALSE(has_temporary(directory));
+    std::filesystem::remove_all(directory);
+}
+
+TEST(AnalysisResults, FullDiskIsAnInputErrorNamingTheFile) {
+    if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+    // Small: the stdio buffer holds it, the flush fails. Large: a write fails.
+    for (const std::size_t rows : {std::size_t{1}, std::size_t{100000}}) {
+        try {
+            sa::DataFile file("/dev/full", "test table", {"x"});
+            for (std::size_t i = 0; i < rows; ++i) file.row({static_cast<double>(i)});
+            file.commit();
+            ADD_FAILURE() << "a write to /dev/full must fail";
+        } catch (const shockgas::InputError& error) {
+            EXPECT_NE(std::string(error.what()).find("cannot write data file '/dev/full': No space left on device"),
+                      std::string::npos)
+                << error.what();
+        }
+    }
+    // A device is written through, not replaced by a renamed file.
+    EXPECT_TRUE(sa::writes_through("/dev/full"));
+    EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
+}
+
+TEST(AnalysisResults, OutputsAreCheckedAgainstInputsAndEachOther) {
+    const auto directory = scratch_directory("outputs");
+    const auto input = (directory / "run.h5").string();
+    std::ofstream(input) << "an input";
+    const auto other = (directory / "other.dat").string();
+    using Outputs = std::vector<sa::OutputPath>;
+    // An output that is an input would destroy it.
+    EXPECT_THROW(sa::check_outputs(Outputs{{"-o", input, false}}, {input}), shockgas::h5::Error);
+    EXPECT_THROW(sa::check_outputs(Outputs{{"--data", input, true}}, {input}), shockgas::h5::Error);
+    // Two outputs at one path: one would overwrite the other (also when spelt differently).
+    const auto same = (directory / "." / "other.dat").string();
+    EXPECT_THROW(sa::check_outputs(Outputs{{"--data", other, true}, {"--scan", same, true}}, {input}),
+                 shockgas::InputError);
+    // Relative, and the first element absent: "t.dat" is "./t.dat".
+    EXPECT_THROW(sa::check_outputs(Outputs{{"--data", "t.dat", true}, {"--scan", "./t.dat", true}}, {input}),
+                 shockgas::InputError);
+    // A missing directory, before any work.
+    EXPECT_THROW(sa::check_outputs(Outputs{{"--data", (directory / "absent" / "x.dat").string(), true}}, {input}),
+                 shockgas::h5::Error);
+    // Devices take any number of outputs; not asked for: no check.
+    EXPECT_NO_THROW(sa::check_outputs(Outputs{{"--data", "/dev/null", true}, {"--scan", "/dev/null", true},
+                                              {"--curves", "", true}, {"-o", other, false}},
+                                      {input}));
+    std::filesystem::remove_all(directory);
 }

@@ -1,11 +1,15 @@
 // The tail-exponent estimator (shockgas/analysis/far_tail.hpp) on synthetic
 // tails of known gamma with chain-by-chain noise, as the sampler delivers them.
 #include <cmath>
+#include <filesystem>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "shockgas/analysis/far_tail.hpp"
+#include "shockgas/h5.hpp"
 
 namespace {
 
@@ -53,7 +57,7 @@ TEST(TailExponent, KnownGammaRecoveredWithinItsJackknifeError) {
         EXPECT_NEAR(fixed.gamma.value, gamma, allowed_sigmas * fixed.gamma.sigma) << "gamma = " << gamma;
         EXPECT_GT(fixed.gamma.sigma, 0.0);
         EXPECT_LT(fixed.gamma.sigma, 0.05);  // the data determine gamma to better than the target
-        EXPECT_GE(fixed.window_systematic, 0.0);
+        EXPECT_GE(fixed.window_systematic.value, 0.0);
         const auto free = shockgas::analysis::estimate_tail_exponent(tail, 2.0, 5.8, 0.25, std::nullopt);
         EXPECT_NEAR(free.gamma.value, gamma, allowed_sigmas * free.gamma.sigma) << "gamma = " << gamma;
         EXPECT_LT(free.gamma.sigma, 0.1);
@@ -70,6 +74,33 @@ TEST(TailExponent, ExactTailWithoutNoiseGivesGammaToRounding) {
     EXPECT_NEAR(fit.gamma, 3.0, minimiser_tolerance);
     EXPECT_NEAR(fit.a, 0.5, 1e-4);
     EXPECT_NEAR(fit.b, 2.676, 1e-3);
+}
+
+TEST(TailExponent, ShortTablesInAFileAreRefusedByName) {
+    // A log_phi shorter than z was read past its end and gave gamma = 1.000.
+    const auto path = (std::filesystem::temp_directory_path() / "shockgas_far_tail_short.h5").string();
+    shockgas::h5::write_atomically(path, [](shockgas::h5::Group& root) {
+        root.set_attribute("kind", "far_tail");
+        root.set_attribute("time", 100.0);
+        std::vector<double> z, log_phi, sigma(40, 0.1), leave_one_out;
+        for (int i = 0; i < 40; ++i) z.push_back(2.0 + 0.1 * i);
+        for (int i = 0; i < 20; ++i) log_phi.push_back(-z[static_cast<std::size_t>(i)] * 3.0);
+        for (int c = 0; c < 2; ++c)
+            for (double value : z) leave_one_out.push_back(-3.0 * value);
+        root.write("z", z);
+        root.write("log_phi", log_phi);
+        root.write("log_phi_sigma", sigma);
+        root.write("log_phi_leave_one_chain_out", leave_one_out, {2, 40});
+    });
+    try {
+        shockgas::analysis::read_far_tail(path);
+        ADD_FAILURE() << "a short log_phi must be refused";
+    } catch (const shockgas::h5::Error& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("/log_phi holds 20 values but /z holds 40"), std::string::npos) << message;
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+    }
+    std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -54,7 +54,8 @@ struct CollapseForm {
     double prefactor = 0.0;
     Estimate exponent;      // the free exponent (x or y); for a fixed form its fixed value, sigma 0
     // sigma of the exponent scaled by sqrt(chi2/dof) when that exceeds 1 (the
-    // Particle Data Group's scale factor: the scatter is larger than the error bars say).
+    // Particle Data Group's scale factor: the scatter is larger than the error bars say); NaN when the
+    // fit leaves no degree of freedom (a free form through 2 points).
     double exponent_sigma_scaled = 0.0;
     LinearFit fit;          // in the form's log variables: chi2, points, parameters, AIC, BIC
 };
@@ -105,7 +106,8 @@ struct FirstCollapseScaling {
     // (Gumbel, Statistics of Extremes (1958)). Fitted: <t> = a + slope ln N
     // (slope = -tau); compared: the predicted and the measured spread.
     std::size_t gumbel_runs = 0;                // runs with enough regions
-    LinearFit gumbel;                           // valid when gumbel_runs >= 2
+    LinearFit gumbel;                           // valid when gumbel_note is empty
+    std::string gumbel_note;                    // why the Gumbel fit was not made (fewer than 2 distinct N)
     Estimate gumbel_tau;                        // -slope
     Estimate gumbel_predicted_spread;           // pi tau / sqrt 6
     Estimate gumbel_measured_spread;            // weighted mean of their sample standard deviations

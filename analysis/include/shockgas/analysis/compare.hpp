@@ -5,6 +5,7 @@
 // t_valid ~ delta^(-3).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "shockgas/analysis/temperature.hpp"
@@ -14,7 +15,8 @@ namespace shockgas::analysis {
 struct TemperatureComparison {
     std::vector<double> time;                // common sample times
     std::vector<double> relative_deviation;  // <T>/<T_ref> - 1
-    std::vector<double> relative_sigma;      // its standard error (both ensembles, independent)
+    std::vector<double> relative_sigma;      // its standard error (both ensembles, independent); NaN, see below
+    std::string sigma_note;                  // why relative_sigma is NaN (a run of one realization), else empty
     double max_abs_deviation = 0.0;          // max_k |<T>/<T_ref> - 1|
     double time_of_max = 0.0;
     // The first sample time from which on the deviation exceeds
@@ -23,7 +25,10 @@ struct TemperatureComparison {
 };
 
 // Compares at the sample times both histories share (they must come from the
-// same sample grid). relative_sigma = |ratio| sqrt((SE/T)^2 + (SE_ref/T_ref)^2).
+// same sample grid). relative_sigma = |ratio| sqrt((SE/T)^2 + (SE_ref/T_ref)^2),
+// NaN when either run has one realization (no SE); the departure rule then
+// uses the floor alone. Throws InsufficientData when the histories share no
+// sample time: there is nothing to compare, and no deviation is not agreement.
 TemperatureComparison compare_temperatures(const TemperatureHistory& run, const TemperatureHistory& reference,
                                            double k_sigma = 3.0, double floor = 0.02);
 

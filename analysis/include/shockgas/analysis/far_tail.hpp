@@ -61,7 +61,7 @@ double local_tail_exponent(const std::vector<double>& z, const std::vector<doubl
 struct TailExponent {
     TailExponentFit fit;
     Estimate gamma;                 // value and jackknife sigma
-    double window_systematic = 0.0;
+    Measured window_systematic;     // missing when no shifted window holds enough bins
     double total_sigma() const;     // statistical (+) systematic in quadrature
 };
 TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_hi, double window_shift = 0.25,

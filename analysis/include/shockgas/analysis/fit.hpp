@@ -14,6 +14,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shockgas::analysis {
@@ -35,6 +36,19 @@ enum class ErrorModel {
     scale_by_residuals,
 };
 
+// A number the data may not determine. When they do not, value is NaN and
+// note says why; it is printed "n/a (<note>)" and stored as NaN beside a
+// <name>_note attribute (results.hpp), never as 0, which would read as a
+// measurement.
+struct Measured {
+    double value = std::numeric_limits<double>::quiet_NaN();
+    std::string note;
+    Measured() = default;
+    Measured(double measured, std::string why) : value(measured), note(std::move(why)) {}
+    bool known() const { return !std::isnan(value); }
+    static Measured missing(std::string why) { return {std::numeric_limits<double>::quiet_NaN(), std::move(why)}; }
+};
+
 struct LinearFit {
     double intercept = 0.0;
     double slope = 0.0;
@@ -47,7 +61,13 @@ struct LinearFit {
 
     double slope_sigma() const;
     double intercept_sigma() const;
-    double chi2_per_dof() const;  // chi2 / (points - parameters); NaN when no degree of freedom is left
+    std::size_t degrees_of_freedom() const { return points > parameters ? points - parameters : 0; }
+    // chi2 / (points - parameters). A fit with no degree of freedom left (two
+    // points and a line) passes through every point, and its chi2 = 0 says
+    // nothing: chi2_per_dof() then throws InsufficientData ("need at least 3
+    // points for chi2"), reduced_chi2() returns it as missing with that reason.
+    double chi2_per_dof() const;
+    Measured reduced_chi2() const;
     // Information criteria for comparing models fitted to the same points with
     // the same known sigmas (-2 ln L = chi2 + a constant common to all models):
     // AIC = chi2 + 2k (Akaike 1974), BIC = chi2 + k ln n (Schwarz 1978), k the
@@ -60,7 +80,11 @@ struct LinearFit {
 
 // Weighted least squares for y = intercept + slope x: minimises
 // chi2 = sum_i (y_i - intercept - slope x_i)^2 / sigma_i^2 (gsl_fit_wlinear).
-// Throws InsufficientData for fewer than two points or a non-positive sigma.
+// Throws InsufficientData for fewer than two points, a non-positive sigma,
+// x values that are all equal (no slope is defined; gsl_fit_wlinear does not
+// fail but returns nan and inf), and, with ErrorModel::scale_by_residuals,
+// fewer than 3 points (the residual scatter that sets the error bars needs a
+// degree of freedom).
 LinearFit weighted_linear_fit(std::span<const double> x, std::span<const double> y, std::span<const double> sigma,
                               ErrorModel model = ErrorModel::known_sigmas);
 
@@ -77,10 +101,19 @@ LinearFit fixed_slope_fit(std::span<const double> x, std::span<const double> y, 
 // exponent, intercept is ln prefactor.
 LinearFit fit_power_law(std::span<const double> x, std::span<const double> y, std::span<const double> y_sigma);
 
-// A number with its standard error.
+// A number with its standard error. Not measured until set: NaN, not 0. When
+// value or sigma cannot be estimated it is NaN and note says why (for sigma
+// alone: e.g. "one realization: the jackknife has nothing to leave out").
 struct Estimate {
-    double value = 0.0;
-    double sigma = 0.0;
+    double value = std::numeric_limits<double>::quiet_NaN();
+    double sigma = std::numeric_limits<double>::quiet_NaN();
+    std::string note;
+    Estimate() = default;
+    Estimate(double measured, double error, std::string why = "")
+        : value(measured), sigma(error), note(std::move(why)) {}
+    static Estimate missing(std::string why) {
+        return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(), std::move(why)};
+    }
 };
 
 // Delete-one jackknife over `samples` independent samples (realizations):
@@ -138,7 +171,8 @@ double minimise(Function f, double lo, double hi, std::size_t grid = 60) {
     return (a + b) / 2.0;
 }
 
-// Mean and standard error of the mean (sample standard deviation / sqrt(n)).
+// Mean and standard error of the mean (sample standard deviation / sqrt(n));
+// for one value the standard error is missing (NaN with a note).
 Estimate mean_and_standard_error(std::span<const double> values);
 
 }  // namespace shockgas::analysis

@@ -1,9 +1,11 @@
 // What the analysis programs write: a results file (HDF5 through shockgas::h5)
 // of fitted numbers that carries provenance forward, and small
-// whitespace-separated data files for gnuplot.
+// whitespace-separated data files for gnuplot; and the checks every output
+// path passes before any work starts.
 #pragma once
 
-#include <fstream>
+#include <cstdio>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -28,23 +30,82 @@ private:
     h5::AtomicFile file_;
 };
 
+// A number that was not measured is stored as NaN with a <name>_note
+// attribute giving the reason (a sigma alone: <name>_sigma_note), so that a
+// reader of the file sees why; a measured number is stored alone.
+void set_measured(h5::Group& group, const std::string& name, const Measured& value);
 void set_estimate(h5::Group& group, const std::string& name, const Estimate& estimate);
 // exponent, exponent_sigma, prefactor, chi2_per_dof, points of a log-log fit.
 void set_power_law(h5::Group& group, const std::string& name, const LinearFit& fit);
 
+// How every analysis program prints numbers that may be missing: the value in
+// the fmt format spec ("{:.3f}"), or "n/a (<note>)". With a label, "0.012
+// (jackknife)" or "n/a (jackknife: <note>)".
+std::string format_measured(const Measured& value, const std::string& spec, const std::string& label = "");
+// "value +- sigma", "value +- n/a (<note>)" or "n/a (<note>)"; sigma in
+// sigma_spec when given, else in spec.
+std::string format_estimate(const Estimate& estimate, const std::string& spec, const std::string& sigma_spec = "");
+
 // A gnuplot data file: '#' lines (a description, then the column names),
-// then one whitespace-separated row per call. Throws h5::Error-like
-// std::runtime_error naming the path if it cannot be written.
+// then one whitespace-separated row per call. Written atomically, like the
+// results file: to TARGET.tmp.<pid> beside the target, renamed onto it by
+// commit(), removed if commit() is not reached (an error, a full disk), so
+// that a failed run never leaves a table that looks complete. A target that
+// exists and is not a regular file (a device such as /dev/null or /dev/full,
+// a FIFO, /dev/stdout or another symbolic link) is written through directly
+// and never renamed over. Every write, the flush and the close are checked;
+// a failure (full disk, file-size limit) throws InputError naming the target.
 class DataFile {
 public:
     DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& columns);
+    ~DataFile();
+    DataFile(const DataFile&) = delete;
+    DataFile& operator=(const DataFile&) = delete;
     void row(const std::vector<double>& values);
     void comment(const std::string& text);
     void blank_line();  // separates gnuplot data blocks (index)
+    // Writes out what is buffered and closes the file (a full disk shows
+    // here), keeping the temporary file until commit().
+    void close();
+    // close(), then renames the temporary file onto the target.
+    void commit();
 
 private:
-    std::ofstream out_;
-    std::string path_;
+    void put(const std::string& text);
+    [[noreturn]] void fail(int error);
+    std::string target_;
+    std::string temporary_;  // empty when writing through to a non-regular target
+    std::FILE* file_ = nullptr;
+    bool committed_ = false;
 };
+
+// Whether path names an existing target that is not a regular file (a
+// device, a FIFO, a symbolic link), which DataFile writes through.
+bool writes_through(const std::string& path);
+
+// Throws (h5::Error or InputError, naming the path) unless a DataFile can be
+// written at path: as h5::check_writable for a regular or new file, and for a
+// target written through, that it exists and may be written.
+void check_data_file_writable(const std::string& path);
+
+// One output of an analysis run: the option that named it, the path (empty:
+// not asked for), and whether it is a text data file or the results file.
+struct OutputPath {
+    std::string option;
+    std::string path;
+    bool text = true;
+};
+
+// Checks every output of one run before any work: each can be written
+// (h5::check_writable, check_data_file_writable), none is one of the inputs
+// (h5::check_not_an_input: writing it would destroy the input), and no two
+// name the same file (one would overwrite the other; two devices may).
+void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
+
+// Commits a run's outputs together: the data files are closed first (where a
+// full disk shows), then the results file is committed, then the data files
+// are renamed into place, so that a failure before the renames leaves none of
+// them. Null pointers (outputs not asked for) are skipped.
+void commit_outputs(ResultsFile* results, std::initializer_list<DataFile*> data_files);
 
 }  // namespace shockgas::analysis

@@ -35,6 +35,18 @@ struct TemperatureHistory {
                                    const std::vector<double>& temperature);
 };
 
+// The time series of a shockgas-sim output (read_timeseries) and its
+// TemperatureHistory, with the checks every analysis of T(t) needs: the
+// /timeseries tables are realizations x times (h5::Error naming the dataset
+// and the file otherwise), and the file holds at least one realization and a
+// sample time t > 0 that every realization reached (InsufficientData
+// otherwise, whose message the caller completes with the file's name).
+struct TemperatureRun {
+    TimeSeries series;
+    TemperatureHistory history;
+};
+TemperatureRun read_temperature_run(const std::string& path);
+
 // The automatic post-crossover window (see analysis/README.md, "Window rule"):
 //   t_lo = start_factor * max(scaling_onset, eps^(-3/2)),  eps = (1 - r)/2, the sticky crossover of
 //          Eq. (3), but no earlier than the sticky gas's own approach to scaling (t ~ 100);
@@ -65,7 +77,8 @@ struct DecayFit {
     double t_lo = 0.0, t_hi = 0.0;   // the window
     std::size_t points = 0;          // sample times inside it
     double exponent = 0.0;           // alpha = -d ln T / d ln t from the weighted fit of ln <T> vs ln t
-    double exponent_sigma = 0.0;     // jackknife over realizations
+    double exponent_sigma = 0.0;     // jackknife over realizations; NaN for one realization
+    std::string exponent_sigma_note; // why exponent_sigma is NaN
     double fit_sigma = 0.0;          // from the weights alone (ignores time correlations; for comparison)
     double chi2_per_dof = 0.0;       // with sigma_k = standard error of ln <T(t_k)>
     double prefactor = 0.0;          // T t^alpha
@@ -79,15 +92,25 @@ struct DecayFit {
 DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, double t_hi);
 
 // The exponent in windows of fixed width (width_decades of ln t / ln 10),
-// moved by step_decades from the first sample time to the last.
+// moved by step_decades from the first sample time to the last; windows with
+// fewer than 3 samples are left out. Needs a finite width > 0 and a finite
+// step >= min_scan_step_decades (std::invalid_argument otherwise; the CLI
+// refuses such values with a message first).
 std::vector<DecayFit> scan_decay_windows(const TemperatureHistory& history, double width_decades,
                                          double step_decades);
+// The smallest scan step. Windows moved by less than the spacing of the
+// samples (1/K decade for K samples per decade; shockgas-sim's default K is 10)
+// hold the same samples and repeat the same fit; a step of 10^-3 decade only
+// resolves grids of 1000 samples per decade and already makes 10^3 fits per
+// decade (each with its jackknife), while a step of 10^-9 would make 10^9.
+constexpr double min_scan_step_decades = 1e-3;
 
 // Systematic error of the window choice: half the spread (max - min)/2 of the
 // exponents of the one-decade scan windows (step 0.1 decade) lying inside
-// [t_lo, t_hi]; 0 if the window is narrower than a decade. Corrections to
-// scaling make the local exponent wander; this says by how much.
-double window_systematic(const TemperatureHistory& history, double t_lo, double t_hi);
+// [t_lo, t_hi]. Corrections to scaling make the local exponent wander; this
+// says by how much. Missing (NaN with the reason) when no such window lies
+// inside [t_lo, t_hi], e.g. a fit window shorter than a decade.
+Measured window_systematic(const TemperatureHistory& history, double t_lo, double t_hi);
 
 // --- crossovers (Eq. 3) ---
 // t_dissip: the time at which <T> has fallen to half its initial value,

@@ -1,0 +1,155 @@
+# End-to-end tests of shockgas-analyze's answers to bad input and to data that
+# do not determine a number: one line "shockgas-analyze: error: <what>", exit
+# status 2 and no output file (expect_error.sh), or a number reported as
+# "n/a (<reason>)" and stored as NaN with a reason, never nan, inf or 0.
+# Included from tests/CMakeLists.txt after cli_tests.cmake.
+set(_analyze_dir "${CMAKE_CURRENT_BINARY_DIR}/work/analyze")
+file(MAKE_DIRECTORY "${_analyze_dir}")
+set(_analyze_program $<TARGET_FILE:shockgas-analyze>)
+set(_analyze_expect "${CMAKE_CURRENT_SOURCE_DIR}/cli/expect_error.sh")
+set(_analyze_expect_all "${CMAKE_CURRENT_SOURCE_DIR}/cli/analyze_expect_error.sh")
+
+# Small runs (well under a second each), made once for every test below.
+foreach(_run IN ITEMS "a|-N;200;-r;0.5;-d;0.01;-t;100;-R;2"
+                      "short|-N;200;-r;0.5;-d;0.01;-t;0.9;-R;2"
+                      "e05|-N;1000;-r;0.9;-d;0.01;-t;1000;-R;4"
+                      "e10|-N;1000;-r;0.8;-d;0.01;-t;1000;-R;4"
+                      "e10_one|-N;1000;-r;0.8;-d;0.01;-t;1000;-R;1"
+                      "snap1|-N;1000;-r;0.9;-d;0.01;-t;1000;-R;1;--snapshot-times;10,1000"
+                      "col|-N;2000;-r;0.5;-d;0;-t;10000;-R;3"
+                      "col4k|-N;4000;-r;0.5;-d;0;-t;10000;-R;3"
+                      "col06|-N;2000;-r;0.6;-d;0;-t;10000;-R;3")
+  string(FIND "${_run}" "|" _bar)
+  string(SUBSTRING "${_run}" 0 ${_bar} _name)
+  math(EXPR _start "${_bar} + 1")
+  string(SUBSTRING "${_run}" ${_start} -1 _arguments)
+  add_test(NAME cli.analyze.setup.${_name}
+           COMMAND $<TARGET_FILE:shockgas-sim> ${_arguments} -j 1 -q -o "${_analyze_dir}/${_name}.h5")
+  set_tests_properties(cli.analyze.setup.${_name} PROPERTIES FIXTURES_SETUP analyze_cases LABELS cli TIMEOUT 120)
+endforeach()
+
+# shockgas_analyze_error(<name> <regex> <arguments...>): shockgas-analyze with
+# the arguments and -o <name>.out.h5 must fail as bad input with one line
+# matching regex and leave no <name>.out.h5 (the pattern of shockgas_tool_error
+# in cli_tests.cmake; one output name per test, as tests run in parallel). The
+# timeout catches a hang (a scan step of 0 once looped forever).
+function(shockgas_analyze_error name regex)
+  set(_output "${_analyze_dir}/${name}.out.h5")
+  add_test(NAME cli.analyze.${name}
+           COMMAND ${_analyze_expect} "${regex}" "${_output}" -- ${_analyze_program} ${ARGN} -o "${_output}"
+           WORKING_DIRECTORY "${_analyze_dir}")
+  set_tests_properties(cli.analyze.${name} PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+endfunction()
+# The same, and none of the data files <outputs> (space-separated) may be left either.
+function(shockgas_analyze_error_all name regex outputs)
+  set(_output "${_analyze_dir}/${name}.out.h5")
+  add_test(NAME cli.analyze.${name}
+           COMMAND ${_analyze_expect_all} "${regex}" "${_output} ${outputs}" -- ${_analyze_program} ${ARGN}
+                   -o "${_output}"
+           WORKING_DIRECTORY "${_analyze_dir}")
+  set_tests_properties(cli.analyze.${name} PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+endfunction()
+# shockgas_analyze_reports(<name> <pass regex> <fail regex> <arguments...>): a run
+# that succeeds and prints what it could not measure as n/a, with the reason.
+function(shockgas_analyze_reports name pass fail)
+  add_test(NAME cli.analyze.${name} COMMAND ${_analyze_program} ${ARGN} WORKING_DIRECTORY "${_analyze_dir}")
+  set_tests_properties(cli.analyze.${name} PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60
+                       PASS_REGULAR_EXPRESSION "${pass}" FAIL_REGULAR_EXPRESSION "${fail}")
+endfunction()
+set(_window --t-lo 1 --t-hi 100)  # a.h5 is too short for the automatic window
+
+# 1. No output over an input, nor two outputs over one file, for any output option.
+add_test(NAME cli.analyze.output_is_input
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/analyze_output_is_input_test.sh ${_analyze_program} "${_analyze_dir}")
+set_tests_properties(cli.analyze.output_is_input PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+
+# 2. The window scan: a step of 0 looped forever; an empty scan was written with status 0.
+foreach(_step IN ITEMS 0 -0.1 1e-9 nan)
+  shockgas_analyze_error(scan_step_${_step} "^shockgas-analyze: error: --scan-step must be finite and at least 0.001 decades"
+                         decay a.h5 ${_window} --scan-step ${_step})
+endforeach()
+foreach(_width IN ITEMS -1 0 nan)
+  shockgas_analyze_error(scan_width_${_width} "^shockgas-analyze: error: --scan-width \\(in decades\\) must be positive"
+                         decay a.h5 ${_window} --scan-width ${_width})
+endforeach()
+shockgas_analyze_error(scan_width_beyond_data
+                       "no window of 50 decades \\(--scan-width\\) with 3 samples lies between t = 1 and 100, in 'a.h5'$"
+                       decay a.h5 ${_window} --scan-width 50)
+
+# 3. compare: runs without a common sample time are not in perfect agreement.
+shockgas_analyze_error(compare_no_common_time "no sample time in common with the reference run .*, in 'short.h5'$"
+                       compare a.h5 short.h5)
+
+# 4. Data files: atomic, checked before any work, a full disk reported as bad input.
+shockgas_analyze_error_all(data_not_left_on_failure "need at least 2 realizations, in 'e10_one.h5'$"
+                           "${_analyze_dir}/c.txt" crossover e05.h5 e10_one.h5 --data c.txt)
+shockgas_analyze_error(data_directory_missing "^shockgas-analyze: error: cannot write output '/nonexistent/x.txt'"
+                       decay a.h5 ${_window} --data /nonexistent/x.txt)
+# Small table: the flush fails; large (a profile of ~700 clusters): a write fails.
+shockgas_analyze_error(data_full_disk_small
+                       "^shockgas-analyze: error: cannot write data file '/dev/full': No space left on device$"
+                       decay a.h5 ${_window} --data /dev/full)
+shockgas_analyze_error(data_full_disk_large
+                       "^shockgas-analyze: error: cannot write data file '/dev/full': No space left on device$"
+                       shocks snap1.h5 --data /dev/full)
+# A device is written through, not replaced: the table arrives on standard output.
+shockgas_analyze_reports(data_to_standard_output "# decay exponent in moving windows.*decay exponent" "error"
+                         decay a.h5 ${_window} -o "${_analyze_dir}/stdout_decay.h5" --scan /dev/stdout)
+
+# 5. Fits with no slope (one eps, one N) are refused naming the inputs; two points leave no chi2.
+shockgas_analyze_error(crossover_one_eps "every input has eps = 0.05 \\('e05.h5', 'e05.h5'\\)"
+                       crossover e05.h5 e05.h5)
+shockgas_analyze_error(collapse_one_eps "every input has eps = 0.25 \\('col.h5', 'col.h5'\\)"
+                       collapse col.h5 col.h5 --vs eps)
+shockgas_analyze_error(collapse_one_n "every input has N = 2000 \\('col.h5', 'col.h5'\\)"
+                       collapse col.h5 col.h5 --vs N)
+shockgas_analyze_reports(crossover_two_points "chi2/dof n/a \\(need at least 3 points for chi2, got 2\\)" "nan|inf"
+                         crossover e05.h5 e10.h5 -o "${_analyze_dir}/two_points_crossover.h5")
+shockgas_analyze_reports(collapse_two_n "<t_collapse> ~ N\\^.* \\(chi2/dof n/a \\(need at least 3 points" "nan|inf"
+                         collapse col.h5 col4k.h5 --vs N -o "${_analyze_dir}/two_points_collapse.h5")
+shockgas_analyze_reports(collapse_two_eps "power .*chi2/dof n/a \\(need at least 3 points" "nan|inf"
+                         collapse col.h5 col06.h5 --vs eps -o "${_analyze_dir}/two_points_forms.h5")
+
+# 6. Numbers not measured are n/a with the reason (printed) and NaN with a note (stored).
+shockgas_analyze_reports(shocks_no_segment "t 10: .*segment slope x t = n/a \\(no sparse segment"
+                         "nan|0\\.000 \\+- 0\\.000" shocks snap1.h5 -o "${_analyze_dir}/no_segment_shocks.h5")
+shockgas_analyze_reports(decay_short_window "\\+- n/a \\(window: no one-decade window .* \\[1, 5\\]\\)"
+                         "nan|\\+- 0\\.0000 \\(window\\)" decay a.h5 --t-lo 1 --t-hi 5 -o "${_analyze_dir}/short_window.h5")
+add_test(NAME cli.analyze.not_measured_stored
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/analyze_not_measured_test.sh ${_analyze_program}
+                 $<TARGET_FILE:shockgas-dump> "${_analyze_dir}")
+set_tests_properties(cli.analyze.not_measured_stored PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+
+# 7. --hazard: refused where it cannot be written, written for one N.
+shockgas_analyze_error_all(hazard_needs_vs_n "^shockgas-analyze: error: --hazard needs --vs N"
+                           "${_analyze_dir}/hazard.txt" collapse col.h5 --hazard hazard.txt)
+add_test(NAME cli.analyze.hazard_one_n
+         COMMAND sh -c "rm -f hazard_one.txt && \"$1\" collapse col.h5 --vs N -o hazard_one.h5 --hazard hazard_one.txt && grep -q '^# N = 2000$' hazard_one.txt"
+                 sh ${_analyze_program}
+         WORKING_DIRECTORY "${_analyze_dir}")
+set_tests_properties(cli.analyze.hazard_one_n PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+
+# 8. Option values out of range (NaN included) are refused, naming the option.
+foreach(_case IN ITEMS "merge_gap_negative|--merge-gap must be a whole number at least 0, not -1|shocks;snap1.h5;--merge-gap;-1"
+                      "jump_fraction_nan|--jump-fraction \\(a multiple of v_rms\\) must be positive and finite, not nan|shocks;snap1.h5;--jump-fraction;nan"
+                      "start_factor_negative|--start-factor must be positive and finite, not -1|decay;a.h5;--start-factor;-1"
+                      "end_factor_nan|--end-factor must be positive and finite, not nan|decay;a.h5;--end-factor;nan"
+                      "t_lo_negative|--t-lo must be positive and finite, not -5|decay;a.h5;--t-lo;-5"
+                      "t_hi_below_t_lo|--t-hi \\(10\\) must be larger than --t-lo \\(20\\)|decay;a.h5;--t-lo;20;--t-hi;10"
+                      "stick_ratio_one|--stick-ratio must be finite and above 1 \\(T / T_Haff starts at 1 and rises\\), not 1|crossover;e05.h5;--stick-ratio;1"
+                      "z_hi_below_z_lo|--z-hi must be finite and larger than --z-lo \\(3\\), not 2|far-tail;a.h5;--z-lo;3;--z-hi;2")
+  string(REPLACE "|" ";" _parts "${_case}")
+  list(GET _parts 0 _name)
+  list(GET _parts 1 _regex)
+  list(SUBLIST _parts 2 -1 _arguments)
+  shockgas_analyze_error(${_name} "^shockgas-analyze: error: ${_regex}$" ${_arguments})
+endforeach()
+
+# 10. Messages: the failing input alone; what --data-only needs; the floor actually used.
+shockgas_analyze_error(names_the_failing_input
+                       "^shockgas-analyze: error: crossover error bars need at least 2 realizations, in 'e10_one.h5'$"
+                       crossover e05.h5 e10_one.h5)
+shockgas_analyze_error(data_only_needs_data "^shockgas-analyze: error: --data-only needs --data FILE"
+                       decay a.h5 --data-only)
+shockgas_analyze_error(haff_floor_named "fewer than 3 samples with T >= 0.9 T0 \\(--haff-floor\\).*, in 'e05.h5'$"
+                       crossover e05.h5 --haff-floor 0.9)
