@@ -11,20 +11,21 @@
         histogram.time, histogram.edges, histogram.counts
     decay = shockgas.read_results("decay.h5")           # shockgas-analyze output
     decay["decay"].attrs["exponent"], decay.inputs()[0]["seed"]
+    tail = shockgas.read_tail("tail.h5")                # shockgas-tail output: tail.z, tail.phi
     shockgas.read("anything.h5")                        # any kind, recognised from the file
 
 Every file carries `schema_version`; a version this module does not know is refused with
 UnsupportedSchemaVersion, never read on a guess. Layouts: docs/cli-and-output.md; this module:
 docs/python.md. It needs numpy and h5py (Debian: python3-numpy, python3-h5py).
 """
-from ._h5 import DamagedFile, Group, decode, open_file, walk
-from .files import (FILE_KINDS, Checkpoint, Drift, File, Results, Run, attributes, file_kind, kind_of, read,
-                    read_checkpoint, read_drift, read_results, read_run, write_initial_condition)
+from ._h5 import DamagedFile, Group, NoSuchFile, decode, open_file, walk
+from .files import (FILE_KINDS, Checkpoint, Drift, File, Results, Run, Tail, attributes, file_kind, kind_of, read,
+                    read_checkpoint, read_drift, read_results, read_run, read_tail, write_initial_condition)
 from .schema import SCHEMA_VERSIONS, SchemaError, UnsupportedSchemaVersion, check_schema_version
 
 __all__ = [
-    "read", "read_run", "read_checkpoint", "read_results", "read_drift", "attributes", "kind_of",
-    "write_initial_condition", "walk", "open_file", "decode", "DamagedFile",
-    "Run", "Checkpoint", "Results", "Drift", "File", "Group",
+    "read", "read_run", "read_checkpoint", "read_results", "read_drift", "read_tail", "attributes", "kind_of",
+    "write_initial_condition", "walk", "open_file", "decode", "DamagedFile", "NoSuchFile",
+    "Run", "Checkpoint", "Results", "Drift", "Tail", "File", "Group",
     "SCHEMA_VERSIONS", "SchemaError", "UnsupportedSchemaVersion", "check_schema_version", "FILE_KINDS", "file_kind",
 ]

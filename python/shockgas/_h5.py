@@ -1,6 +1,8 @@
 """The one place in Python that opens shockgas's HDF5 files (h5py), as sim/include/shockgas/h5.hpp is
 in C++: opening with the schema check, attribute decoding, and a generic tree of groups."""
 import contextlib
+import errno
+import os
 import re
 
 import h5py
@@ -42,13 +44,50 @@ def read_dataset(path, dataset):
         raise DamagedFile(f"{path}: damaged: dataset {dataset.name} cannot be read ({error})") from None
 
 
+class _PathMessage:
+    """str() as the module's other errors: "<path>: <what>" (errno and filename are kept)."""
+
+    def __str__(self):
+        return f"{self.filename}: {self.strerror}"
+
+
+class NoSuchFile(_PathMessage, FileNotFoundError):
+    """The path does not exist (a FileNotFoundError): "<path>: no such file (it does not exist)"."""
+
+
+class _IsADirectory(_PathMessage, IsADirectoryError):
+    pass
+
+
+class _NotReadable(_PathMessage, PermissionError):
+    pass
+
+
+def _no_such_file(path):
+    return NoSuchFile(errno.ENOENT, "no such file (it does not exist)", os.fspath(path))
+
+
+def check_readable(path):
+    """Raises NoSuchFile (a FileNotFoundError: the path does not exist), IsADirectoryError or
+    PermissionError before h5py is asked, so that none of these is reported as a damaged file."""
+    if not os.path.exists(path):
+        raise _no_such_file(path)
+    if os.path.isdir(path):
+        raise _IsADirectory(errno.EISDIR, "a directory, not a file", os.fspath(path))
+    if not os.access(path, os.R_OK):
+        raise _NotReadable(errno.EACCES, "not readable (permission denied)", os.fspath(path))
+
+
 @contextlib.contextmanager
 def open_file(path, check_schema=True):
     """The h5py.File, read-only, after checking that this module reads its schema_version (raw
     access for tests of the layout itself; the readers in files.py are the usual way in)."""
+    check_readable(path)
     try:
         handle = h5py.File(path, "r")
     except OSError as error:
+        if not os.path.exists(path):  # removed in between
+            raise _no_such_file(path) from None
         raise DamagedFile(f"{path}: cannot be read as HDF5 (damaged, truncated or not HDF5: {error})") from None
     with handle:
         if check_schema:

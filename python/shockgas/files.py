@@ -4,10 +4,12 @@
     checkpoint  a run in progress (OUT.h5.checkpoint)            read_checkpoint -> Checkpoint (a Run)
     results     shockgas-analyze <subcommand> output             read_results    -> Results
     drift       shockgas-drift record                            read_drift      -> Drift
+    tail        shockgas-tail far-tail estimate of Phi           read_tail       -> Tail
     read(path) recognises the kind itself.
 
 A new kind of file: a class (usually a File subclass), a builder registered with @file_kind that
-says how to recognise the file from its root attributes and top-level names, and a public reader:
+says how to recognise the file from its root attributes and top-level names, and a public reader
+(the tail kind below is one):
 
     class Tail(File): ...
     @file_kind("tail", lambda attrs, names: attrs.get("program") == "shockgas-tail", "read_tail")
@@ -18,6 +20,9 @@ says how to recognise the file from its root attributes and top-level names, and
 
 and its name in __init__.py. Recognisers must not overlap: each file is of one kind.
 """
+import errno
+import os
+
 import h5py
 import numpy as np
 
@@ -128,7 +133,7 @@ class Run(File):
 
     def __repr__(self):
         a = self.attrs
-        return (f"<Run {self.file}: N = {a.get('particles')}, r = {a.get('restitution')}, "
+        return (f"<{type(self).__name__} {self.file}: N = {a.get('particles')}, r = {a.get('restitution')}, "
                 f"delta = {a.get('velocity_threshold')}, {self.realizations} realizations x "
                 f"{len(self.timeseries.data['time'])} times, {len(self.snapshots)} snapshots, "
                 f"{len(self.histograms)} histograms, status {a.get('status')}>")
@@ -242,14 +247,133 @@ def read_drift(path):
     return read(path, expect="drift")
 
 
+# ------------------------------------------------------------------------------------------- tail
+class Tail(File):
+    """A shockgas-tail output: the far tail of the scaled velocity law Phi(z) at one time by the
+    large-deviation sampler (docs/far-tail.md). attrs: every parameter (time, half_window, chains,
+    steps_per_bias, velocity_law, seed, ...), evaluations, provenance. Datasets, one value per z bin:
+
+        tail.z, tail.phi, tail.phi_sigma, tail.log_phi, tail.log_phi_sigma, tail.samples
+        tail.log_phi_leave_one_chain_out      chains x bins (the jackknife's replicas)
+        tail.pieces                           Group, one value per bias: .bias .acceptance .mean_z
+                                              .log_partition .overlap_with_next .swap_acceptance
+    """
+
+    @property
+    def pieces(self):
+        return self.groups.get("pieces")
+
+    def __repr__(self):
+        a = self.attrs
+        return (f"<Tail {self.file}: t = {a.get('time')}, {len(self.data['z'])} bins of z in "
+                f"[{a.get('z_min')}, {a.get('z_max')}], {a.get('chains')} chains x {a.get('steps_per_bias')} steps "
+                f"per bias, {len(self.pieces.data.get('bias', [])) if self.pieces else 0} biases>")
+
+
+@file_kind("tail", lambda attrs, names: attrs.get("program") == "shockgas-tail", "read_tail")
+def _tail(path, handle, attrs, version):
+    group = read_group(handle)
+    for name in ("z", "phi", "log_phi"):
+        if name not in group.data:
+            raise SchemaError(f"{path}: no /{name}; not a complete shockgas-tail output")
+    return Tail(group, path, version)
+
+
+def read_tail(path):
+    """A shockgas-tail far-tail estimate as Tail."""
+    return read(path, expect="tail")
+
+
 # ------------------------------------------------------------------------------ initial conditions
-def write_initial_condition(path, position, velocity, mass=None, ring_length=None):
-    """Writes a start for `shockgas-sim --init FILE` (docs/cli-and-output.md): N non-decreasing
-    positions in [0, L), N velocities, optional masses (default 1), ring length L (default N)."""
+def _check_initial_condition(position, velocity, mass, ring_length):
+    """The checks shockgas-sim's init reader makes (sim/src/state.cpp, validate), as ValueError."""
+    if position.ndim != 1 or velocity.ndim != 1 or (mass is not None and mass.ndim != 1):
+        raise ValueError("init: position, velocity and mass must be one-dimensional")
+    n = len(position)
+    if not (ring_length > 0.0 and np.isfinite(ring_length)):
+        raise ValueError(f"init: ring_length must be positive and finite, got {ring_length}")
+    if n < 2:
+        raise ValueError(f"init: need at least 2 particles, got {n}")
+    if len(velocity) != n:
+        raise ValueError(f"init: velocity has {len(velocity)} values but position has {n}")
+    if mass is not None and len(mass) != n:
+        raise ValueError(f"init: mass has {len(mass)} values but position has {n}")
+    for name, values in (("position", position), ("velocity", velocity)):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            raise ValueError(f"init: {name}[{bad[0]}] is not finite")
+    if mass is not None:
+        bad = np.flatnonzero(~(np.isfinite(mass) & (mass > 0.0)))
+        if bad.size:
+            raise ValueError(f"init: mass[{bad[0]}] must be positive and finite, got {mass[bad[0]]}")
+    bad = np.flatnonzero((position < 0.0) | (position >= ring_length))
+    if bad.size:
+        raise ValueError(f"init: position[{bad[0]}] = {position[bad[0]]} lies outside [0, ring_length = {ring_length})")
+    bad = np.flatnonzero(position[1:] < position[:-1])
+    if bad.size:
+        i = bad[0] + 1
+        raise ValueError(f"init: positions are not sorted: position[{i}] = {position[i]} < "
+                         f"position[{i - 1}] = {position[i - 1]}")
+
+
+def _refuse_to_replace(path, overwrite):
+    """Raises FileExistsError unless writing `path` may replace what is there: nothing, or, with
+    overwrite=True, a regular file that is not one shockgas wrote (a run, results, ...)."""
+    if not os.path.lexists(path):
+        return
+    if os.path.islink(path) or not os.path.isfile(path):
+        raise FileExistsError(errno.EEXIST, "exists and is not a regular file (a directory, device, FIFO or "
+                                            "symbolic link); an initial condition is never written over it", path)
+    attrs = None
+    try:
+        if h5py.is_hdf5(path):
+            with open_file(path, check_schema=False) as handle:
+                attrs = decode_attributes(handle)
+    except PermissionError:
+        raise FileExistsError(errno.EEXIST, "exists and cannot be read to tell whether shockgas wrote it; "
+                                            "not replaced", path) from None
+    except OSError:  # damaged HDF5: not readable as a shockgas file either
+        attrs = None
+    if attrs is not None and ("schema_version" in attrs or "program" in attrs):
+        raise FileExistsError(errno.EEXIST, f"is a shockgas file ({attrs.get('program', 'shockgas')} output); "
+                                            f"an initial condition is never written over one", path)
+    if not overwrite:
+        raise FileExistsError(errno.EEXIST, "exists; pass overwrite=True to replace it", path)
+
+
+def write_initial_condition(path, position, velocity, mass=None, ring_length=None, overwrite=False):
+    """Writes a start for `shockgas-sim --init FILE` (docs/cli-and-output.md): N >= 2 non-decreasing
+    finite positions in [0, L), N finite velocities, optional masses (> 0, default 1), ring length L
+    (> 0, default N). Checked as shockgas-sim checks it (ValueError naming the first bad value).
+
+    An existing file is refused (FileExistsError) unless overwrite=True; a file shockgas wrote (a run,
+    checkpoint, results, ...) and anything that is not a regular file are never replaced. The file is
+    written beside its destination under a temporary name and renamed into place: an error leaves
+    no partial file and the old one, if any, untouched."""
     position, velocity = np.asarray(position, dtype=float), np.asarray(velocity, dtype=float)
-    with h5py.File(path, "w") as handle:
-        handle.attrs["ring_length"] = float(len(position) if ring_length is None else ring_length)
-        handle["position"] = position
-        handle["velocity"] = velocity
-        if mass is not None:
-            handle["mass"] = np.asarray(mass, dtype=float)
+    mass = None if mass is None else np.asarray(mass, dtype=float)
+    ring_length = float(len(position) if ring_length is None else ring_length)
+    _check_initial_condition(position, velocity, mass, ring_length)
+    path = os.fspath(path)
+    _refuse_to_replace(path, overwrite)
+    directory, name = os.path.split(os.path.abspath(path))
+    if not os.path.isdir(directory):
+        raise FileNotFoundError(errno.ENOENT, f"no directory {directory} to write it in", path)
+    temporary = os.path.join(directory, f".{name}.tmp.{os.getpid()}.{os.urandom(4).hex()}")
+    try:
+        with h5py.File(temporary, "x") as handle:
+            handle.attrs["ring_length"] = ring_length
+            handle["position"] = position
+            handle["velocity"] = velocity
+            if mass is not None:
+                handle["mass"] = mass
+        _refuse_to_replace(path, overwrite)  # again: something may have appeared meanwhile
+        if overwrite:
+            os.replace(temporary, path)
+        else:
+            os.link(temporary, path)  # fails if the name was taken meanwhile: never replaces
+            os.remove(temporary)
+    except BaseException:
+        if os.path.lexists(temporary):
+            os.remove(temporary)
+        raise

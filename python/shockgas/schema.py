@@ -1,6 +1,7 @@
 """Which file layouts this module reads: the root attribute `schema_version`.
 
-Every HDF5 file shockgas writes (runs, merged runs, checkpoints, analysis results, drift records)
+Every HDF5 file shockgas writes (runs, merged runs, checkpoints, analysis results, drift records,
+far-tail estimates)
 carries `schema_version` next to its provenance (sim/include/shockgas/provenance.hpp,
 `output_schema_version`). The layout of each version is documented in docs/cli-and-output.md.
 

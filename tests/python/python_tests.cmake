@@ -53,7 +53,8 @@ set_tests_properties(physics.exact_prefactor PROPERTIES FIXTURES_REQUIRED exact_
                      SKIP_RETURN_CODE 77)
 
 # The Python module shockgas (python/shockgas) on every kind of file the programs write: runs,
-# merged runs, checkpoints, analysis results, drift records, initial conditions (~2 s of CPU).
+# merged runs, checkpoints, analysis results, drift records, far-tail estimates, initial conditions
+# (~2 s of CPU).
 if(SHOCKGAS_BUILD_BENCH)
   set(_drift_program $<TARGET_FILE:shockgas-drift>)
 else()
@@ -62,5 +63,5 @@ endif()
 add_test(NAME python.module
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_shockgas_module.py
                  $<TARGET_FILE:shockgas-sim> $<TARGET_FILE:shockgas-merge> $<TARGET_FILE:shockgas-analyze>
-                 ${_drift_program} "${_py_work}/module")
+                 ${_drift_program} $<TARGET_FILE:shockgas-tail> "${_py_work}/module")
 set_tests_properties(python.module PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The Python module shockgas (python/shockgas) against files the programs write (label python).
 
-    test_shockgas_module.py SIM MERGE ANALYZE DRIFT WORK_DIR     (DRIFT may be "none")
+    test_shockgas_module.py SIM MERGE ANALYZE DRIFT TAIL WORK_DIR     (DRIFT may be "none")
 
 Each kind of file is made here with small runs (about 2 s of CPU in all) and read back:
   * a run: every snapshot's T recomputed in numpy equals the stored T(t) of its realization at its
@@ -10,8 +10,15 @@ Each kind of file is made here with small runs (about 2 s of CPU in all) and rea
     text attributes are str;
   * a merge of two parts equals the run of all realizations at once;
   * a checkpoint (SIGINT mid-run) holds the unfinished realizations' engine states;
-  * analysis results carry their input's attributes; a drift record its columns;
-  * an initial condition written by write_initial_condition is run by shockgas-sim --init;
+  * analysis results carry their input's attributes; a drift record its columns; a shockgas-tail
+    output is read as a Tail (read and kind_of once refused it: "no kind this module knows");
+  * a checkpoint's repr names it a Checkpoint, not a Run;
+  * an initial condition written by write_initial_condition is run by shockgas-sim --init; what
+    shockgas-sim's init reader refuses is refused when written (ValueError, no file left); an
+    existing file is replaced only with overwrite=True, a shockgas run or results never; a write
+    that fails leaves neither the destination nor a temporary;
+  * a path that does not exist raises FileNotFoundError saying so, not DamagedFile ("damaged,
+    truncated or not HDF5");
   * unknown or missing schema_version, and the wrong reader for a kind, are refused by name.
 """
 import os
@@ -21,6 +28,7 @@ import subprocess
 import sys
 import time
 import unittest
+from unittest import mock
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))
 try:
@@ -32,8 +40,8 @@ except ImportError as error:  # pragma: no cover
     print("SKIP: needs numpy and h5py (%s)" % error)
     sys.exit(77)
 
-SIM, MERGE, ANALYZE, DRIFT, WORK = sys.argv[1:6]
-del sys.argv[1:6]
+SIM, MERGE, ANALYZE, DRIFT, TAIL, WORK = sys.argv[1:7]
+del sys.argv[1:7]
 
 # T from a snapshot (numpy, plain sums) against the engine's compensated T: both are the same
 # mass-weighted moments of the same doubles, so they differ by summation rounding only, a few ulp
@@ -167,6 +175,8 @@ class OtherKinds(unittest.TestCase):
             self.assertIs(type(state.attrs["kind"]), str)
         self.assertEqual(len(checkpoint.samples_done), checkpoint.realizations)
         self.assertIn("R=2", checkpoint.signature)
+        self.assertTrue(repr(checkpoint).startswith("<Checkpoint "), repr(checkpoint))
+        self.assertTrue(repr(shockgas.read_run(target)).startswith("<Run "))
         self.assertEqual(shockgas.read_run(target).attrs["status"], "interrupted")
 
     @unittest.skipIf(DRIFT == "none", "shockgas-drift not built (SHOCKGAS_BUILD_BENCH=OFF)")
@@ -178,15 +188,136 @@ class OtherKinds(unittest.TestCase):
         self.assertEqual(len(lengths), 1, "columns of different lengths")
         self.assertGreaterEqual(lengths.pop(), 5)
 
+    def test_tail_file(self):
+        # shockgas-tail, a tiny ladder (3 biases x 2 chains x 10 steps: < 0.1 s): read as a Tail.
+        target = path("tail.h5")
+        if os.path.exists(target):
+            os.remove(target)
+        run(TAIL, "-t", 10, "--half-window", 20, "--steps-per-bias", 10, "--burn-in", 0, "--chains", 2,
+            "--biases", 0, 1, 2, "-j", 1, "-o", target)
+        self.assertEqual(shockgas.kind_of(target), "tail")
+        tail = shockgas.read(target)
+        self.assertIsInstance(tail, shockgas.Tail)
+        self.assertIs(type(shockgas.read_tail(target)), shockgas.Tail)
+        self.assertEqual(tail.attrs["program"], "shockgas-tail")
+        self.assertEqual(tail.attrs["time"], 10.0)
+        # Bins of 0.02 over [z_min, z_max] = [-3, 7] (the defaults): 500, one value each.
+        self.assertEqual(len(tail.z), 500)
+        for name in ("phi", "phi_sigma", "log_phi", "log_phi_sigma", "samples"):
+            self.assertEqual(getattr(tail, name).shape, tail.z.shape, name)
+        self.assertEqual(tail.log_phi_leave_one_chain_out.shape, (2, 500))
+        np.testing.assert_array_equal(tail.pieces.bias, [0.0, 1.0, 2.0])
+        self.assertTrue(repr(tail).startswith("<Tail "), repr(tail))
+        with self.assertRaisesRegex(shockgas.SchemaError, "read it with shockgas.read_tail"):
+            shockgas.read_run(target)
+
+    def test_missing_file_is_not_called_damaged(self):
+        missing = path("no_such_run.h5")
+        for reader in (shockgas.read, shockgas.read_run, shockgas.read_results, shockgas.attributes, shockgas.kind_of):
+            with self.assertRaises(FileNotFoundError) as raised:
+                reader(missing)
+            self.assertNotIsInstance(raised.exception, shockgas.DamagedFile, reader.__name__)
+            self.assertIn("does not exist", str(raised.exception))
+            self.assertIn("no_such_run.h5", str(raised.exception))
+            self.assertNotIn("damaged", str(raised.exception))
+        with self.assertRaises(IsADirectoryError):
+            shockgas.read(WORK)
+
     def test_initial_condition_round_trip(self):
         n = 50
         position = np.arange(n) * 2.0
         velocity = np.linspace(-1, 1, n)
-        shockgas.write_initial_condition(path("start.h5"), position, velocity, ring_length=2.0 * n)
+        shockgas.write_initial_condition(path("start.h5"), position, velocity, ring_length=2.0 * n, overwrite=True)
         run(SIM, "--init", path("start.h5"), "-t", 10, "-q", "-o", path("from_start.h5"))
         started = shockgas.read_run(path("from_start.h5"))
         self.assertEqual(started.attrs["particles"], n)
         self.assertEqual(started.attrs["ring_length"], 2.0 * n)
+
+    def leftovers(self):
+        return sorted(name for name in os.listdir(WORK) if ".tmp." in name)
+
+    def test_initial_condition_refused_as_shockgas_sim_refuses_it(self):
+        # Each start below is one shockgas-sim's init reader refuses (sim/src/state.cpp, validate):
+        # write_initial_condition refuses it too, with the same words, and leaves no file.
+        ok = dict(position=[0.0, 1.0, 2.0], velocity=[0.1, -0.2, 0.3])
+        cases = {
+            "need at least 2 particles": dict(position=[0.0], velocity=[0.1]),
+            "velocity has 2 values but position has 3": dict(ok, velocity=[0.1, 0.2]),
+            "mass has 2 values but position has 3": dict(ok, mass=[1.0, 1.0]),
+            "position\\[1\\] is not finite": dict(ok, position=[0.0, np.nan, 2.0]),
+            "velocity\\[2\\] is not finite": dict(ok, velocity=[0.1, 0.2, np.inf]),
+            "mass\\[0\\] must be positive": dict(ok, mass=[0.0, 1.0, 1.0]),
+            "position\\[2\\] = 3.0 lies outside": dict(ok, position=[0.0, 1.0, 3.0]),
+            "position\\[0\\] = -0.5 lies outside": dict(ok, position=[-0.5, 1.0, 2.0]),
+            "positions are not sorted": dict(ok, position=[0.0, 2.0, 1.0]),
+            "ring_length must be positive": dict(ok, ring_length=-3.0),
+        }
+        target = path("refused_start.h5")
+        for words, arguments in cases.items():
+            with self.subTest(words):
+                if os.path.exists(target):
+                    os.remove(target)
+                with self.assertRaisesRegex(ValueError, words):
+                    shockgas.write_initial_condition(target, **arguments)
+                self.assertFalse(os.path.exists(target))
+        # And the same starts written raw (h5py) are refused by shockgas-sim, exit status 2: the
+        # rules are the simulator's, not stricter.
+        for words, arguments in list(cases.items())[1:4]:
+            with h5py.File(target, "w") as handle:
+                handle.attrs["ring_length"] = float(arguments.get("ring_length", 3.0))
+                for name in ("position", "velocity", "mass"):
+                    if name in arguments:
+                        handle[name] = np.asarray(arguments[name], dtype=float)
+            refused = subprocess.run([SIM, "--init", target, "-t", "1", "-q", "-o", path("never.h5")], cwd=WORK,
+                                     capture_output=True, text=True)
+            self.assertEqual(refused.returncode, 2, words + ": " + refused.stderr)
+        os.remove(target)
+        self.assertEqual(self.leftovers(), [])
+
+    def test_initial_condition_never_replaces_a_run_and_replaces_a_start_only_when_asked(self):
+        start = path("replace_start.h5")
+        if os.path.exists(start):
+            os.remove(start)
+        shockgas.write_initial_condition(start, [0.0, 1.0], [0.5, -0.5])
+        with self.assertRaisesRegex(FileExistsError, "overwrite=True"):
+            shockgas.write_initial_condition(start, [0.0, 1.0, 2.0], [0.5, -0.5, 0.0])
+        with shockgas.open_file(start, check_schema=False) as handle:
+            self.assertEqual(len(handle["position"]), 2)  # untouched
+        shockgas.write_initial_condition(start, [0.0, 1.0, 2.0], [0.5, -0.5, 0.0], overwrite=True)
+        with shockgas.open_file(start, check_schema=False) as handle:
+            self.assertEqual(len(handle["position"]), 3)
+        # A run (and results) is never replaced, overwrite=True or not.
+        with open(path("whole.h5"), "rb") as handle:
+            before = handle.read()
+        for overwrite in (False, True):
+            with self.assertRaisesRegex(FileExistsError, "shockgas-sim"):
+                shockgas.write_initial_condition(path("whole.h5"), [0.0, 1.0], [0.5, -0.5], overwrite=overwrite)
+        with open(path("whole.h5"), "rb") as handle:
+            self.assertEqual(handle.read(), before)
+        # Nor a directory.
+        os.makedirs(path("a_directory.h5"), exist_ok=True)
+        with self.assertRaises(FileExistsError):
+            shockgas.write_initial_condition(path("a_directory.h5"), [0.0, 1.0], [0.5, -0.5], overwrite=True)
+        self.assertEqual(self.leftovers(), [])
+
+    def test_initial_condition_write_that_fails_leaves_nothing(self):
+        target = path("failed_start.h5")
+        if os.path.exists(target):
+            os.remove(target)
+        full = OSError(28, "No space left on device")
+        for step in ("link", "replace"):  # the last step of a new file, of a replacement
+            with self.subTest(step), mock.patch.object(shockgas.files.os, step, side_effect=full):
+                if step == "replace":
+                    shockgas.write_initial_condition(target, [0.0, 1.0], [0.5, -0.5])
+                with self.assertRaises(OSError):
+                    shockgas.write_initial_condition(target, [0.0, 1.0, 2.0], [0.5, -0.5, 0.0],
+                                                     overwrite=(step == "replace"))
+                self.assertEqual(self.leftovers(), [])
+                if step == "link":
+                    self.assertFalse(os.path.exists(target))
+                else:  # the old start is still there, whole
+                    with shockgas.open_file(target, check_schema=False) as handle:
+                        self.assertEqual(len(handle["position"]), 2)
 
 
 class Refusals(unittest.TestCase):
