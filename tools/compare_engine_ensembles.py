@@ -1,11 +1,12 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Two engines' ensembles of the same run, compared statistically.
 
-    tools/compare_engine_ensembles.py A.h5 B.h5
+    /usr/bin/python3 tools/compare_engine_ensembles.py A.h5 B.h5
 
-A and B are shockgas-sim outputs of the same parameters and seeds made by two engines (for example
---engine event and --engine passthrough). The engines round differently and the dynamics is chaotic,
-so realizations part ways; what must agree is the statistics:
+A and B are shockgas-sim outputs of the same parameters made by two engines (for example --engine
+event and --engine passthrough), with the same or with independent seeds. The engines round
+differently and the dynamics is chaotic, so realizations part ways; what must agree is the
+statistics:
 
   * T(t): the ensemble means differ by at most 3 sigma at every sample, sigma the standard error of
     the difference of the means over realizations;
@@ -16,15 +17,31 @@ so realizations part ways; what must agree is the statistics:
     giving its p-value. (Particles of one realization are not independent samples: clusters move
     together, so a chi-square on pooled particle counts would reject equal laws.)
 
-Prints one line per check and exits 1 if any check fails (|z| > 3 or p < 1e-3).
+Prints one line per check and exits 1 if any check fails (|z| > 3, p < 1e-3, or a statistic that
+is NaN: a sample no realization reached, or one reached by a single realization, has no standard
+error and cannot pass).
+
+Refused with exit status 2 and one line "compare_engine_ensembles.py: error: ..." on stderr, before
+anything is compared: a file that is missing or not a shockgas-sim run; A and B whose physics
+parameters differ (PHYSICS_PARAMETERS below; the seed, the engine, the first realization and the
+number of realizations may differ: they are what is compared, or only change the error bars);
+different sample times; different histogram times or bins; fewer than 2 realizations in either
+file (the standard error needs two).
 """
+import os
 import sys
 
-import numpy as np
-from scipy import stats
+SCRIPT = "compare_engine_ensembles.py"
+try:
+    import numpy as np
+    from scipy import stats
 
-sys.path.insert(0, __file__.rsplit("/tools/", 1)[0] + "/python")
-import shockgas  # noqa: E402
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
+    import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
+except ImportError as error:  # pragma: no cover - depends on the machine
+    print(f"{SCRIPT}: error: {error.name or error} is missing (needs numpy, scipy and h5py): "
+          f"run it with Debian's /usr/bin/python3", file=sys.stderr)
+    sys.exit(2)
 
 # A disagreement of more than 3 standard errors at any of ~40 samples has probability ~1e-1 under the
 # null for independent samples; the samples are correlated, so 3 sigma is the issue's criterion.
@@ -33,49 +50,147 @@ Z_LIMIT = 3.0
 # needs ~5 expected counts per bin).
 MIN_COUNTS = 20
 P_LIMIT = 1e-3
+# A standard error needs at least two realizations.
+MIN_REALIZATIONS = 2
+# Root attributes that fix the physics and the sampling of a run (docs/cli-and-output.md). They must
+# be equal in A and B wherever both files record them. Not compared: seed, engine,
+# first_realization, realizations (the point of the comparison, or only the error bars), the
+# provenance (program, version, compiler, date, host, timings), the outcome (status,
+# total_collisions), and snapshot options (nothing here reads snapshots).
+PHYSICS_PARAMETERS = ("particles", "ring_length", "restitution", "velocity_threshold", "subthreshold",
+                      "collapse_speed", "positions", "velocity_distribution", "initial_condition",
+                      "init_file_sha256", "t_max", "samples_per_decade", "sample_times",
+                      "histogram_times", "histogram_bins", "histogram_range")
+
+
+class InputError(Exception):
+    """A user's mistake: the files cannot be compared (exit 2, one line)."""
 
 
 def mean_and_error(values):
+    """Mean and standard error over the realizations that reached the sample; NaN and NaN when
+    none did, the mean and NaN when one did."""
     values = values[np.isfinite(values)]
-    return values.mean(), values.std(ddof=1) / np.sqrt(len(values))
+    if len(values) == 0:
+        return np.nan, np.nan
+    if len(values) < 2:
+        return float(values.mean()), np.nan
+    return float(values.mean()), float(values.std(ddof=1) / np.sqrt(len(values)))
 
 
-def main(a_path, b_path):
-    a, b = shockgas.read_run(a_path), shockgas.read_run(b_path)
-    failed = False
-    worst = (0.0, float(a.time[0]))
+def z_score(ma, ea, mb, eb):
+    """(ma - mb) / sqrt(ea^2 + eb^2); NaN when any input is; with no spread at all, 0 for equal
+    means and inf for different ones (a difference without scatter is not a pass)."""
+    error = np.hypot(ea, eb)
+    if not np.isfinite(error) or not (np.isfinite(ma) and np.isfinite(mb)):
+        return np.nan
+    if error == 0:
+        return 0.0 if ma == mb else np.inf
+    return (ma - mb) / error
+
+
+def fails(z):
+    return not np.isfinite(z) or abs(z) > Z_LIMIT
+
+
+def read(path):
+    try:
+        return shockgas.read_run(path)
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except (OSError, shockgas.SchemaError) as error:
+        raise InputError(str(error)) from None
+
+
+def check_comparable(a_path, b_path, a, b):
+    """Raises InputError unless A and B are the same physics, sampled at the same times."""
+    for path, run in ((a_path, a), (b_path, b)):
+        if run.realizations < MIN_REALIZATIONS:
+            raise InputError(f"{path}: {run.realizations} realization{'' if run.realizations == 1 else 's'}; the standard errors need at least "
+                             f"{MIN_REALIZATIONS} in each file (shockgas-sim -R)")
+    differ = [f"{name} {a.attrs[name]!r} vs {b.attrs[name]!r}" for name in PHYSICS_PARAMETERS
+              if name in a.attrs and name in b.attrs and a.attrs[name] != b.attrs[name]]
+    if differ:
+        raise InputError(f"{a_path} and {b_path} are not the same run: {'; '.join(differ)}")
+    if a.time.shape != b.time.shape or not np.array_equal(a.time, b.time):
+        raise InputError(f"{a_path} and {b_path} have different sample times ({len(a.time)} from "
+                         f"{a.time[0]:g} to {a.time[-1]:g} vs {len(b.time)} from {b.time[0]:g} to {b.time[-1]:g})")
+    times_a = [float(np.asarray(h.time)) for h in a.histograms]
+    times_b = [float(np.asarray(h.time)) for h in b.histograms]
+    if times_a != times_b:
+        raise InputError(f"{a_path} and {b_path} have different histogram times "
+                         f"({', '.join(f'{t:g}' for t in times_a) or 'none'} vs "
+                         f"{', '.join(f'{t:g}' for t in times_b) or 'none'})")
+    for ha, hb, t in zip(a.histograms, b.histograms, times_a):
+        if np.shape(ha.edges) != np.shape(hb.edges) or not np.array_equal(ha.edges, hb.edges):
+            raise InputError(f"{a_path} and {b_path}: the histograms at t = {t:g} have different bins")
+
+
+def compare(a, b):
+    """Prints one line per check; True if every check passes."""
+    ok = True
+    worst, worst_t, undefined = 0.0, float(a.time[0]), []
     for k, t in enumerate(a.time):
-        ma, ea = mean_and_error(a.temperature[:, k])
-        mb, eb = mean_and_error(b.temperature[:, k])
-        z = (ma - mb) / np.hypot(ea, eb) if np.hypot(ea, eb) > 0 else 0.0
-        if abs(z) > abs(worst[0]):
-            worst = (z, t)
-        failed |= abs(z) > Z_LIMIT
-    print(f"T(t): {len(a.time)} samples, largest |z| = {abs(worst[0]):.2f} at t = {worst[1]:g}")
+        z = z_score(*mean_and_error(a.temperature[:, k]), *mean_and_error(b.temperature[:, k]))
+        if np.isnan(z):
+            undefined.append(float(t))
+        elif abs(z) >= abs(worst):
+            worst, worst_t = z, float(t)
+        ok &= not fails(z)
+    line = f"T(t): {len(a.time)} samples, largest |z| = {abs(worst):.2f} at t = {worst_t:g}"
+    if undefined:
+        line += (f"; FAIL: no standard error at {len(undefined)} samples (t = "
+                 f"{', '.join(f'{t:g}' for t in undefined[:5])}{', ...' if len(undefined) > 5 else ''}): "
+                 f"fewer than 2 realizations reached them")
+    print(line)
+
     ma, ea = mean_and_error(a.collisions_per_particle[:, -1])
     mb, eb = mean_and_error(b.collisions_per_particle[:, -1])
-    z = (ma - mb) / np.hypot(ea, eb)
-    print(f"collisions per particle at t = {a.time[-1]:g}: {ma:.3f} +- {ea:.3f} vs {mb:.3f} +- {eb:.3f}, z = {z:.2f}")
-    failed |= abs(z) > Z_LIMIT
+    z = z_score(ma, ea, mb, eb)
+    print(f"collisions per particle at t = {a.time[-1]:g}: {ma:.3f} +- {ea:.3f} vs {mb:.3f} +- {eb:.3f}, "
+          f"z = {z:.2f}" + (" FAIL" if fails(z) else ""))
+    ok &= not fails(z)
+
     for ha, hb in zip(a.histograms, b.histograms):
-        fa = np.asarray(ha.counts, dtype=float)
-        fb = np.asarray(hb.counts, dtype=float)
-        fa = fa / fa.sum(axis=1, keepdims=True)
-        fb = fb / fb.sum(axis=1, keepdims=True)
-        pooled = np.asarray(ha.counts).sum(axis=0) + np.asarray(hb.counts).sum(axis=0)
-        keep = pooled >= MIN_COUNTS
+        counts_a = np.asarray(ha.counts, dtype=float)
+        counts_b = np.asarray(hb.counts, dtype=float)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            fa = counts_a / counts_a.sum(axis=1, keepdims=True)
+            fb = counts_b / counts_b.sum(axis=1, keepdims=True)
+        pooled = counts_a.sum(axis=0) + counts_b.sum(axis=0)
         diff = fa.mean(axis=0) - fb.mean(axis=0)
         error = np.sqrt(fa.var(axis=0, ddof=1) / len(fa) + fb.var(axis=0, ddof=1) / len(fb))
+        keep = pooled >= MIN_COUNTS
+        # A bin with no scatter in either ensemble has no error bar: it passes only if A and B agree
+        # exactly there (both empty, typically), else the histograms differ without any noise.
+        exact_mismatch = keep & (error == 0) & (diff != 0)
         keep &= error > 0
-        chi2 = float(np.sum((diff[keep] / error[keep]) ** 2))
+        with np.errstate(invalid="ignore"):
+            chi2 = float(np.sum((diff[keep] / error[keep]) ** 2))
         dof = int(keep.sum())
         p = float(stats.chi2.sf(chi2, dof)) if dof > 0 else 1.0
-        print(f"histogram t = {float(np.asarray(ha.time)):g}: chi2 = {chi2:.1f} for {dof} bins, p = {p:.3f}")
-        failed |= p < P_LIMIT
-    return 1 if failed else 0
+        if exact_mismatch.any():
+            p = 0.0
+        bad = not np.isfinite(p) or p < P_LIMIT
+        print(f"histogram t = {float(np.asarray(ha.time)):g}: chi2 = {chi2:.1f} for {dof} bins, p = {p:.3f}"
+              + (f", {int(exact_mismatch.sum())} bins differ without scatter" if exact_mismatch.any() else "")
+              + (" FAIL" if bad else ""))
+        ok &= not bad
+    return ok
+
+
+def main(argv):
+    if len(argv) != 2:
+        raise InputError("usage: compare_engine_ensembles.py A.h5 B.h5 (two shockgas-sim outputs)")
+    a_path, b_path = argv
+    a, b = read(a_path), read(b_path)
+    check_comparable(a_path, b_path, a, b)
+    return 0 if compare(a, b) else 1
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    sys.exit(main(sys.argv[1], sys.argv[2]))
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except InputError as error:
+        print(f"{SCRIPT}: error: {error}", file=sys.stderr)
+        sys.exit(2)

@@ -65,3 +65,13 @@ add_test(NAME python.module
                  $<TARGET_FILE:shockgas-sim> $<TARGET_FILE:shockgas-merge> $<TARGET_FILE:shockgas-analyze>
                  ${_drift_program} $<TARGET_FILE:shockgas-tail> "${_py_work}/module")
 set_tests_properties(python.module PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+
+# The scripts as a user runs them: a user's mistake is one line "<script>: error: ..." and exit
+# status 2, never a traceback; what a check cannot judge fails rather than passes. Each makes its
+# own small inputs (tests/python/script_checks.py has the shared assertions).
+# tools/compare_engine_ensembles.py: one realization, other parameters, time grids or histograms
+# refused; a NaN statistic fails (~1 s).
+add_test(NAME python.compare_engine_ensembles
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_compare_engine_ensembles_cli.py
+                 $<TARGET_FILE:shockgas-sim> "${_py_work}/compare_engine_ensembles")
+set_tests_properties(python.compare_engine_ensembles PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)

@@ -1,0 +1,34 @@
+"""Helpers for the tests of the project's Python scripts as a user runs them (tests/python/test_*_cli.py).
+
+A user's mistake must give exit status 2 and one line "<script>: error: <what>" on stderr, never a
+Python traceback (house rule; exit 1 is kept for what a script's documentation gives it).
+"""
+import os
+import subprocess
+import sys
+
+SOURCE = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", ".."))
+PYTHON = sys.executable  # the interpreter ctest runs the test with (SHOCKGAS_PYTHON): numpy, scipy, h5py
+
+
+def script(*relative):
+    return os.path.join(SOURCE, *relative)
+
+
+def run(command, cwd=None, env=None):
+    """Runs a command (strings or numbers) and returns the CompletedProcess, output captured as text."""
+    return subprocess.run([str(c) for c in command], cwd=cwd, env=env, capture_output=True, text=True)
+
+
+def one_line_error(test, result, name, *words):
+    """Asserts exit status 2, no traceback, and exactly one stderr line "<name>: error: ..." holding
+    every one of `words`."""
+    described = f"exit {result.returncode}\nstdout: {result.stdout[-2000:]}\nstderr: {result.stderr[-2000:]}"
+    test.assertEqual(result.returncode, 2, described)
+    test.assertNotIn("Traceback", result.stderr, described)
+    lines = result.stderr.strip().splitlines()
+    test.assertEqual(len(lines), 1, described)
+    test.assertTrue(lines[0].startswith(f"{name}: error: "), described)
+    for word in words:
+        test.assertIn(word, lines[0], described)
+    return lines[0]
