@@ -14,8 +14,21 @@ the root attribute `input_path` (or --run). Estimator (analysis/src/temperature.
   * sigma: delete-one jackknife over realizations, with the full-sample SE(T_k) divided by the
     delete-one mean (what fit_power_law does with the replica's y),
     sqrt((n-1)/n sum (theta_i - mean theta)^2).
+With one realization there is no jackknife: the C++ prints "+- n/a" and stores exponent_sigma NaN;
+then exponent and chi2_per_dof are compared and exponent_sigma is reported as n/a (it agrees when
+both sides give none).
+
+The run: --run RUN.h5, else the results file's `input_path`. That path is as it was given to
+shockgas-analyze, relative to wherever it ran, so a relative one is looked for next to the results
+file first, then in the current directory. The run found must be the one the results were computed
+from: every root attribute the results file copied from its input (input_<name>: seed, date,
+total_collisions, parameters, provenance) must equal the run's; a run that differs in any is refused,
+naming the attribute (another run.h5 in the current directory, a rerun with another seed, ...).
+
 Exit status 0 when exponent, exponent_sigma and chi2_per_dof agree within the relative tolerance,
-1 otherwise, 77 (SKIP) when numpy/scipy/h5py are missing.
+1 otherwise, 2 with one line "refit_check.py: error: ..." on stderr for bad input (a missing file, a
+file that is not a decay results file, a run that is not the analysed one, a bad --tolerance),
+77 (SKIP) when numpy/scipy/h5py are missing.
 """
 import argparse
 import os
@@ -41,27 +54,110 @@ def weighted_slope(x, y, sigma):
     return float(b), chi2
 
 
-def refit(run_path, t_lo, t_hi):
-    run = shockgas.read_run(run_path)
+class InputError(Exception):
+    """A user's mistake (exit 2, one line)."""
+
+
+def refit(run, t_lo, t_hi):
+    """The C++ estimator redone with scipy on a Run, in the decay fit's window [t_lo, t_hi]."""
     time, temperature = run.time, run.temperature           # K; R x K
     every = np.all(np.isfinite(temperature) & (temperature > 0), axis=0)
     inside = every & (time >= t_lo * (1 - 1e-12)) & (time <= t_hi * (1 + 1e-12))
     t = time[inside]
     T = temperature[:, inside]
     R = T.shape[0]
+    if len(t) < 3:
+        raise InputError(f"{run.file}: {len(t)} sample times in the window [{t_lo:g}, {t_hi:g}] reached by every "
+                         f"realization; the decay fit had more: this is not the analysed run")
     mean = T.mean(axis=0)
     se = T.std(axis=0, ddof=1) / np.sqrt(R) if R >= 2 else mean.copy()
-    se = np.where(se > 0, se, mean)     # no scatter: equal weights, as the C++ does
+    se = np.where(se > 0, se, mean)     # no scatter (or one realization): equal weights, as the C++ does
     sigma = se / mean                    # d ln y = dy / y
     x = np.log(t)
     slope, chi2 = weighted_slope(x, np.log(mean), sigma)
     exponent = -slope
-    # fit_power_law divides the absolute SE by the y it is given: in a jackknife replica that is
-    # the delete-one mean, so sigma_k = SE_k / <T>_(i),k there (SE_k from the full sample).
-    replicas = [np.delete(T, i, axis=0).mean(axis=0) for i in range(R)]
-    jack = np.array([-weighted_slope(x, np.log(m), se / m)[0] for m in replicas])
-    jack_sigma = float(np.sqrt((R - 1) / R * np.sum((jack - jack.mean()) ** 2)))
-    return dict(exponent=exponent, exponent_sigma=jack_sigma, chi2_per_dof=chi2 / (len(t) - 2), points=len(t))
+    if R < 2:  # one realization: nothing to leave out, the C++ stores NaN ("+- n/a")
+        jack_sigma = float("nan")
+    else:
+        # fit_power_law divides the absolute SE by the y it is given: in a jackknife replica that is
+        # the delete-one mean, so sigma_k = SE_k / <T>_(i),k there (SE_k from the full sample).
+        replicas = [np.delete(T, i, axis=0).mean(axis=0) for i in range(R)]
+        jack = np.array([-weighted_slope(x, np.log(m), se / m)[0] for m in replicas])
+        jack_sigma = float(np.sqrt((R - 1) / R * np.sum((jack - jack.mean()) ** 2)))
+    return dict(exponent=exponent, exponent_sigma=jack_sigma, chi2_per_dof=chi2 / (len(t) - 2), points=len(t),
+                realizations=R)
+
+
+def _same(a, b):
+    """Attribute equality as stored: exact, NaN equal to NaN, arrays element by element."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a, b = np.asarray(a), np.asarray(b)
+        if a.shape != b.shape:
+            return False
+        if a.dtype.kind in "fc" and b.dtype.kind in "fc":
+            return bool(np.array_equal(a, b, equal_nan=True))
+        return bool(np.array_equal(a, b))
+    if isinstance(a, float) and isinstance(b, float) and a != a and b != b:
+        return True
+    return a == b
+
+
+def provenance_mismatch(recorded, run_attrs):
+    """The first recorded input attribute (results' input_<name>) the run does not carry with the same
+    value, as text; None when the run is the analysed one."""
+    first = ("seed", "date", "total_collisions")  # the likeliest to tell another run apart: named first
+    for name in sorted(recorded, key=lambda n: (first.index(n) if n in first else len(first), n)):
+        if name == "path":
+            continue
+        if name not in run_attrs:
+            return f"it has no attribute {name} (the analysed run had {recorded[name]!r})"
+        if not _same(recorded[name], run_attrs[name]):
+            return f"its {name} is {run_attrs[name]!r}, the analysed run's was {recorded[name]!r}"
+    return None
+
+
+def read_run(path):
+    try:
+        return shockgas.read_run(path)
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except (OSError, shockgas.SchemaError) as error:
+        raise InputError(str(error)) from None
+
+
+def find_run(results_path, recorded, given):
+    """The analysed run: `given` (--run) or the recorded input_path, looked for next to the results
+    file first, then as it stands (the current directory); refused unless its attributes are the
+    recorded ones."""
+    if given:
+        candidates = [given]
+    else:
+        recorded_path = recorded.get("path")
+        if not recorded_path:
+            raise InputError(f"{results_path}: no input_path recorded; name the run with --run RUN.h5")
+        if os.path.isabs(recorded_path):
+            candidates = [recorded_path]
+        else:
+            beside = os.path.join(os.path.dirname(os.path.abspath(results_path)), recorded_path)
+            candidates = [beside] + ([recorded_path] if os.path.abspath(recorded_path) != beside else [])
+    refused = []
+    for candidate in candidates:
+        if not os.path.exists(candidate):
+            continue
+        run = read_run(candidate)
+        why = provenance_mismatch(recorded, run.attrs)
+        if why is None:
+            return candidate, run
+        refused.append(f"{candidate}: {why}")
+    if refused:
+        raise InputError(f"{results_path} was not computed from {'; nor from '.join(refused)}"
+                         + ("" if given else "; name the analysed run with --run RUN.h5"))
+    raise InputError(f"{results_path}: its input {candidates[0] if given else recorded.get('path')!r} is not found "
+                     f"(looked for {' and '.join(candidates)}); name it with --run RUN.h5")
+
+
+def fmt(value):
+    return "n/a" if value != value else "%.12g" % value
 
 
 def main(argv=None):
@@ -70,23 +166,50 @@ def main(argv=None):
     ap.add_argument("--run", help="simulation output (default: the results file's input_path)")
     ap.add_argument("--tolerance", type=float, default=1e-6, help="relative agreement required")
     args = ap.parse_args(argv)
-    results = shockgas.read_results(args.results)
-    run = args.run or results.attrs["input_path"]
+    if not (args.tolerance >= 0 and np.isfinite(args.tolerance)):
+        raise InputError(f"--tolerance {args.tolerance!r}: a finite relative tolerance >= 0")
+    if not os.path.exists(args.results):
+        raise InputError(f"{args.results}: no such file")
+    try:
+        results = shockgas.read_results(args.results)
+    except (OSError, shockgas.SchemaError) as error:
+        raise InputError(str(error)) from None
+    if "decay" not in results.sections:
+        raise InputError(f"{args.results}: no /decay section: not a shockgas-analyze decay results file "
+                         f"({results.attrs.get('program')})")
+    inputs = results.inputs()
+    if len(inputs) != 1:
+        raise InputError(f"{args.results}: {len(inputs)} inputs recorded; a decay fit has one")
     decay = results["decay"].attrs
-    cpp = {k: float(decay[k]) for k in ("exponent", "exponent_sigma", "chi2_per_dof", "t_lo", "t_hi")}
-    if not os.path.exists(run):  # input_path is as given to shockgas-analyze: maybe relative to it
-        run = os.path.join(os.path.dirname(os.path.abspath(args.results)), run)
+    try:
+        cpp = {k: float(decay[k]) for k in ("exponent", "exponent_sigma", "chi2_per_dof", "t_lo", "t_hi")}
+    except KeyError as missing:
+        raise InputError(f"{args.results}: /decay has no attribute {missing}") from None
+    run_path, run = find_run(args.results, inputs[0], args.run)
     py = refit(run, cpp["t_lo"], cpp["t_hi"])
     ok = True
     for key in ("exponent", "exponent_sigma", "chi2_per_dof"):
-        rel = abs(py[key] - cpp[key]) / abs(cpp[key])
-        good = rel <= args.tolerance
+        c, p = cpp[key], py[key]
+        if c != c or p != p:  # n/a: one realization has no jackknife sigma
+            good = (c != c) and (p != p)
+            note = ("n/a on both sides (%d realization: no jackknife)" % py["realizations"] if good else
+                    "n/a on one side only")
+            print("%-15s C++ %s  scipy %s  %s %s" % (key, fmt(c), fmt(p), note, "ok" if good else "FAIL"))
+        else:
+            rel = abs(p - c) / abs(c) if c != 0 else abs(p - c)
+            good = rel <= args.tolerance
+            print("%-15s C++ %.12g  scipy %.12g  relative difference %.2e %s" % (key, c, p, rel,
+                                                                                 "ok" if good else "FAIL"))
         ok &= good
-        print("%-15s C++ %.12g  scipy %.12g  relative difference %.2e %s" % (key, cpp[key], py[key], rel,
-                                                                             "ok" if good else "FAIL"))
-    print("window [%g, %g], %d points, run %s" % (cpp["t_lo"], cpp["t_hi"], py["points"], run))
+    print("window [%g, %g], %d points, %d realization%s, run %s (seed %s, made %s: the analysed run)"
+          % (cpp["t_lo"], cpp["t_hi"], py["points"], py["realizations"], "" if py["realizations"] == 1 else "s",
+             run_path, run.attrs.get("seed"), run.attrs.get("date")))
     return 0 if ok else 1
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except InputError as error:
+        print(f"refit_check.py: error: {error}", file=sys.stderr)
+        sys.exit(2)

@@ -75,3 +75,9 @@ add_test(NAME python.compare_engine_ensembles
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_compare_engine_ensembles_cli.py
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/compare_engine_ensembles")
 set_tests_properties(python.compare_engine_ensembles PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# python/refit_check.py: the run beside the results, checked against the recorded provenance; one
+# realization (sigma n/a); bad inputs (~1 s).
+add_test(NAME python.refit_check_inputs
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_refit_check_cli.py
+                 $<TARGET_FILE:shockgas-sim> $<TARGET_FILE:shockgas-analyze> "${_py_work}/refit_check_inputs")
+set_tests_properties(python.refit_check_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)

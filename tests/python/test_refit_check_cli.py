@@ -1,0 +1,111 @@
+#!/usr/bin/python3
+"""python/refit_check.py finds the run its results were computed from, or refuses; one realization;
+bad inputs (ctest python.refit_check_inputs, label python; about 1 s of CPU).
+
+    test_refit_check_cli.py SIM ANALYZE WORK_DIR
+
+The results file stores input_path as it was given to shockgas-analyze ("run.h5"). The script used
+to look in the current directory first, so run from a directory holding another run.h5 it refitted
+that one and reported a C++-versus-scipy mismatch that was its own. Here:
+  * a/run.h5 (seed 3) and its decay fit a/decay.h5, made in a/; b/run.h5 another run (seed 9).
+    From b/, refit_check.py ../a/decay.h5 refits a/run.h5 and agrees (exit 0);
+  * a copy of the results in b/ (its input, a/run.h5, is not beside it): b/run.h5 is found and
+    refused because its seed differs from the recorded one; --run naming the wrong run too: exit 2;
+  * one realization: the C++ gives exponent_sigma NaN ("+- n/a"); the refit compares the exponent
+    and chi2/dof and reports sigma as n/a on both sides (it died with "array must not contain infs
+    or NaNs");
+  * a run file given as results, a missing file, results of another subcommand: exit 2, one line.
+"""
+import os
+import shutil
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+import script_checks as sc  # noqa: E402
+
+try:
+    import h5py  # noqa: F401
+    import numpy  # noqa: F401
+    import scipy  # noqa: F401
+except ImportError as error:  # pragma: no cover
+    print("SKIP: needs numpy, scipy and h5py (%s)" % error)
+    sys.exit(77)
+
+SIM, ANALYZE, WORK = sys.argv[1:4]
+del sys.argv[1:4]
+TOOL = sc.script("python", "refit_check.py")
+NAME = "refit_check.py"
+# The agreement refit_check.py itself defaults to: the C++ and scipy fits of the same numbers agree
+# to rounding and the minimisers' tolerances (measured 3e-8 relative at worst on the sigma).
+TOLERANCE = "1e-6"
+
+
+def make(directory, name, *options):
+    os.makedirs(directory, exist_ok=True)
+    target = os.path.join(directory, name)
+    if os.path.exists(target):
+        os.remove(target)
+    result = sc.run([SIM, "-N", 2000, "-r", 0, "-t", 1000, "-j", 1, "-q", *options, "-o", name], cwd=directory)
+    assert result.returncode == 0, result.stderr
+
+
+def analyze(directory, run, results, subcommand="decay"):
+    result = sc.run([ANALYZE, subcommand, run, "-o", results], cwd=directory)  # input_path as given: "run.h5"
+    assert result.returncode == 0, result.stderr
+
+
+def refit(*arguments, cwd):
+    return sc.run([sc.PYTHON, TOOL, *arguments, "--tolerance", TOLERANCE], cwd=cwd)
+
+
+class FindsTheAnalysedRun(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.a, cls.b = os.path.join(WORK, "a"), os.path.join(WORK, "b")
+        make(cls.a, "run.h5", "-R", 4, "-s", 3)
+        analyze(cls.a, "run.h5", "decay.h5")
+        make(cls.b, "run.h5", "-R", 4, "-s", 9)
+
+    def test_from_another_directory_refits_the_run_beside_the_results(self):
+        result = refit("../a/decay.h5", cwd=self.b)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertIn("seed 3", result.stdout)
+        self.assertIn(os.path.join(self.a, "run.h5"), result.stdout)
+        self.assertNotIn("FAIL", result.stdout)
+
+    def test_a_run_that_is_not_the_analysed_one_is_refused(self):
+        shutil.copyfile(os.path.join(self.a, "decay.h5"), os.path.join(self.b, "moved.h5"))
+        sc.one_line_error(self, refit("moved.h5", cwd=self.b), NAME, "seed is 9", "was 3")
+        sc.one_line_error(self, refit(os.path.join(self.a, "decay.h5"), "--run", os.path.join(self.b, "run.h5"),
+                                      cwd=WORK), NAME, "seed is 9")
+        # The right one named with --run is accepted.
+        result = refit("moved.h5", "--run", os.path.join(self.a, "run.h5"), cwd=self.b)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+
+    def test_bad_inputs(self):
+        sc.one_line_error(self, refit("run.h5", cwd=self.b), NAME, "not a results file")
+        sc.one_line_error(self, refit("no_such.h5", cwd=self.b), NAME, "no_such.h5", "no such file")
+        directory = os.path.join(WORK, "shocks")
+        os.makedirs(directory, exist_ok=True)
+        result = sc.run([SIM, "-N", 2000, "-r", 0.9, "-t", 100, "--snapshot-times", 100, "-j", 1, "-q",
+                         "-o", "profile.h5"], cwd=directory)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        analyze(directory, "profile.h5", "shocks.h5", subcommand="shocks")
+        sc.one_line_error(self, refit("shocks.h5", cwd=directory), NAME, "no /decay section")
+
+
+class OneRealization(unittest.TestCase):
+    def test_sigma_is_not_applicable_on_both_sides(self):
+        directory = os.path.join(WORK, "one")
+        make(directory, "run1.h5", "-R", 1, "-s", 9)
+        analyze(directory, "run1.h5", "decay1.h5")
+        result = refit("decay1.h5", cwd=directory)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertRegex(result.stdout, r"exponent +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
+        self.assertRegex(result.stdout, r"exponent_sigma +C\+\+ n/a +scipy n/a .* ok")
+        self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
