@@ -24,32 +24,66 @@ realizations done, the CPU seconds spent (the finished files' and the running ch
 cpu_seconds), the realization in progress and how far it got, and, once a part of a run has
 finished, the CPU seconds its remaining parts would take at the mean of its finished ones (marked as
 an extrapolation). Safe to run beside the build: it only reads.
+
+Refused with one line "fidelity_report.py: error: ..." on stderr and exit status 2, rather than
+tables that are empty: a BUILD_DIR that does not exist or has no paper_targets/, a fidelity other
+than quick or paper or one the build has no paper_targets/<fidelity>/ for (a quick build asked for
+paper), no results in it yet (except --progress, whose point is a build under way), --check-readme
+without a file or with one that does not exist, and unknown options.
 """
 import glob
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
-import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
+USAGE = "usage: fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]"
+
+
+def fail(message):
+    """A user's mistake: one line on stderr, exit 2 (exit 1 is --check-readme's stale rows)."""
+    print(f"fidelity_report.py: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+try:
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
+    import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
+except ImportError as error:  # pragma: no cover - depends on the machine
+    fail(f"{error.name or error} is missing (needs numpy and h5py): run it with Debian's /usr/bin/python3")
 
 check_readme = None
-if "--check-readme" in sys.argv[1:]:
-    position = sys.argv.index("--check-readme")
-    check_readme = sys.argv[position + 1]
-    del sys.argv[position:position + 2]
-arguments = [a for a in sys.argv[1:] if a not in ("--readme", "--progress")]
-readme = "--readme" in sys.argv[1:]
-progress = "--progress" in sys.argv[1:]
+argv = sys.argv[1:]
+if argv.count("--check-readme") > 1:
+    fail("--check-readme given twice")
+if "--check-readme" in argv:
+    position = argv.index("--check-readme")
+    if position + 1 >= len(argv) or argv[position + 1].startswith("-"):
+        fail("--check-readme needs the README to check: --check-readme README.md")
+    check_readme = argv[position + 1]
+    del argv[position:position + 2]
+readme = "--readme" in argv
+progress = "--progress" in argv
+arguments = [a for a in argv if a not in ("--readme", "--progress")]
+if len(arguments) > 2 or any(a.startswith("-") for a in arguments):
+    fail(f"{' '.join(a for a in arguments if a.startswith('-')) or 'too many arguments'}: {USAGE}")
+if readme + progress + (check_readme is not None) > 1:
+    fail(f"--readme, --check-readme and --progress are alternatives: {USAGE}")
 build = arguments[0] if len(arguments) > 0 else "build"
 fidelity = arguments[1] if len(arguments) > 1 else "quick"
 base = os.path.join(build, "paper_targets", fidelity)
 # A wrong directory or fidelity would otherwise print empty tables and exit 0.
-if len(arguments) > 2 or any(a.startswith("-") for a in arguments):
-    sys.exit("usage: fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]")
 if fidelity not in ("quick", "paper"):
-    sys.exit(f"fidelity_report.py: error: the fidelity is quick or paper, not '{fidelity}'")
+    fail(f"the fidelity is quick or paper, not '{fidelity}'")
+if not os.path.isdir(build):
+    fail(f"'{build}': no such directory")
 if not os.path.isdir(os.path.join(build, "paper_targets")):
-    sys.exit(f"fidelity_report.py: error: '{build}' is not a configured build tree (no paper_targets/ in it)")
+    fail(f"'{build}' is not a configured build tree (no paper_targets/ in it)")
+if not os.path.isdir(base):
+    fail(f"'{build}' has no {fidelity}-fidelity pipeline (no paper_targets/{fidelity}/ in it): configure it with "
+         f"-DSHOCKGAS_FIDELITY={fidelity}, or name the fidelity it was built at")
+if check_readme is not None and not os.path.isfile(check_readme):
+    fail(f"{check_readme}: no such file")
+if not progress and not glob.glob(os.path.join(glob.escape(base), "*", "*.h5")):
+    fail(f"no results in {base}: build the figures first (cmake --build {build} --target figures)")
 
 
 def attrs(path, group):
@@ -114,8 +148,8 @@ if check_readme is not None:
     rows = readme_rows()
     stale = [row for row in rows if row not in lines]
     if not rows:
-        print(f"{check_readme}: no results found in {base}: build the figures first")
-        sys.exit(1)
+        fail(f"none of the README's results in {base} (fig1/r*.decay.h5, fig_crossovers/crossovers.h5, "
+             f"fig4/scaling.h5, fig5/shocks.h5): build the figures first")
     for row in stale:
         print(f"{check_readme} lacks this row measured by {build} (paste it in place of the stale one):\n{row}")
     print(f"{len(rows) - len(stale)} of {len(rows)} measured rows stand in {check_readme}")

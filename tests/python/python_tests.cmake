@@ -86,3 +86,8 @@ add_test(NAME python.reproduce_check_unreadable
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_reproduce_check_cli.py
                  "${_py_work}/reproduce_check_unreadable")
 set_tests_properties(python.reproduce_check_unreadable PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# tools/fidelity_report.py: a fidelity the build lacks, no results, --check-readme without a file (< 1 s).
+add_test(NAME python.fidelity_report_inputs
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_fidelity_report_cli.py
+                 $<TARGET_FILE:shockgas-sim> "${_py_work}/fidelity_report_inputs")
+set_tests_properties(python.fidelity_report_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
