@@ -22,7 +22,15 @@ of times the blocks at t_k are used as the starting blocks at t_{k+1} (exact).
 Ring of length L: the centre-of-mass frame is used (total momentum 0), and the ring is unrolled
 into 2*copies+1 periodic copies; each physical cluster is taken once, as the image whose first
 (leftmost) particle lies in the central copy.  Information travels at most at speed
-2 max|v| (relative), so copies = 1 is exact while 2 t max|v| < L; this is asserted.
+2 max|v| (relative), so copies = 1 is exact while 2 t max|v| < L; this is asserted (a later time is
+refused with the --copies it needs).
+
+--compare fits ratio(t) = r_inf + a t^(-1/3) with error bars from the spread over realizations: it
+needs 3 or more times and 2 or more realizations. --hist-dir's chi2 per histogram leaves out the
+bins where every realization holds the same value (no spread, no error bar; frequent in the number
+histogram F(m) at small N and few realizations) and says how many; "n/a/0" when no bin is left.
+The mass bins depend on t, so each time has its own. A user's mistake is one line
+"sticky_pav.py: error: ..." on stderr and exit status 2.
 """
 import argparse
 import json
@@ -30,7 +38,12 @@ import os
 import sys
 import time
 
-import numpy as np
+try:
+    import numpy as np
+except ImportError as error:  # pragma: no cover - depends on the machine
+    print("sticky_pav.py: error: %s is missing: run it with Debian's /usr/bin/python3 (python3-numpy, "
+          "python3-scipy)" % (error.name or error), file=sys.stderr)
+    sys.exit(2)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -110,6 +123,16 @@ def sticky_line(x, v, m, t):
     return dict(mass=W, momentum=P, velocity=P / W, position=(MX + t * P) / W, first=first)
 
 
+class TooFewCopies(ValueError):
+    """A time past what `copies` periodic images can represent exactly (2 t max|v| >= copies L)."""
+
+    def __init__(self, t, copies, L, vmax):
+        self.t, self.copies, self.L, self.vmax = t, copies, L, vmax
+        self.needed = int(np.floor(2.0 * t * vmax / L)) + 1
+        super().__init__("t = %g too large for %d copies: need 2 t max|v| = %.6g < copies L = %.6g (--copies %d or more)"
+                         % (t, copies, 2.0 * t * vmax, copies * L, self.needed))
+
+
 def sticky_ring(x, v, m, L, times, copies=1, cm_frame=True):
     """Ring of length L.  Returns a list (one per time, times sorted increasingly) of dicts with
     arrays mass, momentum, velocity, position (in [0, L)), first (original particle index)."""
@@ -122,7 +145,7 @@ def sticky_ring(x, v, m, L, times, copies=1, cm_frame=True):
         v = v - np.sum(m * v) / np.sum(m)
     vmax = np.max(np.abs(v))
     if 2.0 * times[-1] * vmax >= copies * L:
-        raise ValueError("t too large for %d copies: need 2 t max|v| < copies L" % copies)
+        raise TooFewCopies(times[-1], copies, L, vmax)
     shifts = np.arange(-copies, copies + 1)
     X = (x[None, :] + L * shifts[:, None]).ravel()
     V = np.tile(v, len(shifts))
@@ -185,6 +208,14 @@ def observables(cl, N=None):
 
 
 Z_EDGES = np.linspace(-3.5, 3.5, 71)        # bins of z = V t^(1/3)
+# A histogram bin whose standard error over realizations is below this fraction of its mean has no
+# spread: every realization holds the same value there, up to the rounding of the mass weights
+# (~1e-16 relative per term). Any real spread is at least one cluster in a bin's count, 1e-6 of it
+# or more; 1e-9 lies between.
+ZERO_SPREAD = 1e-9
+# The finite-time fit ratio(t) = r_inf + a t^(-1/3) has two parameters: it needs three times or more
+# to leave a degree of freedom for its chi2 (with two it passes through both points, chi2 0/0).
+MIN_FIT_TIMES = 3
 M_EDGES = np.linspace(0.0, 6.0, 61)         # bins of m = M / M*,  M* = (D t^2)^(1/3)
 
 
@@ -213,7 +244,8 @@ def mass_edges(t, D=1.0 / 3.0):
 
 def run_ensemble(N, realizations, seed, times, copies=1, verbose=True, with_hist=False):
     """Independent realizations (seeds seed, seed+1, ...); returns per-time arrays of T and n
-    (and, with_hist, per-realization histograms, see histograms())."""
+    (and, with_hist, per-realization histograms, see histograms(): out["hist"][key][k] is an
+    array (realizations, bins at times[k]))."""
     times = np.asarray(sorted(times), dtype=float)
     T = np.zeros((realizations, len(times)))
     n = np.zeros_like(T)
@@ -238,7 +270,10 @@ def run_ensemble(N, realizations, seed, times, copies=1, verbose=True, with_hist
     out = dict(times=times, T=T, n=n, kurtosis=kurt, seconds=time.time() - t0, N=N,
                realizations=realizations, seed=seed, copies=copies)
     if with_hist:
-        out["hist"] = {k: np.array(v) for k, v in H.items()}      # (R, ntimes, nbins)
+        # Per time an array (R, nbins): the mass bins (mass_edges) depend on t, and at small t (below
+        # ~55 for M_EDGES) rounding to half-integer masses merges some, so times differ in bin count.
+        out["hist"] = {key: [np.array([per_realization[k] for per_realization in per_key])
+                             for k in range(len(times))] for key, per_key in H.items()}
     return out
 
 
@@ -266,13 +301,21 @@ def write_histogram_comparison(ens, out_dir):
         th_mm = _bin_average(lambda mm: mm * eb.mass_density_from_grid(mm), me)
         for key, edges, th, name in (("z", Z_EDGES, th_z, "phi"), ("m_number", me, th_mn, "mass_number"),
                                      ("m_mass", me, th_mm, "mass_massweighted")):
-            h = ens["hist"][key][:, k, :]
+            h = ens["hist"][key][k]                          # (R, bins at this t)
             mean, err = h.mean(axis=0), h.std(axis=0, ddof=1) / np.sqrt(R)
             ok = (h > 0).sum(axis=0) >= max(2, R // 2)     # error bar meaningful only there
-            chi2 = float(np.sum(((mean - th) / np.where(ok, err, 1.0)) ** 2 * ok))
-            rec[name] = dict(chi2=chi2, nbins=int(ok.sum()))
+            # A bin where every realization holds the same value (the same number of clusters: at
+            # small N and R it happens often in the number histogram F(m)) has spread 0, or a
+            # rounding residue of the mass weights: it has no error bar, and dividing by it gave
+            # chi2 = inf (or 1e28). Such bins are left out and counted.
+            flat = ok & ~(err > ZERO_SPREAD * np.abs(mean))
+            use = ok & ~flat
+            z = np.zeros_like(mean)
+            z[use] = (mean[use] - th[use]) / err[use]
+            rec[name] = dict(chi2=float(np.sum(z ** 2)), nbins=int(use.sum()), flat_bins=int(flat.sum()))
             if key == "m_number":     # first bin (m < 0.1) carries the discreteness deficit
-                rec[name]["chi2_without_first_bin"] = chi2 - float(((mean[0] - th[0]) / err[0]) ** 2 * ok[0])
+                rec[name]["chi2_without_first_bin"] = float(np.sum(z[1:] ** 2))
+                rec[name]["nbins_without_first_bin"] = int(use[1:].sum())
                 rec[name]["first_bin_sim_over_theory"] = float(mean[0] / th[0])
             centers = 0.5 * (edges[1:] + edges[:-1])
             with open(os.path.join(out_dir, "%s_t%g.dat" % (name, t)), "w") as fh:
@@ -329,9 +372,15 @@ def main(argv=None):
     ap.add_argument("--json", help="write the comparison table as JSON here")
     ap.add_argument("--hist-dir", help="with --compare: write Phi and mass histograms vs theory here")
     args = ap.parse_args(argv)
+    check_arguments(args)
 
     if args.init:
-        x, v, m, L = read_initial(args.init, args.L)
+        try:
+            x, v, m, L = read_initial(args.init, args.L)
+        except (OSError, ValueError, IndexError) as error:
+            raise InputError("%s: not a readable initial condition 'x v [m]' (%s)" % (args.init, error)) from None
+        if len(x) < 2 or not (np.all(np.isfinite(x)) and np.all(np.isfinite(v)) and np.all(m > 0)):
+            raise InputError("%s: needs N >= 2 particles with finite x and v and masses > 0" % args.init)
         res = sticky_ring(x, v, m, L, sorted(args.times), copies=args.copies)
         fh = open(args.clusters_out, "w") if args.clusters_out else sys.stdout
         fh.write("# t mass position velocity first_particle\n")
@@ -365,13 +414,19 @@ def main(argv=None):
     hist = None
     if args.hist_dir:
         hist = write_histogram_comparison(ens, args.hist_dir)
+        def chi2(value, bins):
+            return "%.1f/%d" % (value, bins) if bins > 0 else "n/a/0"
+
         for rec in hist:
-            print("# t = %g: chi2/bins  Phi %.1f/%d   F(m) %.1f/%d (without m<0.1 bin: %.1f/%d, that bin sim/theory %.3f)"
-                  "   m F(m) %.1f/%d"
-                  % (rec["t"], rec["phi"]["chi2"], rec["phi"]["nbins"], rec["mass_number"]["chi2"],
-                     rec["mass_number"]["nbins"], rec["mass_number"]["chi2_without_first_bin"],
-                     rec["mass_number"]["nbins"] - 1, rec["mass_number"]["first_bin_sim_over_theory"],
-                     rec["mass_massweighted"]["chi2"], rec["mass_massweighted"]["nbins"]))
+            phi, mn, mm = rec["phi"], rec["mass_number"], rec["mass_massweighted"]
+            flat = phi["flat_bins"] + mn["flat_bins"] + mm["flat_bins"]
+            print("# t = %g: chi2/bins  Phi %s   F(m) %s (without m<0.1 bin: %s, that bin sim/theory %.3f)"
+                  "   m F(m) %s%s"
+                  % (rec["t"], chi2(phi["chi2"], phi["nbins"]), chi2(mn["chi2"], mn["nbins"]),
+                     chi2(mn["chi2_without_first_bin"], mn["nbins_without_first_bin"]),
+                     mn["first_bin_sim_over_theory"], chi2(mm["chi2"], mm["nbins"]),
+                     "" if not flat else "   (left out, no spread over the %d realizations: Phi %d, F(m) %d, "
+                     "m F(m) %d bins)" % (args.realizations, phi["flat_bins"], mn["flat_bins"], mm["flat_bins"])))
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(dict(N=args.N, realizations=args.realizations, seed=args.seed, copies=args.copies,
@@ -381,5 +436,46 @@ def main(argv=None):
     return 0
 
 
+class InputError(Exception):
+    """A user's mistake (exit 2, one line)."""
+
+
+def check_arguments(args):
+    """Refuses, as InputError, what would crash or print a meaningless fit."""
+    times = np.asarray(args.times, dtype=float)
+    if not np.all(np.isfinite(times) & (times > 0)):
+        raise InputError("--times: every time must be finite and > 0")
+    if args.copies < 1:
+        raise InputError("--copies %d: at least 1" % args.copies)
+    if args.init:
+        if args.compare or args.hist_dir or args.json:
+            raise InputError("--compare, --hist-dir and --json are for ensembles, not --init")
+        if args.L is not None and not (np.isfinite(args.L) and args.L > 0):
+            raise InputError("--L %r: a ring length > 0" % args.L)
+        return
+    if args.clusters_out:
+        raise InputError("--clusters-out goes with --init")
+    if args.N < 2:
+        raise InputError("--N %d: at least 2 particles" % args.N)
+    if args.realizations < 1:
+        raise InputError("--realizations %d: at least 1" % args.realizations)
+    if (args.hist_dir or args.json) and not args.compare:
+        raise InputError("--hist-dir and --json write the comparison: add --compare")
+    if args.compare:
+        if len(set(times.tolist())) < MIN_FIT_TIMES:
+            raise InputError("--compare fits ratio(t) = r_inf + a t^(-1/3) (2 parameters) over the times: it needs "
+                             "%d or more different --times, not %d" % (MIN_FIT_TIMES, len(set(times.tolist()))))
+        if args.realizations < 2:
+            raise InputError("--compare takes its error bars from the spread over realizations: "
+                             "--realizations 2 or more")
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except TooFewCopies as error:
+        print("sticky_pav.py: error: %s" % error, file=sys.stderr)
+        sys.exit(2)
+    except InputError as error:
+        print("sticky_pav.py: error: %s" % error, file=sys.stderr)
+        sys.exit(2)

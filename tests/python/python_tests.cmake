@@ -91,3 +91,8 @@ add_test(NAME python.fidelity_report_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_fidelity_report_cli.py
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/fidelity_report_inputs")
 set_tests_properties(python.fidelity_report_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# python/sticky_pav.py: histograms at small t, bins without spread, fits of too few times (~7 s).
+add_test(NAME python.sticky_pav_inputs
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_sticky_pav_cli.py
+                 "${_py_work}/sticky_pav_inputs")
+set_tests_properties(python.sticky_pav_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
