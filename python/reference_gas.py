@@ -1,8 +1,12 @@
 #!/usr/bin/python3
 """A plain event-driven reference for the inelastic gas on a ring, written from the physics alone.
 
-    python3 python/reference_gas.py INIT.h5 -r 0.9 -d 0.01 --subthreshold elastic --t-max 10
-    python3 python/reference_gas.py INIT.h5 --compare RUN.h5     (the run's parameters and times)
+    /usr/bin/python3 python/reference_gas.py INIT.h5 -r 0.9 -d 0.01 --subthreshold elastic --t-max 10
+    /usr/bin/python3 python/reference_gas.py INIT.h5 --compare RUN.h5   (the run's parameters and times)
+
+(Debian's /usr/bin/python3: reading HDF5 needs numpy and h5py, which another python3 on the PATH may
+lack; then it says which module is missing, in one line, and exits with status 2. --compare refuses
+a run whose init_file_sha256 is not this file's SHA-256.)
 
 It is an independent check of shockgas-sim (tests/python/test_reference_gas.py, ctest
 `python.reference`; docs/reference-check.md): nothing in it comes from the C++ engines. It is slow
@@ -295,11 +299,40 @@ def main(argv=None):
                         help="a shockgas-sim output of this init file (-R 1): take its r, delta, mechanism, "
                              "collapse speed and sample times, and print its values beside the reference's")
     args = parser.parse_args(argv)
-    position, velocity, mass, ring_length = read_initial_condition(args.init)
+    try:
+        position, velocity, mass, ring_length = read_initial_condition(args.init)
+    except ImportError as error:  # reading HDF5 needs the shockgas module: numpy and h5py
+        raise UsageError("%s is missing (reading HDF5 needs numpy and h5py): run it with Debian's /usr/bin/python3 "
+                         "(python3-numpy, python3-h5py)" % (error.name or error)) from None
+    except KeyError:
+        raise UsageError("%s: not an initial condition for shockgas-sim --init (it needs the datasets position and "
+                         "velocity and the root attribute ring_length)" % args.init) from None
+    except FileNotFoundError as error:  # the shockgas module's message names the path
+        raise UsageError(str(error)) from None
+    except (OSError, ValueError) as error:
+        raise UsageError("%s: not a readable initial condition (%s)" % (args.init, error)) from None
     run = None
     if args.compare:
+        import hashlib
+
         import shockgas
-        run = shockgas.read_run(args.compare)
+        try:
+            run = shockgas.read_run(args.compare)
+        except (OSError, shockgas.SchemaError) as error:
+            raise UsageError(str(error)) from None
+        # The run records the SHA-256 of the file it started from: a run of another start (or of no
+        # init file at all) compared with this one would show differences that are no engine's fault.
+        recorded = run.attrs.get("init_file_sha256", "")
+        if not recorded:
+            raise UsageError("%s was not made from an init file (no init_file_sha256): it cannot be compared with %s"
+                             % (args.compare, args.init))
+        with open(args.init, "rb") as handle:
+            actual = hashlib.sha256(handle.read()).hexdigest()
+        if actual != recorded:
+            raise UsageError("%s is not the initial condition %s was run from (its SHA-256 %s differs from the run's "
+                             "init_file_sha256 %s)" % (args.init, args.compare, actual[:12], recorded[:12]))
+        if run.realizations != 1:
+            raise UsageError("%s has %d realizations; a run of one init file has 1" % (args.compare, run.realizations))
         args.restitution, args.threshold = run.attrs["restitution"], run.attrs["velocity_threshold"]
         args.subthreshold, args.collapse_speed = run.attrs["subthreshold"], run.attrs["collapse_speed"]
         times = [float(u) for u in run.time]
@@ -334,5 +367,13 @@ def main(argv=None):
     return 0
 
 
+class UsageError(Exception):
+    """A user's mistake: one line "reference_gas.py: error: ..." on stderr, exit status 2."""
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except UsageError as error:
+        print("reference_gas.py: error: %s" % error, file=sys.stderr)
+        sys.exit(2)

@@ -96,3 +96,8 @@ add_test(NAME python.sticky_pav_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_sticky_pav_cli.py
                  "${_py_work}/sticky_pav_inputs")
 set_tests_properties(python.sticky_pav_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# python/reference_gas.py: --compare checks the run's init_file_sha256; a missing module in one line (< 1 s).
+add_test(NAME python.reference_gas_inputs
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_reference_gas_cli.py
+                 $<TARGET_FILE:shockgas-sim> "${_py_work}/reference_gas_inputs")
+set_tests_properties(python.reference_gas_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
