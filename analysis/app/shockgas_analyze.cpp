@@ -36,15 +36,12 @@ using namespace shockgas::analysis;
 
 // --- checks of what a user gives, made before any work (one line each) ---
 
-// Option values: written as !(x > 0) so that NaN fails every check.
-// meaning: what the value is, e.g. " (a multiple of v_rms)".
+// Option values that must be positive: written as !(x > 0) so that NaN fails
+// too. (Values that may be 0 are checked at parsing, by every program's
+// cli::finite_non_negative.) meaning: what the value is, e.g. " (a multiple of v_rms)".
 void require_positive(const std::string& option, double value, const std::string& meaning = "") {
     if (!(value > 0.0) || !std::isfinite(value))
         throw InputError(fmt::format("{}{} must be positive and finite, not {}", option, meaning, value));
-}
-void require_non_negative(const std::string& option, double value, const std::string& meaning = "") {
-    if (!(value >= 0.0) || !std::isfinite(value))
-        throw InputError(fmt::format("{}{} must be finite and at least 0, not {}", option, meaning, value));
 }
 
 // Runs one input's part of the work: what it cannot estimate (InsufficientData)
@@ -671,6 +668,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     shocks->add_option("--coarse-grain", shock_rule.coarse_grain_mass,
                        "merge consecutive clusters into cells of at least this mass first (0: off)")
+        ->check(cli::finite_non_negative)
         ->capture_default_str();
     shocks->add_option("--merge-gap", merge_gap,
                        "compressive runs at most this many expanding pairs apart are one shock (UINT)")
@@ -706,9 +704,10 @@ int main(int argc, char** argv) {
     far_tail->add_option("input", input, "shockgas-tail output")->required()->check(CLI::ExistingFile);
     far_tail->add_option("-o,--output", output, "results HDF5 file")->capture_default_str();
     far_tail->add_option("--data", data, "ln Phi(z) and the fit for gnuplot");
-    far_tail->add_option("--z-lo", z_lo, "fit window start")->capture_default_str();
+    far_tail->add_option("--z-lo", z_lo, "fit window start")->check(cli::finite_non_negative)->capture_default_str();
     far_tail->add_option("--z-hi", z_hi, "fit window end")->capture_default_str();
     far_tail->add_option("--window-shift", window_shift, "window systematic: both ends moved by +- this")
+        ->check(cli::finite_non_negative)
         ->capture_default_str();
     far_tail->add_flag("--free-linear", free_linear, "fit the linear term b too (default: b from EB9)");
 
@@ -776,7 +775,6 @@ int main(int argc, char** argv) {
             if (*shocks) {
                 require_positive("--jump-fraction", shock_rule.jump_fraction, " (a multiple of v_rms)");
                 require_positive("--segment-break", shock_rule.segment_break_fraction, " (a multiple of v_rms)");
-                require_non_negative("--coarse-grain", shock_rule.coarse_grain_mass, " (a mass; 0: off)");
                 if (merge_gap < 0)
                     throw InputError(fmt::format("--merge-gap must be a whole number at least 0, not {}", merge_gap));
                 shock_rule.merge_gap_points = static_cast<std::size_t>(merge_gap);
@@ -797,11 +795,9 @@ int main(int argc, char** argv) {
                 run_compare(reference, inputs, output, data, curves);
             }
             if (*far_tail) {
-                require_non_negative("--z-lo", z_lo);
                 if (!(z_hi > z_lo) || !std::isfinite(z_hi))
                     throw InputError(fmt::format("--z-hi must be finite and larger than --z-lo ({:g}), not {}", z_lo,
                                                  z_hi));
-                require_non_negative("--window-shift", window_shift);
                 check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
                 run_far_tail(input, output, data, z_lo, z_hi, window_shift, free_linear);
             }

@@ -137,6 +137,7 @@ foreach(_case IN ITEMS "merge_gap_negative|--merge-gap must be a whole number at
                       "t_lo_negative|--t-lo must be positive and finite, not -5|decay;a.h5;--t-lo;-5"
                       "t_hi_below_t_lo|--t-hi \\(10\\) must be larger than --t-lo \\(20\\)|decay;a.h5;--t-lo;20;--t-hi;10"
                       "stick_ratio_one|--stick-ratio must be finite and above 1 \\(T / T_Haff starts at 1 and rises\\), not 1|crossover;e05.h5;--stick-ratio;1"
+                      "coarse_grain_nan|--coarse-grain: must be a finite number >= 0, not 'nan'|shocks;snap1.h5;--coarse-grain;nan"
                       "z_hi_below_z_lo|--z-hi must be finite and larger than --z-lo \\(3\\), not 2|far-tail;a.h5;--z-lo;3;--z-hi;2")
   string(REPLACE "|" ";" _parts "${_case}")
   list(GET _parts 0 _name)
