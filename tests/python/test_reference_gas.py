@@ -463,7 +463,8 @@ def compare_run(c, engine, run, times, ref, cut, skip, stable, count_ok, stats):
 def check_case(c, stats, failures):
     name = c["name"]
     init = os.path.join(WORK, name + ".init.h5")
-    shockgas.write_initial_condition(init, c["position"], c["velocity"], mass=c["mass"], ring_length=c["L"])
+    shockgas.write_initial_condition(init, c["position"], c["velocity"], mass=c["mass"], ring_length=c["L"],
+                                     overwrite=True)  # a rerun in the same work directory
     t_max = choose_t_max(c)
     ref = times = None
     cut, skip, stable, count_ok = 0, set(), False, False
