@@ -90,6 +90,13 @@ def attrs(path, group):
     return shockgas.read_results(path)[group].attrs
 
 
+def window(decay):
+    """The window systematic, or n/a where the analysis could not measure it (stored as NaN with a
+    note: fewer than two one-decade windows inside the fit window)."""
+    value = decay["exponent_window_systematic"]
+    return "n/a" if value != value else f"{value:.3f}"
+
+
 def power(x):
     """10⁵ for 1e5, 2·10⁴ for 2e4 (the README's way of writing sizes and times); 1643 as it is."""
     superscript = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
@@ -112,7 +119,7 @@ def readme_rows():
         rows.append(f"| P1 | T ~ t^−α, r = {a['restitution']:g} (N = {power(a['particles'])}, {a['realizations']} "
                     f"realizations, t ∈ [{power(d['t_lo'])}, "
                     f"{power(d['t_hi'])}]) | α = {d['exponent']:.3f} ± {d['exponent_sigma']:.3f} ± "
-                    f"{d['exponent_window_systematic']:.3f} (window) | {paper} |")
+                    f"{window(d)} (window) | {paper} |")
     path = os.path.join(base, "fig_crossovers", "crossovers.h5")
     if os.path.exists(path):
         d = attrs(path, "scaling_in_eps")
@@ -254,7 +261,7 @@ for run, paper in [("r0", "0.67 / 2/3"), ("r0.5", "0.67"), ("r0.9", "0.66"), ("r
     if os.path.exists(path):
         d = attrs(path, "decay")
         print(f"| Fig. 1 decay exponent, {run.replace('r', 'r = ')} (window [{d['t_lo']:.0f}, {d['t_hi']:.0f}]) | "
-              f"{d['exponent']:.3f} ± {d['exponent_sigma']:.3f} (stat) ± {d['exponent_window_systematic']:.3f} (window) | {paper} |")
+              f"{d['exponent']:.3f} ± {d['exponent_sigma']:.3f} (stat) ± {window(d)} (window) | {paper} |")
 path = os.path.join(base, "fig_crossovers", "crossovers.h5")
 if os.path.exists(path):
     d = attrs(path, "scaling_in_eps")

@@ -206,15 +206,23 @@ std::vector<DecayFit> scan_decay_windows(const TemperatureHistory& history, doub
 
 Measured window_systematic(const TemperatureHistory& history, double t_lo, double t_hi) {
     double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+    std::size_t inside = 0;
     for (const auto& w : scan_decay_windows(history, 1.0, 0.1)) {
         if (w.t_lo < t_lo * (1.0 - 1e-9) || w.t_hi > t_hi * (1.0 + 1e-9)) continue;
         lowest = std::min(lowest, w.exponent);
         highest = std::max(highest, w.exponent);
+        ++inside;
     }
-    // No window inside: the spread of nothing is not 0, it is unknown.
-    if (!(highest >= lowest))
+    // No window inside: the spread of nothing is not 0, it is unknown. Nor is the
+    // spread of one window (a fit window of 1 to 1.1 decades), which used to be
+    // reported as 0.000.
+    if (inside == 0)
         return Measured::missing(fmt::format("no one-decade window with 3 samples lies inside the fit window [{:g}, "
                                              "{:g}]",
+                                             t_lo, t_hi));
+    if (inside == 1)
+        return Measured::missing(fmt::format("only one one-decade window lies inside the fit window [{:g}, {:g}]: no "
+                                             "spread to measure",
                                              t_lo, t_hi));
     return {(highest - lowest) / 2.0, ""};
 }

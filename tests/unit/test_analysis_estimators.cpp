@@ -393,6 +393,10 @@ TEST(AnalysisDecay, WindowSystematicOfAShortWindowIsMissing) {
     const auto short_window = sa::window_systematic(history, 1.0, 5.0);
     EXPECT_FALSE(short_window.known());
     EXPECT_NE(short_window.note.find("[1, 5]"), std::string::npos) << short_window.note;
+    // [1, 12] holds exactly one, [1, 10]: one exponent has no spread, which is unknown too.
+    const auto one_window = sa::window_systematic(history, 1.0, 12.0);
+    EXPECT_FALSE(one_window.known()) << one_window.value;
+    EXPECT_NE(one_window.note.find("only one"), std::string::npos) << one_window.note;
     const auto long_window = sa::window_systematic(history, 1.0, 1e4);
     ASSERT_TRUE(long_window.known());
     EXPECT_GT(long_window.value, 0.0);

@@ -108,8 +108,8 @@ constexpr double min_scan_step_decades = 1e-3;
 // Systematic error of the window choice: half the spread (max - min)/2 of the
 // exponents of the one-decade scan windows (step 0.1 decade) lying inside
 // [t_lo, t_hi]. Corrections to scaling make the local exponent wander; this
-// says by how much. Missing (NaN with the reason) when no such window lies
-// inside [t_lo, t_hi], e.g. a fit window shorter than a decade.
+// says by how much. Missing (NaN with the reason) when fewer than two such
+// windows lie inside [t_lo, t_hi], e.g. a fit window shorter than 1.1 decades.
 Measured window_systematic(const TemperatureHistory& history, double t_lo, double t_hi);
 
 // --- crossovers (Eq. 3) ---
