@@ -33,7 +33,12 @@ without a file or with one that does not exist, and unknown options.
 """
 import glob
 import os
+import signal
 import sys
+
+# Piped into head, the report stops quietly when head has read enough, as a shell tool does
+# (Python would otherwise raise BrokenPipeError with a traceback).
+signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 
 USAGE = "usage: fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]"
 
