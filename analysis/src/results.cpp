@@ -1,13 +1,7 @@
 #include "shockgas/analysis/results.hpp"
 
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
-#include <csignal>
-#include <cstring>
 #include <filesystem>
-#include <stdexcept>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -72,31 +66,12 @@ std::string format_estimate(const Estimate& estimate, const std::string& spec, c
 
 namespace {
 
-InputError data_file_error(const std::string& path, const std::string& why) {
-    return InputError(fmt::format("cannot write data file '{}': {}", path, why));
-}
+// How every data file names itself in messages: "cannot write data file 'x.dat': ...".
+const std::string data_file_kind = "data file ";
 
 }  // namespace
 
-bool writes_through(const std::string& path) {
-    namespace fs = std::filesystem;
-    std::error_code error;
-    const fs::file_status status = fs::symlink_status(path, error);
-    return fs::exists(status) && !fs::is_regular_file(status);
-}
-
-void check_data_file_writable(const std::string& path) {
-    namespace fs = std::filesystem;
-    std::error_code error;
-    if (!writes_through(path)) {
-        h5::check_writable(path);  // a new or regular file, written beside and renamed
-        return;
-    }
-    const fs::file_status target = fs::status(path, error);  // what a link points to
-    if (!fs::exists(target)) throw data_file_error(path, "it is a symbolic link to nothing");
-    if (fs::is_directory(target)) throw data_file_error(path, "it is a directory");
-    if (::access(path.c_str(), W_OK) != 0) throw data_file_error(path, std::strerror(errno));
-}
+void check_data_file_writable(const std::string& path) { check_text_writable(path, data_file_kind); }
 
 void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {
     namespace fs = std::filesystem;
@@ -129,77 +104,21 @@ void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std
 }
 
 DataFile::DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& columns)
-    : target_(path) {
-    // Beyond a file-size limit (ulimit -f) the kernel would kill the process
-    // with SIGXFSZ; ignored, the write fails with EFBIG and is reported (as
-    // h5::AtomicFile does).
-    std::signal(SIGXFSZ, SIG_IGN);
-    check_data_file_writable(path);
-    if (!writes_through(path)) temporary_ = path + ".tmp." + std::to_string(::getpid());
-    const std::string& opened = temporary_.empty() ? target_ : temporary_;
-    file_ = std::fopen(opened.c_str(), "w");
-    if (file_ == nullptr) fail(errno);
+    // Checked before the file is opened: a missing directory is named as every output's is.
+    : file_((check_data_file_writable(path), path), data_file_kind) {
     std::string header = "# " + description + "\n#";
     for (const auto& column : columns) header += ' ' + column;
-    put(header + '\n');
-}
-
-DataFile::~DataFile() {
-    if (file_ != nullptr) std::fclose(file_);
-    if (!committed_ && !temporary_.empty()) std::remove(temporary_.c_str());
-}
-
-void DataFile::fail(int error) {
-    // The message names the file the user asked for; the temporary one goes.
-    if (file_ != nullptr) std::fclose(file_);
-    file_ = nullptr;
-    if (!temporary_.empty()) std::remove(temporary_.c_str());
-    // stdio need not set errno on a short write; an unknown cause is an I/O error.
-    throw data_file_error(target_, std::strerror(error != 0 ? error : EIO));
-}
-
-void DataFile::put(const std::string& text) {
-    if (file_ == nullptr) throw std::logic_error("DataFile: write after close: " + target_);
-    errno = 0;
-    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) fail(errno);
+    file_.write(header + '\n');
 }
 
 void DataFile::row(const std::vector<double>& values) {
     std::string line;
     for (std::size_t i = 0; i < values.size(); ++i) line += fmt::format("{}{:.10g}", i ? " " : "", values[i]);
-    put(line + '\n');
+    file_.write(line + '\n');
 }
 
-void DataFile::comment(const std::string& text) { put("# " + text + '\n'); }
-void DataFile::blank_line() { put("\n\n"); }
-
-void DataFile::close() {
-    if (file_ == nullptr) return;
-    // stdio buffers: a full disk often shows only at the flush.
-    errno = 0;
-    if (std::fflush(file_) != 0) fail(errno);
-    // A regular file's bytes reach the disk before it is renamed into place;
-    // devices and FIFOs have nothing to sync (fsync fails on them).
-    if (!temporary_.empty() && ::fsync(::fileno(file_)) != 0) fail(errno);
-    std::FILE* file = file_;
-    file_ = nullptr;
-    if (std::fclose(file) != 0) {
-        const int error = errno;
-        if (!temporary_.empty()) std::remove(temporary_.c_str());
-        throw data_file_error(target_, std::strerror(error));
-    }
-}
-
-void DataFile::commit() {
-    if (committed_) return;
-    close();
-    if (!temporary_.empty() && std::rename(temporary_.c_str(), target_.c_str()) != 0) {
-        const int error = errno;
-        std::remove(temporary_.c_str());
-        throw data_file_error(target_, std::strerror(error));
-    }
-    committed_ = true;
-}
+void DataFile::comment(const std::string& text) { file_.write("# " + text + '\n'); }
+void DataFile::blank_line() { file_.write("\n\n"); }
 
 void commit_outputs(ResultsFile* results, std::initializer_list<DataFile*> data_files) {
     for (DataFile* file : data_files)

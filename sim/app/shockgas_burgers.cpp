@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +34,7 @@
 #include "shockgas/output.hpp"
 #include "shockgas/provenance.hpp"
 #include "shockgas/state.hpp"
+#include "shockgas/text_file.hpp"
 
 namespace {
 
@@ -116,9 +119,13 @@ int main(int argc, char** argv) {
             throw shockgas::InputError(fmt::format("--jump-fraction must be >= 0 and finite, not {}", jump_fraction));
         if (points < 0) throw shockgas::InputError("--points must be >= 0 (0: four per particle)");
         if (realization < 0) throw shockgas::InputError("--realization must be >= 0");
-        // Every output must be new: none may replace an input (h5::check_not_an_input).
+        // Every output can be written and none may replace an input (h5::check_not_an_input),
+        // checked before the work.
         for (const std::string* path : {&output, &summary, &study})
-            if (!path->empty()) shockgas::h5::check_not_an_input(*path, {run_path, init_path});
+            if (!path->empty()) {
+                shockgas::check_text_writable(*path);
+                shockgas::h5::check_not_an_input(*path, {run_path, init_path});
+            }
         shockgas::InitialCondition initial;
         std::vector<shockgas::analysis::Snapshot> snapshots;
         // The initial condition's law and realization number: a run's own, read from it,
@@ -171,22 +178,22 @@ int main(int argc, char** argv) {
         for (double nu : viscosities) viscous.push_back(solver.viscous(x, time, nu));
         const double v_rms = std::sqrt(solver.temperature(time));
 
-        std::FILE* out = std::fopen(output.c_str(), "w");
-        if (!out) throw shockgas::InputError("cannot write " + output);
-        fmt::print(out, "# Burgers profile at t = {:.9g}: N = {}, L = {:.9g}, {} cells per particle, v_rms = {:.6g}\n",
+        // The texts are built here and written at the end, each through shockgas::TextFile.
+        std::string profile, convergence;
+        fmt::format_to(std::back_inserter(profile), "# Burgers profile at t = {:.9g}: N = {}, L = {:.9g}, {} cells per particle, v_rms = {:.6g}\n",
                    time, n, length, cells_per_particle, v_rms);
-        fmt::print(out, "# x v_inviscid");
-        for (double nu : viscosities) fmt::print(out, " v_nu={:g}", nu);
-        fmt::print(out, "\n");
+        fmt::format_to(std::back_inserter(profile), "# x v_inviscid");
+        for (double nu : viscosities) fmt::format_to(std::back_inserter(profile), " v_nu={:g}", nu);
+        fmt::format_to(std::back_inserter(profile), "\n");
         for (std::size_t j = 0; j < x.size(); ++j) {
-            fmt::print(out, "{:.10g} {:.10g}", x[j], v0[j]);
-            for (const auto& v : viscous) fmt::print(out, " {:.10g}", v[j]);
-            fmt::print(out, "\n");
+            fmt::format_to(std::back_inserter(profile), "{:.10g} {:.10g}", x[j], v0[j]);
+            for (const auto& v : viscous) fmt::format_to(std::back_inserter(profile), " {:.10g}", v[j]);
+            fmt::format_to(std::back_inserter(profile), "\n");
         }
-        fmt::print(out, "\n\n# shock_position mass velocity jump_over_v_rms\n");
+        fmt::format_to(std::back_inserter(profile), "\n\n# shock_position mass velocity jump_over_v_rms\n");
         for (const Shock& s : solver.shocks(time))
-            fmt::print(out, "{:.10g} {:.10g} {:.10g} {:.6g}\n", s.position, s.mass(), s.velocity, s.mass() / time / v_rms);
-        std::fclose(out);
+            fmt::format_to(std::back_inserter(profile), "{:.10g} {:.10g} {:.10g} {:.6g}\n", s.position, s.mass(),
+                           s.velocity, s.mass() / time / v_rms);
 
         const auto burgers_shocks = strong_shock_positions(solver, time, jump_fraction);
         std::string vars = fmt::format("burgers_time = {:.10g}\nburgers_shock_count = {}\nburgers_v_rms = {:.10g}\n"
@@ -258,25 +265,16 @@ int main(int argc, char** argv) {
                                 "burgers_matched = {}\nburgers_median_distance_reverse = {:.10g}\n",
                                 particle_shocks.size(), med, largest, separation, close, median(to_particles));
         }
-        if (!summary.empty()) {
-            std::FILE* file = std::fopen(summary.c_str(), "w");
-            if (!file) throw shockgas::InputError("cannot write " + summary);
-            fmt::print(file, "{}", vars);
-            std::fclose(file);
-        }
-
         if (!study.empty()) {
-            std::FILE* file = std::fopen(study.c_str(), "w");
-            if (!file) throw shockgas::InputError("cannot write " + study);
             // (1) nu -> 0 at the run's grid: mean |v_nu - v_0| over the sample points.
-            fmt::print(file, "# nu -> 0 at {} cells per particle, t = {:g}: nu mean|v_nu - v_0| (v_rms = {:.6g})\n",
+            fmt::format_to(std::back_inserter(convergence), "# nu -> 0 at {} cells per particle, t = {:g}: nu mean|v_nu - v_0| (v_rms = {:.6g})\n",
                        cells_per_particle, time, v_rms);
             for (double nu : {1.0, 0.3, 0.1, 0.03, 0.01, 1e-3, 1e-4, 1e-5, 1e-6}) {
                 const auto v = solver.viscous(x, time, nu);
-                fmt::print(file, "{:g} {:.6g}\n", nu, l1_distance(v, v0));
+                fmt::format_to(std::back_inserter(convergence), "{:g} {:.6g}\n", nu, l1_distance(v, v0));
             }
             // (2) grid refinement: cells per particle 1/16 .. 4 against the particle field (1 per particle).
-            fmt::print(file, "\n\n# grid: cells_per_particle shocks(drop>=v_rms) median|dx| max|dx| mean|v - v_exact|\n");
+            fmt::format_to(std::back_inserter(convergence), "\n\n# grid: cells_per_particle shocks(drop>=v_rms) median|dx| max|dx| mean|v - v_exact|\n");
             const Solver exact(shockgas::burgers::grid_from_particles(initial, n));
             const auto reference = strong_shock_positions(exact, time, jump_fraction);
             const auto v_exact = exact.inviscid(x, time);
@@ -285,19 +283,29 @@ int main(int argc, char** argv) {
                 // coarse levels exist only where N divides into them; the others are named as skipped.
                 const auto divisor = static_cast<std::int64_t>(std::llround(1.0 / per));
                 if (per < 1.0 && n % divisor != 0) {
-                    fmt::print(file, "# {:g}: skipped, N = {} is not a multiple of {}\n", per, n, divisor);
+                    fmt::format_to(std::back_inserter(convergence), "# {:g}: skipped, N = {} is not a multiple of {}\n", per, n, divisor);
                     continue;
                 }
                 const auto cells = static_cast<std::int64_t>(std::llround(per * static_cast<double>(n)));
                 const Solver coarse(shockgas::burgers::grid_from_particles(initial, cells));
                 const auto found = strong_shock_positions(coarse, time, jump_fraction);
                 const auto d = nearest_distances(reference, found, length);
-                fmt::print(file, "{:g} {} {:.6g} {:.6g} {:.6g}\n", per, found.size(), median(d),
+                fmt::format_to(std::back_inserter(convergence), "{:g} {} {:.6g} {:.6g} {:.6g}\n", per, found.size(), median(d),
                            d.empty() ? 0.0 : *std::max_element(d.begin(), d.end()),
                            l1_distance(coarse.inviscid(x, time), v_exact));
             }
-            std::fclose(file);
         }
+        // Each written beside its name and closed (where a full disk shows) before any is
+        // renamed into place: a failure leaves none of them, nor one that looks whole.
+        std::vector<std::unique_ptr<shockgas::TextFile>> files;
+        for (const auto& [path, text] : {std::pair{&output, &profile}, std::pair{&summary, &vars},
+                                         std::pair{&study, &convergence}}) {
+            if (path->empty()) continue;
+            files.push_back(std::make_unique<shockgas::TextFile>(*path));
+            files.back()->write(*text);
+            files.back()->close();
+        }
+        for (const auto& file : files) file->commit();
         return 0;
     });
 }

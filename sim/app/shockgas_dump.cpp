@@ -8,16 +8,11 @@
 // file output is written beside its name and renamed into place when
 // complete: a bad input or a failed write (a full disk) leaves no output, nor
 // an empty or partial one that a plot would take for the real thing.
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <iterator>
 #include <set>
 #include <system_error>
-
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -27,6 +22,7 @@
 #include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/provenance.hpp"
+#include "shockgas/text_file.hpp"
 
 namespace {
 
@@ -120,66 +116,6 @@ std::string gnuplot_vars(const std::string& path, const std::string& group_path,
     return text;
 }
 
-// Where the text goes: standard output; a regular file (or a new one),
-// written as PATH.tmp.<pid> and renamed onto PATH by commit(); or something
-// else that already exists (/dev/null, /dev/stdout, a FIFO, a symbolic link),
-// written through, since renaming over it would replace the device or link
-// itself. Every failure (open, write, flush, close) is an InputError naming
-// the output and the system's reason; the temporary file is then removed.
-class TextOutput {
-public:
-    explicit TextOutput(std::string path) : path_(std::move(path)) {
-        if (path_.empty()) {
-            stream_ = stdout;
-            return;
-        }
-        namespace fs = std::filesystem;
-        std::error_code error;
-        const fs::file_status status = fs::symlink_status(path_, error);
-        const bool through = !error && fs::exists(status) && !fs::is_regular_file(status);
-        if (!through) temporary_ = path_ + ".tmp." + std::to_string(::getpid());
-        stream_ = std::fopen(through ? path_.c_str() : temporary_.c_str(), "w");
-        if (stream_ == nullptr) fail(errno);
-    }
-    TextOutput(const TextOutput&) = delete;
-    TextOutput& operator=(const TextOutput&) = delete;
-    ~TextOutput() {
-        if (stream_ != nullptr && stream_ != stdout) std::fclose(stream_);
-        if (!temporary_.empty()) std::remove(temporary_.c_str());
-    }
-
-    std::FILE* stream() const { return stream_; }
-
-    // Writes out what the stream still buffers and checks that every byte got
-    // there: `-o /dev/full` and `> /dev/full` fail here (ENOSPC), not in silence.
-    void commit() {
-        errno = 0;
-        const bool flushed = std::fflush(stream_) == 0 && std::ferror(stream_) == 0;
-        int reason = errno;
-        if (flushed && !temporary_.empty() && ::fsync(::fileno(stream_)) != 0) fail(errno);
-        if (!flushed) fail(reason != 0 ? reason : EIO);
-        if (stream_ == stdout) return;
-        std::FILE* stream = stream_;
-        stream_ = nullptr;
-        errno = 0;
-        if (std::fclose(stream) != 0) fail(errno != 0 ? errno : EIO);
-        if (temporary_.empty()) return;
-        if (std::rename(temporary_.c_str(), path_.c_str()) != 0) fail(errno);
-        temporary_.clear();
-    }
-
-    [[noreturn]] void fail(int reason) const {
-        throw shockgas::InputError(fmt::format("cannot write {}: {}",
-                                               path_.empty() ? std::string("standard output") : "'" + path_ + "'",
-                                               std::strerror(reason)));
-    }
-
-private:
-    std::string path_;
-    std::string temporary_;  // empty: written in place (standard output, a device)
-    std::FILE* stream_ = nullptr;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -209,7 +145,8 @@ int main(int argc, char** argv) {
         std::string text;
         if (*snapshots) states = read_snapshots(input, realization);
         if (*vars) text = gnuplot_vars(input, group_path, prefix, recursive);
-        TextOutput out(output);
+        // Standard output when no -o; a file written beside its name and renamed (shockgas::TextFile).
+        shockgas::TextFile out(output);
         try {
             if (*snapshots) write_snapshots(out.stream(), input, states);
             if (*vars) fmt::print(out.stream(), "{}", text);

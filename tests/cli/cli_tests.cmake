@@ -49,7 +49,8 @@ foreach(_case IN ITEMS "time_nan;^shockgas-burgers: error: --time must be positi
                       "cells_zero;--cells-per-particle must be at least 1;-N;100;-t;10;--cells-per-particle;0"
                       "viscosity_negative;--viscosity must be positive and finite;-N;100;-t;10;--viscosity;0.1,-1"
                       "one_particle;give --run, --init or --particles \\(at least 2\\);-N;1;-t;10"
-                      "seed_beyond_64_bits;--seed: must be an integer from 0 to 2\\^63 - 1;-N;100;-t;1;-s;18446744073709551616")
+                      "seed_beyond_64_bits;--seed: must be an integer from 0 to 2\\^63 - 1;-N;100;-t;1;-s;18446744073709551616"
+                      "study_full_disk;^shockgas-burgers: error: cannot write '/dev/full': No space left on device$;-N;100;-t;1;--study;/dev/full")
   shockgas_error_case(burgers "${_case}" $<TARGET_FILE:shockgas-burgers>)
 endforeach()
 # shockgas-burgers --run rebuilds the run's own start (its velocity law, and the

@@ -568,7 +568,7 @@ TEST(AnalysisResults, FullDiskIsAnInputErrorNamingTheFile) {
         }
     }
     // A device is written through, not replaced by a renamed file.
-    EXPECT_TRUE(sa::writes_through("/dev/full"));
+    EXPECT_TRUE(shockgas::writes_through("/dev/full"));
     EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
 }
 

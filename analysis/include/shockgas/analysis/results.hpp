@@ -11,6 +11,7 @@
 
 #include "shockgas/analysis/fit.hpp"
 #include "shockgas/h5.hpp"
+#include "shockgas/text_file.hpp"
 
 namespace shockgas::analysis {
 
@@ -47,45 +48,30 @@ std::string format_measured(const Measured& value, const std::string& spec, cons
 std::string format_estimate(const Estimate& estimate, const std::string& spec, const std::string& sigma_spec = "");
 
 // A gnuplot data file: '#' lines (a description, then the column names),
-// then one whitespace-separated row per call. Written atomically, like the
-// results file: to TARGET.tmp.<pid> beside the target, renamed onto it by
-// commit(), removed if commit() is not reached (an error, a full disk), so
-// that a failed run never leaves a table that looks complete. A target that
-// exists and is not a regular file (a device such as /dev/null or /dev/full,
-// a FIFO, /dev/stdout or another symbolic link) is written through directly
-// and never renamed over. Every write, the flush and the close are checked;
-// a failure (full disk, file-size limit) throws InputError naming the target.
+// then one whitespace-separated row per call. Written as every text output
+// is (shockgas::TextFile): beside the target and renamed onto it by commit(),
+// removed if commit() is not reached, so that a failed run never leaves a
+// table that looks complete; devices, FIFOs and links written through. A
+// failure (full disk, file-size limit) throws InputError "cannot write data
+// file 'TARGET': <reason>".
 class DataFile {
 public:
     DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& columns);
-    ~DataFile();
-    DataFile(const DataFile&) = delete;
-    DataFile& operator=(const DataFile&) = delete;
     void row(const std::vector<double>& values);
     void comment(const std::string& text);
     void blank_line();  // separates gnuplot data blocks (index)
     // Writes out what is buffered and closes the file (a full disk shows
     // here), keeping the temporary file until commit().
-    void close();
+    void close() { file_.close(); }
     // close(), then renames the temporary file onto the target.
-    void commit();
+    void commit() { file_.commit(); }
 
 private:
-    void put(const std::string& text);
-    [[noreturn]] void fail(int error);
-    std::string target_;
-    std::string temporary_;  // empty when writing through to a non-regular target
-    std::FILE* file_ = nullptr;
-    bool committed_ = false;
+    TextFile file_;
 };
 
-// Whether path names an existing target that is not a regular file (a
-// device, a FIFO, a symbolic link), which DataFile writes through.
-bool writes_through(const std::string& path);
-
 // Throws (h5::Error or InputError, naming the path) unless a DataFile can be
-// written at path: as h5::check_writable for a regular or new file, and for a
-// target written through, that it exists and may be written.
+// written at path (shockgas::check_text_writable).
 void check_data_file_writable(const std::string& path);
 
 // One output of an analysis run: the option that named it, the path (empty:

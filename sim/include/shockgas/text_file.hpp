@@ -1,0 +1,58 @@
+// One text output (a gnuplot data file, a dump, a profile), written so that a
+// failure never leaves a file that looks complete: a new or regular file is
+// written as PATH.tmp.<pid> beside it and renamed onto PATH by commit(), and
+// removed if commit() is not reached (an error, a full disk). A path that
+// exists and is not a regular file (a device such as /dev/null or /dev/full, a
+// FIFO, /dev/stdout or another symbolic link) is written through directly and
+// never renamed over, since that would replace the device or the link itself;
+// an empty path is standard output. Every write, the flush and the close are
+// checked; a failure throws InputError "cannot write <kind>'PATH': <reason>".
+// The HDF5 outputs have their own atomic writer (h5::AtomicFile).
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace shockgas {
+
+class TextFile {
+public:
+    // kind: how messages name the file, e.g. "data file " gives "cannot write
+    // data file 'x.dat': ...". Opening does not check the path beforehand:
+    // check_text_writable does, for programs that refuse before any work.
+    explicit TextFile(const std::string& path, std::string kind = "");
+    ~TextFile();
+    TextFile(const TextFile&) = delete;
+    TextFile& operator=(const TextFile&) = delete;
+
+    std::FILE* stream() const { return stream_; }
+    void write(std::string_view text);
+    // Writes out what is buffered (a full disk often shows only here), syncs a
+    // temporary file and closes it, keeping it until commit(). Standard output
+    // is flushed and checked, not closed.
+    void close();
+    // close(), then renames the temporary file onto the target.
+    void commit();
+    // Closes and removes the temporary file and throws the InputError naming
+    // the target and strerror(error) (an I/O error when error is 0).
+    [[noreturn]] void fail(int error);
+
+private:
+    std::string target_;
+    std::string kind_;
+    std::string temporary_;  // empty: written in place (standard output, a device)
+    std::FILE* stream_ = nullptr;
+    bool committed_ = false;
+};
+
+// Whether path names an existing target that is not a regular file (a device,
+// a FIFO, a symbolic link), which TextFile writes through.
+bool writes_through(const std::string& path);
+
+// Throws (h5::Error or InputError, naming the path) unless a TextFile can be
+// written at path: as h5::check_writable for a regular or new file, and for a
+// target written through, that it exists, is no directory and may be written.
+void check_text_writable(const std::string& path, const std::string& kind = "");
+
+}  // namespace shockgas

@@ -1,0 +1,103 @@
+#include "shockgas/text_file.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "shockgas/h5.hpp"
+#include "shockgas/parameters.hpp"
+
+namespace shockgas {
+
+namespace {
+
+InputError text_file_error(const std::string& kind, const std::string& path, const std::string& why) {
+    return InputError(fmt::format("cannot write {}{}: {}", kind, path.empty() ? "standard output" : "'" + path + "'",
+                                  why));
+}
+
+}  // namespace
+
+bool writes_through(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(path, error);
+    return fs::exists(status) && !fs::is_regular_file(status);
+}
+
+void check_text_writable(const std::string& path, const std::string& kind) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    if (!writes_through(path)) {
+        h5::check_writable(path);  // a new or regular file, written beside and renamed
+        return;
+    }
+    const fs::file_status target = fs::status(path, error);  // what a link points to
+    if (!fs::exists(target)) throw text_file_error(kind, path, "it is a symbolic link to nothing");
+    if (fs::is_directory(target)) throw text_file_error(kind, path, "it is a directory");
+    if (::access(path.c_str(), W_OK) != 0) throw text_file_error(kind, path, std::strerror(errno));
+}
+
+TextFile::TextFile(const std::string& path, std::string kind) : target_(path), kind_(std::move(kind)) {
+    if (target_.empty()) {
+        stream_ = stdout;
+        return;
+    }
+    // Beyond a file-size limit (ulimit -f) the kernel would kill the process
+    // with SIGXFSZ; ignored, the write fails with EFBIG and is reported (as
+    // h5::AtomicFile does).
+    std::signal(SIGXFSZ, SIG_IGN);
+    if (!writes_through(target_)) temporary_ = target_ + ".tmp." + std::to_string(::getpid());
+    stream_ = std::fopen(temporary_.empty() ? target_.c_str() : temporary_.c_str(), "w");
+    if (stream_ == nullptr) fail(errno);
+}
+
+TextFile::~TextFile() {
+    if (stream_ != nullptr && stream_ != stdout) std::fclose(stream_);
+    if (!committed_ && !temporary_.empty()) std::remove(temporary_.c_str());
+}
+
+void TextFile::fail(int error) {
+    // The message names the file the user asked for; the temporary one goes.
+    if (stream_ != nullptr && stream_ != stdout) std::fclose(stream_);
+    stream_ = nullptr;
+    if (!temporary_.empty()) std::remove(temporary_.c_str());
+    // stdio need not set errno on a short write; an unknown cause is an I/O error.
+    throw text_file_error(kind_, target_, std::strerror(error != 0 ? error : EIO));
+}
+
+void TextFile::write(std::string_view text) {
+    if (stream_ == nullptr) throw std::logic_error("TextFile: write after close: " + target_);
+    errno = 0;
+    if (std::fwrite(text.data(), 1, text.size(), stream_) != text.size()) fail(errno);
+}
+
+void TextFile::close() {
+    if (stream_ == nullptr) return;
+    errno = 0;
+    if (std::fflush(stream_) != 0 || std::ferror(stream_) != 0) fail(errno);
+    // A regular file's bytes reach the disk before it is renamed into place;
+    // devices and FIFOs have nothing to sync (fsync fails on them).
+    if (!temporary_.empty() && ::fsync(::fileno(stream_)) != 0) fail(errno);
+    if (stream_ == stdout) return;
+    std::FILE* stream = stream_;
+    stream_ = nullptr;
+    errno = 0;
+    if (std::fclose(stream) != 0) fail(errno);
+}
+
+void TextFile::commit() {
+    if (committed_) return;
+    close();
+    if (!temporary_.empty() && std::rename(temporary_.c_str(), target_.c_str()) != 0) fail(errno);
+    committed_ = true;
+}
+
+}  // namespace shockgas
