@@ -116,15 +116,6 @@ def provenance_mismatch(recorded, run_attrs):
     return None
 
 
-def read_run(path):
-    try:
-        return shockgas.read_run(path)
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (OSError, shockgas.SchemaError) as error:
-        raise InputError(str(error)) from None
-
-
 def find_run(results_path, recorded, given):
     """The analysed run: `given` (--run) or the recorded input_path, looked for next to the results
     file first, then as it stands (the current directory); refused unless its attributes are the
@@ -144,7 +135,7 @@ def find_run(results_path, recorded, given):
     for candidate in candidates:
         if not os.path.exists(candidate):
             continue
-        run = read_run(candidate)
+        run = shockgas.read_run(candidate)
         why = provenance_mismatch(recorded, run.attrs)
         if why is None:
             return candidate, run
@@ -168,12 +159,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if not (args.tolerance >= 0 and np.isfinite(args.tolerance)):
         raise InputError(f"--tolerance {args.tolerance!r}: a finite relative tolerance >= 0")
-    if not os.path.exists(args.results):
-        raise InputError(f"{args.results}: no such file")
-    try:
-        results = shockgas.read_results(args.results)
-    except (OSError, shockgas.SchemaError) as error:
-        raise InputError(str(error)) from None
+    results = shockgas.read_results(args.results)
     if "decay" not in results.sections:
         raise InputError(f"{args.results}: no /decay section: not a shockgas-analyze decay results file "
                          f"({results.attrs.get('program')})")
@@ -210,6 +196,8 @@ def main(argv=None):
 if __name__ == "__main__":
     try:
         sys.exit(main())
-    except InputError as error:
+    # The shockgas module's errors (a missing, unreadable or damaged file, one of another kind) say
+    # "<path>: <what>" already: the user's, like InputError.
+    except (InputError, OSError, shockgas.SchemaError) as error:
         print(f"refit_check.py: error: {error}", file=sys.stderr)
         sys.exit(2)

@@ -93,15 +93,6 @@ def fails(z):
     return not np.isfinite(z) or abs(z) > Z_LIMIT
 
 
-def read(path):
-    try:
-        return shockgas.read_run(path)
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (OSError, shockgas.SchemaError) as error:
-        raise InputError(str(error)) from None
-
-
 def check_comparable(a_path, b_path, a, b):
     """Raises InputError unless A and B are the same physics, sampled at the same times."""
     for path, run in ((a_path, a), (b_path, b)):
@@ -183,7 +174,7 @@ def main(argv):
     if len(argv) != 2:
         raise InputError("usage: compare_engine_ensembles.py A.h5 B.h5 (two shockgas-sim outputs)")
     a_path, b_path = argv
-    a, b = read(a_path), read(b_path)
+    a, b = shockgas.read_run(a_path), shockgas.read_run(b_path)
     check_comparable(a_path, b_path, a, b)
     return 0 if compare(a, b) else 1
 
@@ -191,6 +182,8 @@ def main(argv):
 if __name__ == "__main__":
     try:
         sys.exit(main(sys.argv[1:]))
-    except InputError as error:
+    # The shockgas module's errors (a missing, unreadable or damaged file, one of another kind) say
+    # "<path>: <what>" already: the user's, like InputError.
+    except (InputError, OSError, shockgas.SchemaError) as error:
         print(f"{SCRIPT}: error: {error}", file=sys.stderr)
         sys.exit(2)
