@@ -25,18 +25,36 @@ InputError text_file_error(const std::string& kind, const std::string& path, con
 
 }  // namespace
 
-bool writes_through(const std::string& path) {
+std::string replaced_file(const std::string& path) {
     namespace fs = std::filesystem;
     std::error_code error;
-    const fs::file_status status = fs::symlink_status(path, error);
-    return fs::exists(status) && !fs::is_regular_file(status);
+    fs::path hop = path;
+    // A chain of links is followed by hand, so that a link through the kernel's
+    // own names (/dev/stdout -> /proc/self/fd/1 -> the file the shell opened)
+    // is written through: renaming over that file would detach the shell's
+    // redirection (and lose what `>>` kept).
+    for (int hops = 0; hops < 40; ++hops) {
+        const fs::file_status status = fs::symlink_status(hop, error);
+        if (!fs::exists(status)) return hops == 0 ? path : std::string();  // new, or a link to nothing
+        if (fs::is_regular_file(status)) return hop.string();
+        if (!fs::is_symlink(status)) return {};  // a device, a FIFO, a directory
+        const std::string absolute = fs::absolute(hop, error).lexically_normal().string();
+        if (absolute.rfind("/dev/", 0) == 0 || absolute.rfind("/proc/", 0) == 0) return {};
+        const fs::path link = fs::read_symlink(hop, error);
+        if (error) return {};
+        hop = link.is_absolute() ? link : hop.parent_path() / link;
+    }
+    return {};  // a loop of links: written through, where opening reports it
 }
+
+bool writes_through(const std::string& path) { return replaced_file(path).empty(); }
 
 void check_text_writable(const std::string& path, const std::string& kind) {
     namespace fs = std::filesystem;
     std::error_code error;
-    if (!writes_through(path)) {
-        h5::check_writable(path);  // a new or regular file, written beside and renamed
+    const std::string replaced = replaced_file(path);
+    if (!replaced.empty()) {
+        h5::check_writable(replaced);  // a new or regular file, written beside and renamed
         return;
     }
     const fs::file_status target = fs::status(path, error);  // what a link points to
@@ -54,7 +72,8 @@ TextFile::TextFile(const std::string& path, std::string kind) : target_(path), k
     // with SIGXFSZ; ignored, the write fails with EFBIG and is reported (as
     // h5::AtomicFile does).
     std::signal(SIGXFSZ, SIG_IGN);
-    if (!writes_through(target_)) temporary_ = target_ + ".tmp." + std::to_string(::getpid());
+    replaced_ = replaced_file(target_);
+    if (!replaced_.empty()) temporary_ = replaced_ + ".tmp." + std::to_string(::getpid());
     stream_ = std::fopen(temporary_.empty() ? target_.c_str() : temporary_.c_str(), "w");
     if (stream_ == nullptr) fail(errno);
 }
@@ -96,7 +115,7 @@ void TextFile::close() {
 void TextFile::commit() {
     if (committed_) return;
     close();
-    if (!temporary_.empty() && std::rename(temporary_.c_str(), target_.c_str()) != 0) fail(errno);
+    if (!temporary_.empty() && std::rename(temporary_.c_str(), replaced_.c_str()) != 0) fail(errno);
     committed_ = true;
 }
 

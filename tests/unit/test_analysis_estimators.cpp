@@ -2,6 +2,7 @@
 // answer: it recovers the answer, and its sigma is calibrated (about 68% of
 // independent synthetic samples land within one sigma).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,7 @@
 #include "shockgas/observables.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/parameters.hpp"
+#include "shockgas/text_file.hpp"
 
 namespace sa = shockgas::analysis;
 
@@ -570,6 +572,52 @@ TEST(AnalysisResults, FullDiskIsAnInputErrorNamingTheFile) {
     // A device is written through, not replaced by a renamed file.
     EXPECT_TRUE(shockgas::writes_through("/dev/full"));
     EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
+}
+
+// A symbolic link to a regular file: the file it points to is replaced as a
+// regular file would be (written beside it, renamed), the link stays a link,
+// and a failure leaves the old file whole. Links through /dev or /proc
+// (/dev/stdout) are written through, so that a shell's redirection holds.
+TEST(AnalysisResults, ALinkToAFileIsReplacedWholeOrNotAtAll) {
+    namespace fs = std::filesystem;
+    const auto directory = scratch_directory("link");
+    const auto real = (directory / "real.dat").string();
+    const auto link = (directory / "link.dat").string();
+    std::ofstream(real) << "old content\n";
+    fs::create_symlink("real.dat", link);  // relative, as `ln -s real.dat link.dat` makes it
+    EXPECT_EQ(fs::path(shockgas::replaced_file(link)).filename(), "real.dat");
+    EXPECT_TRUE(shockgas::writes_through("/dev/stdout"));
+    EXPECT_FALSE(shockgas::writes_through(link));
+    const auto read = [](const std::string& path) {
+        std::ifstream in(path);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    // A full disk while writing: the temporary file beside the real one is
+    // pointed at /dev/full (as FullDisk.* in test_faults.cpp does).
+    if (fs::exists("/dev/full")) {
+        const auto temporary = shockgas::replaced_file(link) + ".tmp." + std::to_string(::getpid());
+        fs::create_symlink("/dev/full", temporary);
+        try {
+            sa::DataFile file(link, "test table", {"x"});
+            for (int i = 0; i < 100000; ++i) file.row({static_cast<double>(i)});
+            file.commit();
+            ADD_FAILURE() << "a write to a full disk succeeded";
+        } catch (const shockgas::InputError& error) {
+            EXPECT_NE(std::string(error.what()).find("cannot write data file '" + link + "'"), std::string::npos)
+                << error.what();
+        }
+        EXPECT_TRUE(read(real) == "old content\n") << "a failed write through a link damaged the file";
+        EXPECT_FALSE(fs::exists(fs::symlink_status(temporary))) << "temporary file left";
+    }
+    {
+        sa::DataFile file(link, "test table", {"x"});
+        file.row({1.0});
+        file.commit();
+    }
+    EXPECT_TRUE(fs::is_symlink(link));
+    EXPECT_EQ(read(real), "# test table\n# x\n1\n");
+    EXPECT_FALSE(has_temporary(directory));
+    fs::remove_all(directory);
 }
 
 TEST(AnalysisResults, OutputsAreCheckedAgainstInputsAndEachOther) {

@@ -1,11 +1,13 @@
 // One text output (a gnuplot data file, a dump, a profile), written so that a
 // failure never leaves a file that looks complete: a new or regular file is
 // written as PATH.tmp.<pid> beside it and renamed onto PATH by commit(), and
-// removed if commit() is not reached (an error, a full disk). A path that
-// exists and is not a regular file (a device such as /dev/null or /dev/full, a
-// FIFO, /dev/stdout or another symbolic link) is written through directly and
-// never renamed over, since that would replace the device or the link itself;
-// an empty path is standard output. Every write, the flush and the close are
+// removed if commit() is not reached (an error, a full disk). A symbolic link
+// to a regular file is treated so at the file it points to (the link stays a
+// link). A path that exists and is not a regular file (a device such as
+// /dev/null or /dev/full, a FIFO, /dev/stdout or any link through /dev or
+// /proc) is written through directly and never renamed over, since that would
+// replace the device, or detach a shell's redirection; an empty path is
+// standard output. Every write, the flush and the close are
 // checked; a failure throws InputError "cannot write <kind>'PATH': <reason>".
 // The HDF5 outputs have their own atomic writer (h5::AtomicFile).
 #pragma once
@@ -41,13 +43,20 @@ public:
 private:
     std::string target_;
     std::string kind_;
+    std::string replaced_;   // the regular file commit() replaces (a link's target); empty: written through
     std::string temporary_;  // empty: written in place (standard output, a device)
     std::FILE* stream_ = nullptr;
     bool committed_ = false;
 };
 
-// Whether path names an existing target that is not a regular file (a device,
-// a FIFO, a symbolic link), which TextFile writes through.
+// The regular file that a TextFile at path writes beside and renames onto:
+// path itself when it is new or a regular file, the end of a chain of symbolic
+// links that ends at a regular file without passing through /dev or /proc;
+// empty when path is written through (a device, a FIFO, /dev/stdout, a link to
+// nothing or such a target).
+std::string replaced_file(const std::string& path);
+
+// Whether TextFile writes path through (replaced_file(path) is empty).
 bool writes_through(const std::string& path);
 
 // Throws (h5::Error or InputError, naming the path) unless a TextFile can be
