@@ -89,13 +89,20 @@ Derived quantities (scaled, then in our units with D = 1/3, rho = 1)
        In FMP's variable with b = 1, mu = m/2^(1/3), the cubic factor is exp(-mu^3/12);
        in raw units M t^(-2/3) (ours) it is exp(-(M t^(-2/3))^3 / 8).
 """
-import argparse
 import json
 import os
 import sys
 
 import numpy as np
 from scipy import interpolate, special
+
+try:  # one-line refusals, exit status 2 (python/shockgas/cli.py, the project's one place for them)
+    from shockgas.cli import ArgumentParser
+except ImportError:
+    # The figure project of an installation runs this script (numpy and scipy) from share/shockgas/python
+    # with no PYTHONPATH, where the shockgas module (numpy and h5py) is not on Python's path for every
+    # prefix: it then runs all the same, with argparse's usage block above an error line.
+    from argparse import ArgumentParser
 
 C13 = 2.0 ** (1.0 / 3.0)
 D_SHOCKGAS = 1.0 / 3.0     # momentum variance per unit length: rho * <v^2> with v ~ U[-1,1], rho = 1
@@ -386,7 +393,7 @@ def _write_table(path, header_lines, columns, names):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out-dir", required=True)
     ap.add_argument("--D", type=float, default=D_SHOCKGAS,
                     help="momentum variance per unit length (rho <v^2>); 1/3 for v ~ U[-1,1]")

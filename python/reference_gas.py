@@ -89,7 +89,6 @@ The result of `simulate` also carries the time of every event, so that a caller 
 sample time lies within rounding of an event (then two correct codes may disagree on whether that
 event is included), and the number of events by rule (inelastic, elastic, merge).
 """
-import argparse
 import decimal
 import math
 import os
@@ -281,7 +280,9 @@ def read_initial_condition(path):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(
+    from shockgas.cli import ArgumentParser  # a user's mistake in one line, exit status 2
+
+    parser = ArgumentParser(
         description="Plain event-driven reference for shockgas-sim (docs/reference-check.md): runs an "
                     "--init file and prints t, T, kinetic energy, clusters and collisions per particle.")
     parser.add_argument("init", help="initial condition FILE.h5 (the format of shockgas-sim --init)")
@@ -301,9 +302,6 @@ def main(argv=None):
     args = parser.parse_args(argv)
     try:
         position, velocity, mass, ring_length = read_initial_condition(args.init)
-    except ImportError as error:  # reading HDF5 needs the shockgas module: numpy and h5py
-        raise UsageError("%s is missing (reading HDF5 needs numpy and h5py): run it with Debian's /usr/bin/python3 "
-                         "(python3-numpy, python3-h5py)" % (error.name or error)) from None
     except KeyError:
         raise UsageError("%s: not an initial condition for shockgas-sim --init (it needs the datasets position and "
                          "velocity and the root attribute ring_length)" % args.init) from None
@@ -372,8 +370,15 @@ class UsageError(Exception):
 
 
 if __name__ == "__main__":
+    # Every init file is HDF5, read through the shockgas module (numpy and h5py), whose cli also says a
+    # user's mistake in one line: a python3 without them is told so here, before anything, in one line.
+    try:
+        import shockgas.cli
+    except ImportError as error:
+        print("reference_gas.py: error: %s is missing (reading HDF5 needs numpy and h5py): run it with Debian's "
+              "/usr/bin/python3 (python3-numpy, python3-h5py)" % (error.name or error), file=sys.stderr)
+        sys.exit(2)
     try:
         sys.exit(main())
     except UsageError as error:
-        print("reference_gas.py: error: %s" % error, file=sys.stderr)
-        sys.exit(2)
+        shockgas.cli.fail(error)

@@ -30,7 +30,6 @@ Exit status 0 when exponent, exponent_sigma and chi2_per_dof agree within the re
 file that is not a decay results file, a run that is not the analysed one, a bad --tolerance),
 77 (SKIP) when numpy/scipy/h5py are missing.
 """
-import argparse
 import os
 import sys
 
@@ -40,6 +39,7 @@ try:
     from scipy import optimize
 
     import shockgas  # python/shockgas: this script's folder in the source tree, else the installed module
+    from shockgas.cli import ArgumentParser, fail  # a user's mistake in one line, exit status 2
 except ImportError as error:  # pragma: no cover - depends on the machine
     print("SKIP: refit_check.py needs numpy, scipy and h5py (%s); run with Debian's /usr/bin/python3" % error)
     sys.exit(SKIP)
@@ -152,7 +152,7 @@ def fmt(value):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("results")
     ap.add_argument("--run", help="simulation output (default: the results file's input_path)")
     ap.add_argument("--tolerance", type=float, default=1e-6, help="relative agreement required")
@@ -199,5 +199,4 @@ if __name__ == "__main__":
     # The shockgas module's errors (a missing, unreadable or damaged file, one of another kind) say
     # "<path>: <what>" already: the user's, like InputError.
     except (InputError, OSError, shockgas.SchemaError) as error:
-        print(f"refit_check.py: error: {error}", file=sys.stderr)
-        sys.exit(2)
+        fail(error)

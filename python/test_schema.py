@@ -10,9 +10,9 @@ the Python reader drift apart. In the file (raw HDF5, through shockgas.open_file
 the table (R realizations, K sample times, `clusters` per snapshot, bins + 1 / R x (bins + 2) for
 histograms), dtypes against the kinds below. Through shockgas.read_run: every documented dataset is
 there, and every documented attribute comes back as str, int or float as its kind says.
-Exit status 0 ok, 1 drift, 77 (SKIP) without h5py/numpy.
+Exit status 0 ok, 1 drift, 2 with one line "test_schema.py: error: ..." for a bad option, 77 (SKIP)
+without h5py/numpy.
 """
-import argparse
 import os
 import re
 import sys
@@ -22,6 +22,7 @@ try:
     import numpy as np
 
     import shockgas  # python/shockgas: this script's folder
+    from shockgas.cli import ArgumentParser  # a bad option in one line, exit status 2
 except ImportError as error:  # pragma: no cover
     print("SKIP: test_schema.py needs h5py and numpy (%s); run with Debian's /usr/bin/python3" % error)
     sys.exit(SKIP)
@@ -52,7 +53,7 @@ def expand(path):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("run")
     ap.add_argument("--doc", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs",
                                                   "cli-and-output.md"))

@@ -22,11 +22,12 @@ is NaN: a sample no realization reached, or one reached by a single realization,
 error and cannot pass).
 
 Refused with exit status 2 and one line "compare_engine_ensembles.py: error: ..." on stderr, before
-anything is compared: a file that is missing or not a shockgas-sim run; A and B whose physics
-parameters differ (PHYSICS_PARAMETERS below; the seed, the engine, the first realization and the
-number of realizations may differ: they are what is compared, or only change the error bars);
-different sample times; different histogram times or bins; fewer than 2 realizations in either
-file (the standard error needs two).
+anything is compared: a command line other than A.h5 B.h5 (an unknown option, a name left out); a
+file that is missing or not a shockgas-sim run; A and B whose physics parameters differ
+(PHYSICS_PARAMETERS below; the seed, the engine, the first realization and the number of
+realizations may differ: they are what is compared, or only change the error bars); different
+sample times; different histogram times or bins; fewer than 2 realizations in either file (the
+standard error needs two).
 """
 import os
 import sys
@@ -38,6 +39,7 @@ try:
 
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
     import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
+    from shockgas.cli import ArgumentParser, fail  # noqa: E402  (a user's mistake in one line, exit 2)
 except ImportError as error:  # pragma: no cover - depends on the machine
     print(f"{SCRIPT}: error: {error.name or error} is missing (needs numpy, scipy and h5py): "
           f"run it with Debian's /usr/bin/python3", file=sys.stderr)
@@ -170,10 +172,12 @@ def compare(a, b):
     return ok
 
 
-def main(argv):
-    if len(argv) != 2:
-        raise InputError("usage: compare_engine_ensembles.py A.h5 B.h5 (two shockgas-sim outputs)")
-    a_path, b_path = argv
+def main(argv=None):
+    parser = ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("a_path", metavar="A.h5", help="a shockgas-sim output")
+    parser.add_argument("b_path", metavar="B.h5", help="one of the same parameters, by another engine or seed")
+    args = parser.parse_args(argv)
+    a_path, b_path = args.a_path, args.b_path
     a, b = shockgas.read_run(a_path), shockgas.read_run(b_path)
     check_comparable(a_path, b_path, a, b)
     return 0 if compare(a, b) else 1
@@ -181,9 +185,8 @@ def main(argv):
 
 if __name__ == "__main__":
     try:
-        sys.exit(main(sys.argv[1:]))
+        sys.exit(main())
     # The shockgas module's errors (a missing, unreadable or damaged file, one of another kind) say
     # "<path>: <what>" already: the user's, like InputError.
     except (InputError, OSError, shockgas.SchemaError) as error:
-        print(f"{SCRIPT}: error: {error}", file=sys.stderr)
-        sys.exit(2)
+        fail(error)

@@ -43,17 +43,15 @@ signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 USAGE = "usage: fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]"
 
 
-def fail(message):
-    """A user's mistake: one line on stderr, exit 2 (exit 1 is --check-readme's stale rows)."""
-    print(f"fidelity_report.py: error: {message}", file=sys.stderr)
-    sys.exit(2)
-
-
 try:
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
     import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
+    # A user's mistake: one line on stderr, exit 2 (exit 1 is --check-readme's stale rows).
+    from shockgas.cli import fail  # noqa: E402
 except ImportError as error:  # pragma: no cover - depends on the machine
-    fail(f"{error.name or error} is missing (needs numpy and h5py): run it with Debian's /usr/bin/python3")
+    print(f"fidelity_report.py: error: {error.name or error} is missing (needs numpy and h5py): run it with "
+          f"Debian's /usr/bin/python3", file=sys.stderr)
+    sys.exit(2)
 
 check_readme = None
 argv = sys.argv[1:]

@@ -14,10 +14,14 @@
     tail = shockgas.read_tail("tail.h5")                # shockgas-tail output: tail.z, tail.phi
     shockgas.read("anything.h5")                        # any kind, recognised from the file
 
+The project's scripts refuse a user's mistake in one line "<script>: error: ..." with exit status 2
+through shockgas.cli (ArgumentParser, fail).
+
 Every file carries `schema_version`; a version this module does not know is refused with
 UnsupportedSchemaVersion, never read on a guess. Layouts: docs/cli-and-output.md; this module:
 docs/python.md. It needs numpy and h5py (Debian: python3-numpy, python3-h5py).
 """
+from . import cli
 from ._h5 import DamagedFile, Group, NoSuchFile, decode, open_file, walk
 from .files import (FILE_KINDS, Checkpoint, Drift, File, Results, Run, Tail, attributes, file_kind, kind_of, read,
                     read_checkpoint, read_drift, read_results, read_run, read_tail, write_initial_condition)
@@ -28,4 +32,5 @@ __all__ = [
     "write_initial_condition", "walk", "open_file", "decode", "DamagedFile", "NoSuchFile",
     "Run", "Checkpoint", "Results", "Drift", "Tail", "File", "Group",
     "SCHEMA_VERSIONS", "SchemaError", "UnsupportedSchemaVersion", "check_schema_version", "FILE_KINDS", "file_kind",
+    "cli",
 ]

@@ -91,7 +91,8 @@ add_test(NAME python.fidelity_report_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_fidelity_report_cli.py
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/fidelity_report_inputs")
 set_tests_properties(python.fidelity_report_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
-# python/sticky_pav.py: histograms at small t, bins without spread, fits of too few times (~7 s).
+# python/sticky_pav.py: histograms at small t, --hist-dir's chi2 with two realizations (counting errors),
+# fits of too few times (~8 s).
 add_test(NAME python.sticky_pav_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_sticky_pav_cli.py
                  "${_py_work}/sticky_pav_inputs")
@@ -101,3 +102,10 @@ add_test(NAME python.reference_gas_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_reference_gas_cli.py
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/reference_gas_inputs")
 set_tests_properties(python.reference_gas_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# Every Python command-line script (python/*.py, tools/*.py, tools/reproduce-check): an unknown option,
+# a missing argument, a bad number or choice is one line "<script>: error: ...", exit 2, through
+# shockgas.cli.ArgumentParser; --help is argparse's (~4 s, imports only).
+add_test(NAME python.script_refusals
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_script_refusals_cli.py
+                 "${_py_work}/script_refusals")
+set_tests_properties(python.script_refusals PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)

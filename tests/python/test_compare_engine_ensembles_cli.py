@@ -112,7 +112,7 @@ class Refusals(unittest.TestCase):
 
     def test_bad_paths(self):
         sc.one_line_error(self, compare("event.h5", "no_such.h5"), NAME, "no_such.h5", "no such file")
-        sc.one_line_error(self, sc.run([sc.PYTHON, TOOL, path("event.h5")]), NAME, "usage")
+        sc.one_line_error(self, sc.run([sc.PYTHON, TOOL, path("event.h5")]), NAME, "required", "B.h5")
 
 
 class NotANumber(unittest.TestCase):
