@@ -93,16 +93,30 @@ import json
 import os
 import sys
 
-import numpy as np
-from scipy import interpolate, special
+try:
+    import numpy as np
+    from scipy import interpolate, special
+except ImportError as error:  # pragma: no cover - depends on the machine
+    # Named after the program that runs: this script, or sticky_pav.py --compare, which imports it.
+    print("%s: error: %s is missing: run it with Debian's /usr/bin/python3 (python3-numpy, python3-scipy)"
+          % (os.path.basename(sys.argv[0]) or "exact_ballistic.py", error.name or error), file=sys.stderr)
+    sys.exit(2)
 
 try:  # one-line refusals, exit status 2 (python/shockgas/cli.py, the project's one place for them)
-    from shockgas.cli import ArgumentParser
+    from shockgas.cli import ArgumentParser, cannot_write, output_directory_problem
 except ImportError:
     # The figure project of an installation runs this script (numpy and scipy) from share/shockgas/python
     # with no PYTHONPATH, where the shockgas module (numpy and h5py) is not on Python's path for every
-    # prefix: it then runs all the same, with argparse's usage block above an error line.
+    # prefix: it then runs all the same, with argparse's usage block above an error line, and an
+    # --out-dir that cannot be written is found when it is made or written rather than before.
     from argparse import ArgumentParser
+
+    def output_directory_problem(path):
+        return None
+
+    def cannot_write(path, cause, option=None):
+        return "cannot write %s'%s': %s" % (option + " " if option else "", path,
+                                           getattr(cause, "strerror", None) or cause)
 
 C13 = 2.0 ** (1.0 / 3.0)
 D_SHOCKGAS = 1.0 / 3.0     # momentum variance per unit length: rho * <v^2> with v ~ U[-1,1], rho = 1
@@ -398,9 +412,21 @@ def main(argv=None):
     ap.add_argument("--D", type=float, default=D_SHOCKGAS,
                     help="momentum variance per unit length (rho <v^2>); 1/3 for v ~ U[-1,1]")
     args = ap.parse_args(argv)
-    os.makedirs(args.out_dir, exist_ok=True)
-    D = args.D
+    # An --out-dir that cannot be made or written in is refused before the work (seconds of
+    # quadrature), in one line; so is one that fails when written (a full disk).
+    why = output_directory_problem(args.out_dir)
+    if why is not None:
+        ap.error(cannot_write(args.out_dir, why, "--out-dir"))
+    try:
+        os.makedirs(args.out_dir, exist_ok=True)
+        return write_theory(args.out_dir, args.D)
+    except OSError as error:
+        ap.error(cannot_write(error.filename or args.out_dir, error, "--out-dir"))
 
+
+def write_theory(out_dir, D):
+    """Writes phi.dat, phi_tail.dat, mass_distribution.dat, constants.json and constants.gp in out_dir
+    and prints the constants."""
     const = compute_constants(D)
     kappa = const["kappa"]
 
@@ -410,7 +436,7 @@ def main(argv=None):
     gauss = np.exp(-z * z / (2 * kappa)) / np.sqrt(2 * np.pi * kappa)
     var_from_table = np.trapz(z * z * ph, z)
     norm_from_table = np.trapz(ph, z)
-    _write_table(os.path.join(args.out_dir, "phi.dat"),
+    _write_table(os.path.join(out_dir, "phi.dat"),
                  ["Mass-weighted velocity scaling function, P(v,t) = t^(1/3) Phi(v t^(1/3)), exact sticky-gas",
                   "asymptote (python/exact_ballistic.py EB8), units: unit masses, spacing 1, v ~ U[-1,1] (D = %.6g)" % D,
                   "gauss_same_var: normal density with variance kappa = %.10f" % kappa,
@@ -424,7 +450,7 @@ def main(argv=None):
     lpt = np.log(phi(zt, D))
     A_tail = 2.0 ** (11.0 / 6.0) * D ** (1.0 / 3.0) / AIP1
     local = np.gradient(np.log(-(lpt + 2.0 * np.log(zt) - np.log(A_tail))), np.log(zt))
-    _write_table(os.path.join(args.out_dir, "phi_tail.dat"),
+    _write_table(os.path.join(out_dir, "phi_tail.dat"),
                  ["Far tail of the exact Phi (EB8) and its local exponent d ln(-ln(z^2 Phi/A))/d ln z,",
                   "A = 2^(11/6) D^(1/3)/Ai'(a1) = %.6f (EB9); tends to 3. D = %.6g" % (A_tail, D)],
                  [zt, lpt, local, np.log(phi_tail_asymptote(zt, D))],
@@ -434,7 +460,7 @@ def main(argv=None):
     m = np.concatenate([np.geomspace(1e-4, 0.1, 31)[:-1], np.linspace(0.1, 9.0, 179)])
     F = mass_density_from_grid(m)
     Ns = const["scaled"]["N_s"]
-    _write_table(os.path.join(args.out_dir, "mass_distribution.dat"),
+    _write_table(os.path.join(out_dir, "mass_distribution.dat"),
                  ["Scaled cluster-mass distribution of the exact sticky-gas asymptote (EB10-EB12).",
                   "m = M / M*, M* = (D t^2)^(1/3) = (t^2/3)^(1/3) for shockgas; mu_FMP = m/2^(1/3) (FMP variable, b = 1).",
                   "F = clusters per unit scaled length per unit m; clusters per particle with mass in dM: F(M/M*) dM / M*^2.",
@@ -479,10 +505,10 @@ def main(argv=None):
                   "changes under grid refinement: %s" % (abs(1 - const["scaled"]["mass_sum_rule"]),
                                                           {k: "%.1e" % v for k, v in const["scaled"]["resolution_change"].items()})),
     )
-    with open(os.path.join(args.out_dir, "constants.json"), "w") as fh:
+    with open(os.path.join(out_dir, "constants.json"), "w") as fh:
         json.dump(out, fh, indent=2)
     # The same constants as gnuplot variables, for the figures' theory curves.
-    with open(os.path.join(args.out_dir, "constants.gp"), "w") as fh:
+    with open(os.path.join(out_dir, "constants.gp"), "w") as fh:
         fh.write("# exact sticky-gas constants (python/exact_ballistic.py), D = %.10g\n" % D)
         for key in ("kappa", "nu", "kurtosis", "tail_constant_c"):
             fh.write("exact_%s = %.10g\n" % (key, out[key]))

@@ -373,10 +373,25 @@ if __name__ == "__main__":
     # Every init file is HDF5, read through the shockgas module (numpy and h5py), whose cli also says a
     # user's mistake in one line: a python3 without them is told so here, before anything, in one line.
     try:
-        import shockgas.cli
+        import h5py  # noqa: F401  (the shockgas module's; imported here to be named when missing)
+        import numpy  # noqa: F401
     except ImportError as error:
         print("reference_gas.py: error: %s is missing (reading HDF5 needs numpy and h5py): run it with Debian's "
               "/usr/bin/python3 (python3-numpy, python3-h5py)" % (error.name or error), file=sys.stderr)
+        sys.exit(2)
+    # The module itself not beside this script (an installed copy in share/shockgas/python, the module
+    # installed at another prefix), or one that does not import: said as such, not as numpy or h5py.
+    try:
+        import shockgas.cli
+    except ImportError as error:
+        if error.name == "shockgas":
+            why = ("the Python module shockgas is missing (not beside this script, nor on Python's path): set "
+                   "PYTHONPATH to the folder `cmake --install` put it in (such as <prefix>/lib/python%d.%d/"
+                   "site-packages; docs/python.md), or run the source tree's python/reference_gas.py"
+                   % sys.version_info[:2])
+        else:
+            why = "the Python module shockgas does not import (%s): another version of it on Python's path?" % error
+        print("reference_gas.py: error: %s" % why, file=sys.stderr)
         sys.exit(2)
     try:
         sys.exit(main())

@@ -27,22 +27,38 @@ naming the attribute (another run.h5 in the current directory, a rerun with anot
 
 Exit status 0 when exponent, exponent_sigma and chi2_per_dof agree within the relative tolerance,
 1 otherwise, 2 with one line "refit_check.py: error: ..." on stderr for bad input (a missing file, a
-file that is not a decay results file, a run that is not the analysed one, a bad --tolerance),
-77 (SKIP) when numpy/scipy/h5py are missing.
+file that is not a decay results file, a run that is not the analysed one, a bad --tolerance, the
+shockgas module not on Python's path), 77 (SKIP, for ctest's SKIP_RETURN_CODE) when numpy, scipy or
+h5py is missing, named on stdout.
 """
 import os
 import sys
 
 SKIP = 77
 try:
+    import h5py  # noqa: F401  (the shockgas module's; imported here to be named when missing)
     import numpy as np
     from scipy import optimize
-
+except ImportError as error:  # pragma: no cover - depends on the machine
+    # A machine without the packages: ctest's python.refit_check skips (SKIP_RETURN_CODE 77).
+    print("SKIP: refit_check.py needs numpy, scipy and h5py: %s is missing; run it with Debian's /usr/bin/python3 "
+          "(python3-numpy, python3-scipy, python3-h5py)" % (error.name or error))
+    sys.exit(SKIP)
+try:
     import shockgas  # python/shockgas: this script's folder in the source tree, else the installed module
     from shockgas.cli import ArgumentParser, fail  # a user's mistake in one line, exit status 2
-except ImportError as error:  # pragma: no cover - depends on the machine
-    print("SKIP: refit_check.py needs numpy, scipy and h5py (%s); run with Debian's /usr/bin/python3" % error)
-    sys.exit(SKIP)
+except ImportError as error:
+    # Not a skip: the module is not beside this script (an installed copy in share/shockgas/python, the
+    # module installed at another prefix), or it does not import. In the source tree it is always
+    # beside the script: a broken module fails ctest's python.refit_check rather than skip it.
+    if error.name == "shockgas":
+        why = ("the Python module shockgas is missing (not beside this script, nor on Python's path): set "
+               "PYTHONPATH to the folder `cmake --install` put it in (such as <prefix>/lib/python%d.%d/site-packages; "
+               "docs/python.md), or run the source tree's python/refit_check.py" % sys.version_info[:2])
+    else:
+        why = "the Python module shockgas does not import (%s): another version of it on Python's path?" % error
+    print("refit_check.py: error: %s" % why, file=sys.stderr)
+    sys.exit(2)
 
 
 def weighted_slope(x, y, sigma):

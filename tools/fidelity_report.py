@@ -29,7 +29,8 @@ Refused with one line "fidelity_report.py: error: ..." on stderr and exit status
 tables that are empty: a BUILD_DIR that does not exist or has no paper_targets/, a fidelity other
 than quick or paper or one the build has no paper_targets/<fidelity>/ for (a quick build asked for
 paper), no results in it yet (except --progress, whose point is a build under way), --check-readme
-without a file or with one that does not exist, and unknown options.
+without a file or with one that does not exist, and unknown options. -h or --help prints this help
+(exit 0), wherever it stands, even where numpy and h5py are missing.
 """
 import glob
 import os
@@ -40,17 +41,53 @@ import sys
 # (Python would otherwise raise BrokenPipeError with a traceback).
 signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 
-USAGE = "usage: fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]"
+USAGE = "usage: fidelity_report.py [-h] BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]"
 
 
+def print_help():
+    """--help: the usage line, this docstring (less its own usage line) and the arguments, as argparse
+    would print them; the words are parsed by hand below (their refusals are this script's own)."""
+    text = "\n".join(line for line in __doc__.strip("\n").splitlines() if not line.startswith("Usage:"))
+    text = text.replace("\n\n\n", "\n\n")  # the blank lines around that usage line: one
+    print(f"{USAGE}\n\n{text}\n")
+    print("positional arguments:\n"
+          "  BUILD_DIR             the build tree (default: build)\n"
+          "  quick|paper           the fidelity (default: quick)\n\n"
+          "options:\n"
+          "  -h, --help            show this help message and exit\n"
+          "  --readme              print the README's results rows this build measured\n"
+          "  --check-readme README.md\n"
+          "                        exit 1 unless README.md holds every one of those rows\n"
+          "  --progress            where a build still running stands")
+
+
+if "-h" in sys.argv[1:] or "--help" in sys.argv[1:]:  # before the imports: help needs neither numpy nor h5py
+    print_help()
+    sys.exit(0)
+
+# A python3 without numpy or h5py, or an installed copy (share/shockgas/tools) run where the module is
+# not on Python's path (installed at another prefix): one line naming what is missing, exit status 2.
+try:
+    import h5py  # noqa: F401  (the shockgas module's; imported here to be named when missing)
+    import numpy  # noqa: F401
+except ImportError as error:  # pragma: no cover - depends on the machine
+    print(f"fidelity_report.py: error: {error.name or error} is missing (needs numpy and h5py): run it with "
+          f"Debian's /usr/bin/python3 (python3-numpy, python3-h5py)", file=sys.stderr)
+    sys.exit(2)
 try:
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
     import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
     # A user's mistake: one line on stderr, exit 2 (exit 1 is --check-readme's stale rows).
     from shockgas.cli import fail  # noqa: E402
-except ImportError as error:  # pragma: no cover - depends on the machine
-    print(f"fidelity_report.py: error: {error.name or error} is missing (needs numpy and h5py): run it with "
-          f"Debian's /usr/bin/python3", file=sys.stderr)
+except ImportError as error:
+    if error.name == "shockgas":
+        why = (f"the Python module shockgas is missing (not in ../python beside this script, nor on Python's "
+               f"path): set PYTHONPATH to the folder `cmake --install` put it in (such as <prefix>/lib/python"
+               f"{sys.version_info[0]}.{sys.version_info[1]}/site-packages; docs/python.md), or run the source "
+               f"tree's tools/fidelity_report.py")
+    else:
+        why = f"the Python module shockgas does not import ({error}): another version of it on Python's path?"
+    print(f"fidelity_report.py: error: {why}", file=sys.stderr)
     sys.exit(2)
 
 check_readme = None

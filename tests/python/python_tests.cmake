@@ -92,7 +92,7 @@ add_test(NAME python.fidelity_report_inputs
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/fidelity_report_inputs")
 set_tests_properties(python.fidelity_report_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
 # python/sticky_pav.py: histograms at small t, --hist-dir's chi2 with two realizations (counting errors),
-# fits of too few times (~8 s).
+# fits of too few times or realizations or of a time without spread, outputs that cannot be written (~17 s).
 add_test(NAME python.sticky_pav_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_sticky_pav_cli.py
                  "${_py_work}/sticky_pav_inputs")
@@ -109,3 +109,10 @@ add_test(NAME python.script_refusals
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_script_refusals_cli.py
                  "${_py_work}/script_refusals")
 set_tests_properties(python.script_refusals PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# What the machine gives a script: numpy, h5py or the shockgas module missing (a copy where an installation
+# puts the script), an output path that cannot be written (exact_ballistic.py, reproduce-check), and
+# shockgas.cli's checks of outputs: one line "<script>: error: ...", exit 2; refit_check.py's skip, 77 (~3 s).
+add_test(NAME python.script_environment
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_script_environment_cli.py
+                 "${_py_work}/script_environment")
+set_tests_properties(python.script_environment PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)

@@ -9,8 +9,10 @@ on stderr and exit status 2. On a bad command line argparse printed its usage bl
 lines) above that line; the scripts now parse with shockgas.cli.ArgumentParser (python/shockgas/cli.py),
 the one place that says how. Checked for each script: an unknown option, named in the line; for
 the argparse ones also a missing argument, a bad number and a bad choice where they have them, and
---help, which still prints argparse's help on stdout with exit status 0. Nothing is run: every
-command is refused, or answered, before any file is read.
+--help, which still prints argparse's help on stdout with exit status 0. fidelity_report.py, which
+parses its words by hand, refused --help as an unknown option; it prints its help now, in argparse's
+form, wherever -h or --help stands. Nothing is run: every command is refused, or answered, before
+any file is read.
 """
 import os
 import sys
@@ -43,7 +45,8 @@ SCRIPTS = [
     ("tools", "fidelity_report.py", []),
     ("tools", "reproduce-check", ["archive.tar.gz"]),
 ]
-# fidelity_report.py parses its few words itself (its refusals were one line already) and has no --help.
+# fidelity_report.py parses its few words itself (its refusals were one line already); its --help, which
+# it refused as an unknown option, has argparse's form.
 ARGPARSE_SCRIPTS = [(folder, name) for folder, name, _ in SCRIPTS if name != "fidelity_report.py"]
 
 
@@ -102,6 +105,17 @@ class Help(unittest.TestCase):
                 self.assertEqual(result.stderr, "")
                 self.assertTrue(result.stdout.startswith(f"usage: {name} "), result.stdout[:300])
                 self.assertIn("-h, --help", result.stdout)
+
+    def test_fidelity_report_help(self):
+        for words in (["--help"], ["-h"], ["build", "paper", "--help"]):
+            with self.subTest(words=words):
+                result = run("tools", "fidelity_report.py", *words)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                self.assertEqual(result.stderr, "")
+                self.assertTrue(result.stdout.startswith("usage: fidelity_report.py [-h] BUILD_DIR [quick|paper] "),
+                                result.stdout[:300])
+                for word in ("-h, --help", "--readme", "--check-readme README.md", "--progress", "BUILD_DIR"):
+                    self.assertIn(word, result.stdout)
 
 
 if __name__ == "__main__":

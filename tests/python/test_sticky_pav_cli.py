@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """python/sticky_pav.py's ensemble comparison on small inputs (ctest python.sticky_pav_inputs, label
-python; about 8 s of CPU, most of it the exact theory's constants).
+python; about 17 s of CPU, most of it the exact theory's constants, computed by each of the two
+--compare runs through the command line; the other runs call main() with them given, CONSTANTS).
 
     test_sticky_pav_cli.py WORK_DIR
 
@@ -22,13 +23,30 @@ python; about 8 s of CPU, most of it the exact theory's constants).
   * --compare with one or two --times fitted r_inf + a t^(-1/3) with "dof -1" (or 0) and errors of
     1e6: refused, exit 2, one line; so are one realization with --compare, a time the periodic copies
     cannot reach (a traceback before; the line names the --copies needed) and a time <= 0.
+  * --compare's fit with two realizations: its error bars, the standard errors from their spread,
+    have one degree of freedom (chi2/dof without a finite mean), and where both realizations held
+    the same number of clusters (N = 2000, seed 1, t = 400) an error of 0 killed the fit with a
+    LinAlgError traceback. Below MIN_FIT_REALIZATIONS (5) the fit is now n/a, saying why, and the
+    table is printed all the same; with 5, a time at which every realization holds the same value
+    (no collision yet at t = 0.001) makes that fit n/a, naming the time (a traceback before), the
+    other fit and --json unharmed. fit_finite_time is checked directly too.
+  * an output that cannot be written (--json, --hist-dir, --clusters-out into a missing directory,
+    under a file, a directory given for a file, a read-only directory when not run as root): a
+    traceback after the whole run before; now one line naming the option, the path and the cause,
+    before any realization is run (the one stderr line is the error). Written to /dev/full (a full
+    disk): --clusters-out exited 0 having written nothing (its file was never closed), --json gave a
+    traceback; now one line "No space left on device".
 """
+import contextlib
+import io
+import json
 import math
 import os
 import re
 import shutil
 import sys
 import unittest
+from unittest import mock
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
@@ -45,6 +63,7 @@ del sys.argv[1]
 TOOL = sc.script("python", "sticky_pav.py")
 NAME = "sticky_pav.py"
 sys.path.insert(0, sc.script("python"))
+import exact_ballistic  # noqa: E402
 import sticky_pav  # noqa: E402
 
 # Phi from the exact sticky gas (N = 20000) agrees with the exact theory at t = 100..800 at the
@@ -67,6 +86,8 @@ class Histograms(unittest.TestCase):
         result = pav("--N", 20000, "--realizations", 2, "--seed", 3, "--times", 10, 100, 200, 400, 800,
                      "--compare", "--hist-dir", hist)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr[-3000:])
+        for key, text in fit_lines(self, result.stdout).items():  # two realizations: no fit (FiniteTimeFit)
+            self.assertTrue(text.startswith("n/a ("), text)
         lines = [line for line in result.stdout.splitlines() if line.startswith("# t = ")]
         self.assertEqual(len(lines), 5, result.stdout)
         phi_chi2 = phi_bins = 0
@@ -150,6 +171,145 @@ class ErrorBars(unittest.TestCase):
         self.assertTrue(use.all())
         self.assertTrue(numpy.all(error > 0) and numpy.all(numpy.isfinite(z)))
         numpy.testing.assert_allclose(error, numpy.sqrt(2 * one["sumw2"][0]) / 2)
+
+
+# The exact theory's constants (exact_ballistic.py, docs/exact-theory.md). run_main() gives them to
+# sticky_pav.main in place of their computation (8 s of quadrature per run), which the fit and the
+# outputs do not depend on; the runs through the command line compute them.
+CONSTANTS = dict(kappa=0.21285317851949462, nu=1.9156786097646632, kurtosis=3.0410086555363813)
+
+
+def run_main(*arguments):
+    """sticky_pav.main in this process with CONSTANTS: (exit status, stdout, stderr); a traceback
+    would be an error of the test."""
+    out, err = io.StringIO(), io.StringIO()
+    with mock.patch.object(exact_ballistic, "compute_constants", return_value=CONSTANTS), \
+            contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            status = sticky_pav.main([str(a) for a in arguments])
+        except SystemExit as exit:
+            status = exit.code
+    return status, out.getvalue(), err.getvalue()
+
+
+def fit_lines(test, stdout):
+    """The fit lines: {"T_ratio": what follows the colon, "n_ratio": ...}."""
+    fits = dict(re.findall(r"^# fit (\w+) = r_inf \+ a t\^\(-1/3\): (.*)$", stdout, re.M))
+    test.assertEqual(sorted(fits), ["T_ratio", "n_ratio"], stdout)
+    return fits
+
+
+class FiniteTimeFit(unittest.TestCase):
+    """--compare's fit ratio(t) = r_inf + a t^(-1/3), weighted by the standard errors from the spread
+    of the realizations."""
+
+    def test_two_realizations_give_no_fit(self):
+        # The probe's command. Seed 1: both realizations hold the same number of clusters at t = 400.
+        result = pav("--N", 2000, "--realizations", 2, "--seed", 1, "--times", 100, 200, 400, "--compare")
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr[-3000:])
+        self.assertNotIn("Traceback", result.stderr)
+        for key, text in fit_lines(self, result.stdout).items():
+            self.assertTrue(text.startswith("n/a (") and "5 or more, not 2" in text, text)
+        rows = [line for line in result.stdout.splitlines() if re.match(r"\s+\d", line)]
+        self.assertEqual(len(rows), 3, result.stdout)  # the table, all the same
+
+    def test_a_time_without_spread(self):
+        # At t = 0.001 no two neighbours have met: every realization holds N clusters.
+        target = os.path.join(WORK, "no_spread.json")
+        status, stdout, stderr = run_main("--N", 1000, "--realizations", 5, "--times", 0.001, 0.002, 0.004,
+                                          "--compare", "--json", target)
+        self.assertEqual(status, 0, stdout + stderr)
+        fits = fit_lines(self, stdout)
+        self.assertTrue(fits["n_ratio"].startswith("n/a (no error bar at t = 0.001, 0.002, 0.004: "), fits["n_ratio"])
+        self.assertRegex(fits["T_ratio"], r"^r_inf = \S+ \+- \S+, a = \S+ \+- \S+, chi2/dof = \S+/1$")
+        with open(target) as handle:
+            written = json.load(handle)["fits"]
+        self.assertIsNone(written["n_ratio"]["r_inf"])
+        self.assertIn("no error bar", written["n_ratio"]["note"])
+        self.assertTrue(math.isfinite(written["T_ratio"]["r_inf"]))
+
+    def test_five_realizations_fit(self):
+        status, stdout, stderr = run_main("--N", 2000, "--realizations", 5, "--times", 100, 200, 400, "--compare")
+        self.assertEqual(status, 0, stdout + stderr)
+        for key, text in fit_lines(self, stdout).items():
+            numbers = re.fullmatch(r"r_inf = (\S+) \+- (\S+), a = (\S+) \+- (\S+), chi2/dof = (\S+)/1", text)
+            self.assertIsNotNone(numbers, text)
+            self.assertTrue(all(math.isfinite(float(x)) for x in numbers.groups()), text)
+
+    def test_fit_finite_time(self):
+        t = numpy.array([100.0, 200.0, 400.0, 800.0])
+        rows = [dict(t=u, q=1.0 + 0.5 * u ** (-1.0 / 3.0), q_err=0.01) for u in t]
+        fit = sticky_pav.fit_finite_time(rows, "q", realizations=5)
+        self.assertAlmostEqual(fit["r_inf"], 1.0, places=9)
+        self.assertAlmostEqual(fit["a"], 0.5, places=8)
+        self.assertEqual(fit["dof"], 2)
+        few = sticky_pav.fit_finite_time(rows, "q", realizations=4)
+        self.assertIsNone(few["r_inf"])
+        self.assertIn("5 or more, not 4", few["note"])
+        rows[1]["q_err"] = 0.0
+        flat = sticky_pav.fit_finite_time(rows, "q", realizations=5)
+        self.assertIsNone(flat["chi2"])
+        self.assertIn("t = 200", flat["note"])
+
+
+class Outputs(unittest.TestCase):
+    """An output that cannot be written is refused in one line naming the option, the path and the
+    cause: before the work where it can be told (no realization is run: the error is the one line on
+    stderr), else when written."""
+
+    ENSEMBLE = ("--N", 2000, "--realizations", 2, "--seed", 2, "--times", 100, 200, 400, "--compare")
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = os.path.join(WORK, "outputs")
+        shutil.rmtree(cls.dir, ignore_errors=True)
+        os.makedirs(cls.dir)
+        cls.plain = os.path.join(cls.dir, "plain.txt")
+        with open(cls.plain, "w") as handle:
+            handle.write("a file\n")
+        cls.init = os.path.join(cls.dir, "init.txt")
+        with open(cls.init, "w") as handle:
+            handle.write("# L = 4\n0 0.5\n1 -0.5\n2 0.1\n3 0.2\n")
+
+    def test_before_the_work(self):
+        missing = os.path.join(self.dir, "no_such_dir")
+        for arguments, words in [
+                (("--json", os.path.join(missing, "c.json")), ("--json", "no_such_dir", "does not exist")),
+                (("--hist-dir", os.path.join(self.plain, "hist")), ("--hist-dir", "plain.txt", "is not a directory")),
+                (("--hist-dir", self.plain), ("--hist-dir", "plain.txt", "not a directory")),
+                (("--json", self.dir), ("--json", "it is a directory"))]:
+            with self.subTest(arguments=arguments):
+                sc.one_line_error(self, pav(*self.ENSEMBLE, *arguments), NAME, *words)
+        clusters = os.path.join(missing, "c.txt")
+        sc.one_line_error(self, pav("--init", self.init, "--times", 1, "--clusters-out", clusters), NAME,
+                          "--clusters-out", "no_such_dir", "does not exist")
+        self.assertFalse(os.path.exists(missing))
+        with open(self.plain) as handle:
+            self.assertEqual(handle.read(), "a file\n")
+
+    def test_read_only_directory(self):
+        if os.geteuid() == 0:
+            self.skipTest("run as root, who may write in a read-only directory")
+        locked = os.path.join(self.dir, "locked")
+        os.makedirs(locked, exist_ok=True)
+        os.chmod(locked, 0o555)
+        try:
+            sc.one_line_error(self, pav(*self.ENSEMBLE, "--json", os.path.join(locked, "c.json")), NAME, "--json",
+                              "Permission denied")
+        finally:
+            os.chmod(locked, 0o755)
+
+    def test_full_disk(self):
+        if not os.path.exists("/dev/full"):
+            self.skipTest("no /dev/full")
+        sc.one_line_error(self, pav("--init", self.init, "--times", 1, "--clusters-out", "/dev/full"), NAME,
+                          "--clusters-out", "/dev/full", "No space left on device")
+        status, stdout, stderr = run_main(*self.ENSEMBLE, "--json", "/dev/full")
+        self.assertEqual(status, 2, stderr)
+        # In this process the program is named after the test (sys.argv[0]).
+        self.assertTrue(stderr.strip().splitlines()[-1].endswith(
+            ": error: cannot write --json '/dev/full': No space left on device"), stderr)
+        self.assertNotIn("Traceback", stderr)
 
 
 class Refusals(unittest.TestCase):
