@@ -138,7 +138,8 @@ int main(int argc, char** argv) {
     app.add_option("--checkpoint", checkpoint_file, "checkpoint file (default: OUTPUT.checkpoint)");
     app.add_flag("--resume", checkpoint.resume,
                  "continue from the checkpoint if there is one of this run (same parameters and code version); "
-                 "the output is bit-identical to an uninterrupted run. Without a checkpoint, start from t = 0");
+                 "the output is bit-identical to an uninterrupted run. Without a checkpoint, start from t = 0; one of a "
+                 "run with other parameters is refused, naming them");
     double progress_interval = 60.0;
     app.add_option("--progress-interval", progress_interval,
                    "when stderr is not a terminal (a batch job's log), write a progress line every this many "
@@ -190,15 +191,30 @@ int main(int argc, char** argv) {
             p.init_file_sha256 = shockgas::file_sha256(p.init_file);
         }
         shockgas::validate(p);
+        if (checkpoint_file.empty()) checkpoint_file = shockgas::checkpoint_path_for(output);
+        const std::string base_checkpoint = checkpoint_file;
         if (session.is_root()) {
             shockgas::h5::check_writable(output);
             shockgas::h5::check_not_an_input(output, {init_given});
+            // --resume refuses a checkpoint of another run before any work.
+            // Each rank checks the files it reads as it loads them; under MPI
+            // rank 0 first checks them all (every rank's own and the ones
+            // gathered from), so that the job ends here with one line rather
+            // than in a rank that has started.
+            if (checkpoint.resume && session.ranks() > 1) {
+                auto files = shockgas::other_block_checkpoints(base_checkpoint, "");
+                for (int k = 0; k < session.ranks(); ++k)
+                    if (const auto own = shockgas::rank_checkpoint_path(base_checkpoint, k);
+                        std::find(files.begin(), files.end(), own) == files.end())
+                        files.push_back(own);
+                shockgas::check_resume_checkpoints(files, p);
+            }
         }
         shockgas::SimulationParameters mine = session.share(p);
+        checkpoint.run_first_realization = p.first_realization;
+        checkpoint.run_realizations = p.realizations;
 
         // Each MPI rank keeps its own checkpoint of its own block.
-        if (checkpoint_file.empty()) checkpoint_file = shockgas::checkpoint_path_for(output);
-        const std::string base_checkpoint = checkpoint_file;
         if (session.ranks() > 1) checkpoint_file = shockgas::rank_checkpoint_path(base_checkpoint, session.rank());
         // Resumed with another number of ranks (or one process after an MPI
         // job, or the reverse): the block is gathered from the others' files.

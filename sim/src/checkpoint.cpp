@@ -148,8 +148,56 @@ std::string layout_problem(const Checkpoint& c, const SimulationParameters& p, c
 
 }  // namespace
 
+namespace {
+
+// "3", "0..9": a block of realizations, for messages.
+std::string realization_range(const SimulationParameters& p) {
+    return p.realizations == 1 ? fmt::format("{}", p.first_realization)
+                               : fmt::format("{}..{}", p.first_realization, p.first_realization + p.realizations - 1);
+}
+
+}  // namespace
+
+void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoint, const SimulationParameters& run,
+                             bool check_realizations) {
+    std::vector<std::string> differences;
+    if (std::string physics = parameter_differences(checkpoint.parameters, run); !physics.empty())
+        differences.push_back(std::move(physics));
+    const SimulationParameters& c = checkpoint.parameters;
+    if (check_realizations && (c.first_realization < run.first_realization ||
+                               c.first_realization + c.realizations > run.first_realization + run.realizations))
+        differences.push_back(fmt::format("realizations {} vs {}", realization_range(run), realization_range(c)));
+    if (differences.empty()) return;
+    // Both generations of the checkpoint this file is one of.
+    std::string base = file;
+    const std::string suffix = previous_checkpoint_path("");
+    if (base.size() > suffix.size() && base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0)
+        base.resize(base.size() - suffix.size());
+    throw InputError(fmt::format(
+        "checkpoint '{}' belongs to a run with other parameters: {} in the checkpoint; --resume continues only "
+        "the same run, so nothing was done: to continue it, give its parameters; to start anew, remove '{}' and "
+        "'{}', or choose another -o/--checkpoint",
+        file, fmt::join(differences, ", "), base, previous_checkpoint_path(base)));
+}
+
+void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run) {
+    for (const std::string& name : files)
+        for (const std::string& file : {name, previous_checkpoint_path(name)}) {
+            if (!std::filesystem::exists(file)) continue;
+            Checkpoint checkpoint;
+            try {
+                checkpoint = read_checkpoint(file);
+            } catch (const std::exception&) {
+                continue;  // damaged: passed over with a warning when the run loads it
+            }
+            if (checkpoint.version != build_info().version) continue;  // ignored with a note when loaded
+            check_checkpoint_of_run(file, checkpoint, run);
+        }
+}
+
 std::optional<Checkpoint> load_checkpoint(const std::string& path, const SimulationParameters& parameters,
-                                          const std::vector<double>& sample_times, const Note& note) {
+                                          const std::vector<double>& sample_times, const Note& note,
+                                          const SimulationParameters* whole_run, bool* another_block) {
     const auto say = [&](const std::string& text) {
         if (note) note(text);
     };
@@ -168,12 +216,14 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
                                   : fmt::format("checkpoint '{}' is damaged: {}", candidate, what));
             continue;
         }
-        // Another run or code version: not damage, and its older generation
-        // is of the same other run; start over, as before.
+        // Another run: refused, before any work (the run would overwrite
+        // it). Another block of this run: for gather_checkpoint.
+        check_checkpoint_of_run(candidate, checkpoint, whole_run != nullptr ? *whole_run : parameters);
         if (checkpoint.signature != run_signature(parameters)) {
-            say(fmt::format("ignoring checkpoint '{}': it belongs to a run with other parameters; starting from "
-                            "t = 0 (it will be overwritten)",
-                            candidate));
+            if (another_block != nullptr) *another_block = true;
+            say(fmt::format("checkpoint '{}' holds realizations {} of this run, not this block's {}; starting them "
+                            "from t = 0",
+                            candidate, realization_range(checkpoint.parameters), realization_range(parameters)));
             return std::nullopt;
         }
         if (checkpoint.version != build_info().version) {
@@ -228,7 +278,7 @@ void remove_gathered_checkpoints(const std::vector<std::string>& sources, const 
 std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& candidates,
                                             const SimulationParameters& parameters,
                                             const std::vector<double>& sample_times, const Note& note,
-                                            std::vector<std::string>* sources) {
+                                            std::vector<std::string>* sources, const SimulationParameters* whole_run) {
     const auto say = [&](const std::string& text) {
         if (note) note(text);
     };
@@ -266,9 +316,12 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
                 say(fmt::format("warning: passing over checkpoint '{}': {}", candidate, error.what()));
                 continue;
             }
-            if (physics_signature(c.parameters) != physics || c.signature != run_signature(c.parameters) ||
-                c.version != build_info().version || !layout_problem(c, c.parameters, sample_times).empty())
-                continue;  // another run, another code version, or not a whole checkpoint
+            if (c.signature != run_signature(c.parameters) || c.version != build_info().version)
+                continue;  // another code version, or not a whole checkpoint
+            // Another run: refused, as load_checkpoint does.
+            check_checkpoint_of_run(candidate, c, whole_run != nullptr ? *whole_run : parameters, whole_run != nullptr);
+            if (physics_signature(c.parameters) != physics || !layout_problem(c, c.parameters, sample_times).empty())
+                continue;  // not a whole checkpoint
             // A file of this run: obsolete once the output is written, even
             // where another file's records of this block got further.
             if (sources != nullptr) sources->push_back(candidate);

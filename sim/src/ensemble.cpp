@@ -81,6 +81,7 @@ public:
         pause_ = std::vector<std::atomic<bool>>(realizations);
         deposits_.resize(realizations);
         resume_.resize(realizations);
+        collisions_before_ = std::vector<std::atomic<std::uint64_t>>(realizations);
         for (std::size_t k = 0; k < realizations; ++k) {
             live_[k].stop = stop;
             live_[k].abort = &abort_;
@@ -192,7 +193,9 @@ private:
             if (resume_[index]) {
                 const EngineSnapshot snapshot = std::move(*resume_[index]);
                 resume_[index].reset();
-                run_samples(k, *restore_engine(snapshot, parameters_, initial, &live_[index]));
+                const auto engine = restore_engine(snapshot, parameters_, initial, &live_[index]);
+                collisions_before_[index].store(engine->collisions());  // done before the checkpoint
+                run_samples(k, *engine);
             } else {
                 run_samples(k, *make_engine(parameters_, initial, &live_[index]));
             }
@@ -208,6 +211,7 @@ private:
                 std::fill_n((result_.*table).begin() + static_cast<std::ptrdiff_t>(index * samples), samples,
                             not_reached);
             EventEngine engine(initial, parameters_.collision, parameters_.collapse, &live_[index]);
+            collisions_before_[index].store(0);  // from t = 0: all this process's
             run_samples(k, engine);
         }
     }
@@ -376,14 +380,21 @@ private:
         // wrong then).
         std::vector<std::string> held;
         const Note hold = [&](const std::string& text) { held.push_back(text); };
-        std::optional<Checkpoint> loaded = load_checkpoint(checkpoint_.path, parameters_, result_.times,
-                                                           checkpoint_.other_blocks.empty() ? checkpoint_.note : hold);
+        // The whole run, of which these parameters may be one rank's block.
+        SimulationParameters run = parameters_;
+        if (checkpoint_.run_realizations > 0) {
+            run.first_realization = checkpoint_.run_first_realization;
+            run.realizations = static_cast<int>(checkpoint_.run_realizations);
+        }
+        bool another_block = false;  // path holds another block of this run
+        std::optional<Checkpoint> loaded = load_checkpoint(checkpoint_.path, parameters_, result_.times, hold, &run,
+                                                           &another_block);
         bool gathered = false;
-        if (!loaded && !checkpoint_.other_blocks.empty()) {
+        if (!loaded && (another_block || !checkpoint_.other_blocks.empty())) {
             std::vector<std::string> candidates = checkpoint_.other_blocks;
             candidates.push_back(checkpoint_.path);
             loaded = gather_checkpoint(candidates, parameters_, result_.times, checkpoint_.note,
-                                       checkpoint_.gathered_from);
+                                       checkpoint_.gathered_from, &run);
             gathered = loaded.has_value();
         }
         if (!gathered && checkpoint_.note)
@@ -437,6 +448,7 @@ private:
             } else {
                 resume_[k] = std::move(checkpoint.engines.at(static_cast<std::int64_t>(k)));
                 live_[k].collisions.store(out.collisions);
+                collisions_before_[k].store(out.collisions);  // until the engine is restored
             }
         }
         previous_cpu_seconds_ = r.cpu_seconds;
@@ -463,10 +475,11 @@ private:
         p.realizations = parameters_.realizations;
         p.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         double work = 0.0;
-        std::uint64_t collisions = 0;
+        std::uint64_t collisions = 0;  // by this process: not those done before the checkpoint it resumed from
         for (std::size_t k = 0; k < live_.size(); ++k) {
             const double t = live_[k].time.load(std::memory_order_relaxed);
-            collisions += live_[k].collisions.load(std::memory_order_relaxed);
+            const std::uint64_t count = live_[k].collisions.load(std::memory_order_relaxed);
+            collisions += count - std::min(count, collisions_before_[k].load(std::memory_order_relaxed));
             p.latest_time = std::max(p.latest_time, t);
             // A realization stopped by a signal has finished running but is not done: the
             // last line of a stopped run must not read "1/1 100.0% ETA 0 s". (outputs_[k] is
@@ -526,6 +539,7 @@ private:
     std::vector<std::atomic<bool>> pause_;      // checkpoint requests, one per realization
     std::vector<std::optional<Deposit>> deposits_;             // guarded by progress_mutex_
     std::vector<std::optional<EngineSnapshot>> resume_;        // engine states loaded from a checkpoint
+    std::vector<std::atomic<std::uint64_t>> collisions_before_;  // per realization: done before the checkpoint resumed from
     std::uint64_t epoch_ = 0;                                  // checkpoints requested; guarded by progress_mutex_
     double previous_cpu_seconds_ = 0.0;  // spent before the checkpoint we resumed from
     double previous_wall_seconds_ = 0.0;

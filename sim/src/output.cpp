@@ -400,7 +400,8 @@ std::vector<std::pair<std::string, std::string>> physics_parameters(const Simula
             {"stall_events_min", fmt::format("{}", p.collapse.stall_events_min)}};
 }
 
-// "restitution 0.5 vs 0.9, seed 2 vs 1": every parameter in which b differs from a.
+}  // namespace
+
 std::string parameter_differences(const SimulationParameters& a, const SimulationParameters& b) {
     const auto first = physics_parameters(a), second = physics_parameters(b);
     std::vector<std::string> differences;
@@ -410,8 +411,6 @@ std::string parameter_differences(const SimulationParameters& a, const Simulatio
                                               first[i].second.empty() ? "(none)" : first[i].second));
     return fmt::format("{}", fmt::join(differences, ", "));
 }
-
-}  // namespace
 
 std::string physics_signature(const SimulationParameters& p) {
     std::string signature;

@@ -282,7 +282,8 @@ if(SHOCKGAS_PYTHON)
                    "${_cli_dir}/paper_tier")
   set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 300)
 endif()
-foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock memory_fewer_at_once)
+foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock resume_other_parameters
+                      memory_fewer_at_once)
   add_test(NAME cli.faults.${_case}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/faults_test.sh ${_case} ${_sim} "${_cli_dir}/faults"
                    "${SHOCKGAS_PYTHON}" ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py)

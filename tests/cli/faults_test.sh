@@ -9,7 +9,11 @@
 #   stale_temporaries     *.tmp.<pid> of a dead process beside the output and the checkpoint are removed
 #                         with a note; one of a live process is kept
 #   lock                  a second --resume of a run in progress is refused with one line naming the
-#                         holder; after the holder is killed with kill -9, --resume works again
+#                         holder; after the holder is killed with kill -9, a run on it works again
+#   resume_other_parameters  --resume with a checkpoint of a run with other parameters (-t 500 for -t 1000):
+#                         refused before any work, exit 2, one line naming "t-max 500 vs 1000 in the
+#                         checkpoint" and how to start anew; both generations kept; --resume with the
+#                         right parameters then continues from them
 #   memory_fewer_at_once  a --max-memory budget that fits one realization but not two: runs them one at
 #                         a time, says so, and completes
 set -u
@@ -92,9 +96,31 @@ lock)
   [ "$(message_lines second.err)" -eq 1 ] || fail "expected one line from the refused run"
   grep -q "error: checkpoint 'run.h5.checkpoint' is in use by another running shockgas-sim (process $first)" second.err ||
     fail "the refusal does not name the checkpoint and the process holding it"
-  # The lock dies with its holder, even with kill -9.
-  "$sim" -N 100000 -r 0.9 -d 0.01 -t 10 -R 1 -q --seed 3 --resume -o run.h5 2>third.err ||
-    fail "a --resume after the holder died was refused"
+  # The lock dies with its holder, even with kill -9 (a shorter run over the same checkpoint, without
+  # --resume: with it, the checkpoint of the longer run would be refused as another run's).
+  "$sim" -N 100000 -r 0.9 -d 0.01 -t 10 -R 1 -q --seed 3 -o run.h5 2>third.err ||
+    fail "a run after the holder died was refused"
+  ;;
+resume_other_parameters)
+  args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99)
+  run_until_checkpoints 2 INT first.err -- "$sim" "${args[@]}" -t 1000 --checkpoint-interval 0.1 -o ck3.h5
+  [ -e ck3.h5.checkpoint ] && [ -e ck3.h5.checkpoint.previous ] || fail "the interrupted run left no two generations"
+  cp ck3.h5.checkpoint kept.checkpoint
+  cp ck3.h5.checkpoint.previous kept.previous
+  cp ck3.h5 kept.h5  # the interrupted output
+  "$sim" "${args[@]}" -t 500 --checkpoint-interval 0.1 --resume -o ck3.h5 2>typo.err
+  status=$?
+  [ "$status" -eq 2 ] || fail "a checkpoint of another run was not refused (exit $status)"
+  [ "$(wc -l <typo.err)" -eq 1 ] || fail "expected one line from the refused run"
+  grep -q "^shockgas-sim: error: checkpoint 'ck3.h5.checkpoint' belongs to a run with other parameters: t-max 500 vs 1000 in the checkpoint;" typo.err ||
+    fail "the refusal does not name the parameter that differs with both values"
+  grep -q "to start anew, remove 'ck3.h5.checkpoint' and 'ck3.h5.checkpoint.previous', or choose another -o/--checkpoint" typo.err ||
+    fail "the refusal does not say how to start anew"
+  cmp -s kept.checkpoint ck3.h5.checkpoint && cmp -s kept.previous ck3.h5.checkpoint.previous ||
+    fail "the refused run changed the checkpoints"
+  cmp -s kept.h5 ck3.h5 || fail "the refused run wrote an output"
+  "$sim" "${args[@]}" -t 1000 --checkpoint-interval 0 --resume -o ck3.h5 2>resumed.err || fail "the right --resume failed"
+  grep -q "resuming from 'ck3.h5.checkpoint'" resumed.err || fail "the right --resume did not use the checkpoint"
   ;;
 memory_fewer_at_once)
   # 100000 particles: about 25 MiB per running realization with checkpoints (docs/reliability.md); 60 MiB

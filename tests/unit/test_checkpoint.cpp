@@ -2,7 +2,7 @@
 // restored from a snapshot continues bit for bit as the original; pausing a
 // run for checkpoints changes nothing; a run stopped mid-way and resumed from
 // its checkpoint file gives the uninterrupted run's result exactly; and a
-// checkpoint of another run is ignored, a damaged one refused.
+// checkpoint of another run is refused, naming what differs.
 //
 // Every comparison here is exact (==, NaN == NaN): the same seeds and the
 // same arithmetic must give the same doubles, so no tolerance is needed and
@@ -195,9 +195,12 @@ TEST(Checkpoint, StoppedRunResumedFromItsFileEqualsUninterruptedRun) {
     expect_same_result(reference, resumed);
 }
 
-TEST(Checkpoint, CheckpointOfAnotherRunIsIgnoredWithANote) {
+// --resume with a checkpoint of another run (a mistyped option) is refused
+// before any work, naming each parameter that differs with both values, and
+// the checkpoint is kept: continuing would have overwritten it.
+TEST(Checkpoint, CheckpointOfAnotherRunIsRefusedNamingTheDifferences) {
     SimulationParameters p = ensemble_parameters();
-    p.realizations = 1;
+    p.realizations = 2;
     p.t_max = 60.0;
     p.histogram_times = {30.0};
     std::atomic<int> written{0};
@@ -205,15 +208,89 @@ TEST(Checkpoint, CheckpointOfAnotherRunIsIgnoredWithANote) {
     std::atomic<bool> stop{true};  // stopped at once: a checkpoint with nothing done
     shockgas::run_ensemble(p, nullptr, &stop, {}, options);
     ASSERT_TRUE(std::filesystem::exists(options.path));
+    options.resume = true;
+    std::string notes;
+    options.note = [&](const std::string& text) { notes += text + "\n"; };
+    const auto refusal = [&](const SimulationParameters& run) -> std::string {
+        try {
+            shockgas::run_ensemble(run, nullptr, nullptr, {}, options);
+        } catch (const shockgas::InputError& error) {
+            return error.what();
+        }
+        return "(not refused)";
+    };
 
     SimulationParameters other = p;
+    other.t_max = 50.0;
     other.seed = p.seed + 1;
-    options.resume = true;
-    std::string note;
-    options.note = [&](const std::string& text) { note += text; };
-    const EnsembleResult fresh = shockgas::run_ensemble(other, nullptr, nullptr, {}, options);
-    EXPECT_NE(note.find("other parameters"), std::string::npos) << note;
-    expect_same_result(shockgas::run_ensemble(other, nullptr), fresh);
+    const std::string message = refusal(other);
+    EXPECT_NE(message.find("checkpoint '" + options.path + "' belongs to a run with other parameters: t-max 50 vs 60, "
+                           "seed 8 vs 7 in the checkpoint"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("to start anew, remove '" + options.path + "' and '" + options.path + ".previous'"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(notes, "") << "refused before any work";
+    EXPECT_TRUE(std::filesystem::exists(options.path)) << "the checkpoint must be kept";
+
+    // Fewer realizations than the checkpoint holds: the others would be lost.
+    other = p;
+    other.realizations = 1;
+    EXPECT_NE(refusal(other).find("realizations 0 vs 0..1 in the checkpoint"), std::string::npos) << refusal(other);
+    // Under MPI a rank's block is judged against the whole run.
+    options.run_first_realization = 0;
+    options.run_realizations = 3;
+    other = p;
+    other.realizations = 1;
+    other.first_realization = 2;  // rank 1 of 2 now, with the checkpoint's 0..1 within the run
+    EXPECT_NO_THROW(shockgas::run_ensemble(other, nullptr, nullptr, {}, options));
+    std::filesystem::remove(options.path);
+    std::filesystem::remove(options.path + ".previous");
+}
+
+// After --resume the progress line's collisions/s counts this process's
+// collisions only, not those done before the checkpoint (they took no time
+// of this process's elapsed time).
+TEST(Checkpoint, ResumedRunReportsTheCollisionRateOfThisProcessOnly) {
+    SimulationParameters p = ensemble_parameters();
+    p.realizations = 1;
+    p.threads = 1;
+    p.t_max = 1e5;  // far longer than the test runs
+    std::atomic<int> written{0};
+    CheckpointOptions options = shockgas::testing::frequent_checkpoints("rate", written);
+    std::atomic<bool> stop{false};
+    options.note = [&written, &stop, count = options.note](const std::string& text) {
+        count(text);
+        if (written.load() >= 2) stop.store(true);
+    };
+    const EnsembleResult stopped = shockgas::run_ensemble(p, nullptr, &stop, {}, options);
+    ASSERT_EQ(stopped.status, "interrupted") << "the run ended before it was stopped: the test did not test";
+    const auto checkpoint = shockgas::read_checkpoint(options.path);
+    ASSERT_EQ(checkpoint.engines.size(), 1u) << "the realization was not caught mid-way";
+    const std::uint64_t before = checkpoint.result.total_collisions;
+    ASSERT_GT(before, 0u);
+
+    // Resumed, and stopped again at the first progress report: the collisions
+    // the report counts are at most those this process did by its end.
+    CheckpointOptions resume = options;
+    resume.resume = true;
+    resume.note = {};
+    std::atomic<bool> stop_again{false};
+    std::vector<shockgas::Progress> reports;
+    const auto progress = [&](const shockgas::Progress& report) {
+        reports.push_back(report);
+        stop_again.store(true);
+    };
+    const EnsembleResult resumed = shockgas::run_ensemble(p, nullptr, &stop_again, progress, resume);
+    ASSERT_FALSE(reports.empty()) << "no progress report: the test did not test";
+    ASSERT_GE(resumed.total_collisions, before);
+    const double by_this_process = static_cast<double>(resumed.total_collisions - before);
+    for (const auto& report : reports)
+        EXPECT_LE(report.collisions_per_second * report.elapsed_seconds, by_this_process * (1 + 1e-9))
+            << "the rate counts the " << before << " collisions done before the resume";
+    std::filesystem::remove(options.path);
+    std::filesystem::remove(options.path + ".previous");
 }
 
 TEST(Checkpoint, FileRoundTripKeepsEngineStateBitForBit) {
@@ -297,11 +374,11 @@ TEST(Checkpoint, GatheredBlockTakesEachRealizationWhereItGotFurthest) {
     shockgas::write_checkpoint("gather.rank0", checkpoint_of(0, 2, {S::complete, S::in_progress}, 1000.0));
     // An older one-process checkpoint: realization 1 done, 0 and 2 not started.
     shockgas::write_checkpoint("gather.single", checkpoint_of(0, 3, {S::not_run, S::complete, S::not_run}, 2000.0));
-    // Another run (other seed) that has everything: must be passed over.
+    // Another run (other seed) that has everything: refused, not gathered (it would be removed with the others).
     shockgas::Checkpoint other = checkpoint_of(0, 3, {S::complete, S::complete, S::complete}, 3000.0);
     other.parameters.seed = p.seed + 1;
     shockgas::write_checkpoint("gather.other", other);
-    const std::vector<std::string> files = {"gather.other", "gather.rank0", "gather.single"};
+    const std::vector<std::string> files = {"gather.rank0", "gather.single"};
 
     SimulationParameters block = p;  // rank 1 of a 2-rank job now: realizations 1 and 2
     block.first_realization = 1;
@@ -330,6 +407,19 @@ TEST(Checkpoint, GatheredBlockTakesEachRealizationWhereItGotFurthest) {
     ASSERT_TRUE(from_rank0.has_value());
     EXPECT_EQ(from_rank0->samples_done, (std::vector<std::int64_t>{static_cast<std::int64_t>(samples), 3}));
     EXPECT_EQ(from_rank0->engines.count(1), 1u);
-    EXPECT_FALSE(shockgas::gather_checkpoint({"gather.other"}, block, whole.times, {}).has_value());
+    try {
+        shockgas::gather_checkpoint({"gather.rank0", "gather.other"}, block, whole.times, {}, nullptr, &p);
+        ADD_FAILURE() << "a checkpoint of another run was gathered from";
+    } catch (const shockgas::InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("'gather.other' belongs to a run with other parameters: seed 7 vs 8 in the checkpoint"),
+                  std::string::npos)
+            << error.what();
+    }
+    // With the whole run given, a block outside it is another run's too.
+    SimulationParameters smaller = p;
+    smaller.realizations = 2;
+    EXPECT_THROW(shockgas::gather_checkpoint({"gather.single"}, block, whole.times, {}, nullptr, &smaller),
+                 shockgas::InputError);
     for (const auto& file : files) std::filesystem::remove(file);
+    std::filesystem::remove("gather.other");
 }

@@ -32,12 +32,33 @@ std::string previous_checkpoint_path(const std::string& path);
 // file-size limit); the previous checkpoint is then kept untouched.
 void save_checkpoint(const std::string& path, const Checkpoint& checkpoint);
 
+// --resume's rule for a checkpoint that passed its checksums (a damaged one
+// cannot be compared; it is passed over with a warning): it must belong to
+// the run `run` (the whole run: every MPI rank's realizations), i.e. have the
+// same physics_signature and, with check_realizations, hold realizations
+// within run's. Otherwise throws InputError, before any work, naming `file`,
+// every parameter that differs with both values (parameter_differences, as
+// shockgas-merge says it; "t-max 500 vs 1000 in the checkpoint") and how to
+// start anew: continuing would overwrite it and the end of the run remove it.
+void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoint, const SimulationParameters& run,
+                             bool check_realizations = true);
+// The same for every generation of `files` that can be read and was written
+// by this code version: what a job about to gather from them checks first
+// (shockgas-sim's rank 0, before the ranks start).
+void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run);
+
 // The newest usable checkpoint of the run with these parameters and sample
 // times, from path or else its previous generation; nothing if there is none,
-// or if it belongs to another run or code version (noted). A damaged one is
-// passed over with one warning line through note.
+// or if it was written by another code version (noted). A damaged one is
+// passed over with one warning line through note. One of another run
+// (check_checkpoint_of_run against whole_run, default `parameters`) throws
+// InputError; one of another block of the same run (realizations within
+// whole_run, not these) gives nothing and sets *another_block: the caller
+// gathers from it (gather_checkpoint).
 std::optional<Checkpoint> load_checkpoint(const std::string& path, const SimulationParameters& parameters,
-                                          const std::vector<double>& sample_times, const Note& note);
+                                          const std::vector<double>& sample_times, const Note& note,
+                                          const SimulationParameters* whole_run = nullptr,
+                                          bool* another_block = nullptr);
 
 // This run's realizations gathered from checkpoints of the same run cut into
 // other blocks: an MPI job resumed with another number of ranks (each rank
@@ -51,11 +72,14 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
 // candidates' CPU and wall time shared out by the realizations taken.
 // `sources` gets every file of this run that was read (the caller removes
 // them once the output is written). Nothing if no candidate holds any of
-// this block's realizations.
+// this block's realizations. A candidate of another run (other physics, or,
+// when whole_run is given, realizations outside it) throws InputError
+// (check_checkpoint_of_run): it would be removed with the others.
 std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& candidates,
                                             const SimulationParameters& parameters,
                                             const std::vector<double>& sample_times, const Note& note,
-                                            std::vector<std::string>* sources = nullptr);
+                                            std::vector<std::string>* sources = nullptr,
+                                            const SimulationParameters* whole_run = nullptr);
 
 // BASE.rank<k>: rank k's checkpoint when BASE is the run's checkpoint path
 // and the job has more than one MPI rank.

@@ -107,8 +107,10 @@ using ProgressCallback = std::function<void(const Progress&)>;
 // it; the result is bit-identical to an uninterrupted run, because pausing
 // changes nothing (the engines return between events and go on from exactly
 // that state) and a snapshot holds the whole engine state. A checkpoint of a
-// different run or code version is ignored, with a note. The caller removes
-// the checkpoint once the output is safely written.
+// different code version is ignored, with a note; one of a run with other
+// parameters is refused (InputError, before any work: check_checkpoint_of_run
+// in checkpoint.hpp). The caller removes the checkpoint once the output is
+// safely written.
 struct CheckpointOptions {
     std::string path;                // empty: no checkpoints
     double interval_seconds = 300.0; // wall time between checkpoints
@@ -122,6 +124,12 @@ struct CheckpointOptions {
     // Filled with the files gathered from, so that the caller can remove them
     // once the output is safely written.
     std::vector<std::string>* gathered_from = nullptr;
+    // The whole run's realizations [run_first_realization, + run_realizations)
+    // when the parameters given to run_ensemble are one MPI rank's block of it;
+    // run_realizations 0: that block is the whole run. A checkpoint with
+    // realizations outside the whole run belongs to another run.
+    std::int64_t run_first_realization = 0;
+    std::int64_t run_realizations = 0;
 };
 
 // Runs the ensemble. initial_override, when non-null, replaces the generated

@@ -90,5 +90,9 @@ std::string run_signature(const SimulationParameters& parameters);
 // The same without the realization range: checkpoints of one run cut into
 // other blocks (MPI ranks, --first-realization parts) share it.
 std::string physics_signature(const SimulationParameters& parameters);
+// Every parameter of physics_signature in which b differs from a, as
+// "restitution 0.6 vs 0.5, seed 2 vs 1" (b's value first; long option names):
+// the one wording of shockgas-merge's and --resume's refusals. Empty if none.
+std::string parameter_differences(const SimulationParameters& a, const SimulationParameters& b);
 
 }  // namespace shockgas
