@@ -14,9 +14,9 @@ the root attribute `input_path` (or --run). Estimator (analysis/src/temperature.
   * sigma: delete-one jackknife over realizations, with the full-sample SE(T_k) divided by the
     delete-one mean (what fit_power_law does with the replica's y),
     sqrt((n-1)/n sum (theta_i - mean theta)^2).
-With one realization there is no jackknife: the C++ prints "+- n/a" and stores exponent_sigma NaN;
-then exponent and chi2_per_dof are compared and exponent_sigma is reported as n/a (it agrees when
-both sides give none).
+With one realization there is no jackknife and no standard error to weight by: the C++ prints
+"+- n/a" and stores exponent_sigma and chi2_per_dof NaN; then the exponent (an unweighted fit) is
+compared and the other two are reported as n/a (they agree when both sides give none).
 
 The run: --run RUN.h5, else the results file's `input_path`. That path is as it was given to
 shockgas-analyze, relative to wherever it ran, so a relative one is looked for next to the results
@@ -100,7 +100,9 @@ def refit(run, t_lo, t_hi):
         replicas = [np.delete(T, i, axis=0).mean(axis=0) for i in range(R)]
         jack = np.array([-weighted_slope(x, np.log(m), se / m)[0] for m in replicas])
         jack_sigma = float(np.sqrt((R - 1) / R * np.sum((jack - jack.mean()) ** 2)))
-    return dict(exponent=exponent, exponent_sigma=jack_sigma, chi2_per_dof=chi2 / (len(t) - 2), points=len(t),
+    # One realization: no standard error, so no weights, and chi2 has no meaning (the C++ stores NaN).
+    chi2_per_dof = chi2 / (len(t) - 2) if R >= 2 else float("nan")
+    return dict(exponent=exponent, exponent_sigma=jack_sigma, chi2_per_dof=chi2_per_dof, points=len(t),
                 realizations=R)
 
 
@@ -192,9 +194,9 @@ def main(argv=None):
     ok = True
     for key in ("exponent", "exponent_sigma", "chi2_per_dof"):
         c, p = cpp[key], py[key]
-        if c != c or p != p:  # n/a: one realization has no jackknife sigma
+        if c != c or p != p:  # n/a: one realization has no jackknife sigma and no weights for chi2
             good = (c != c) and (p != p)
-            note = ("n/a on both sides (%d realization: no jackknife)" % py["realizations"] if good else
+            note = ("n/a on both sides (%d realization: no jackknife, no weights)" % py["realizations"] if good else
                     "n/a on one side only")
             print("%-15s C++ %s  scipy %s  %s %s" % (key, fmt(c), fmt(p), note, "ok" if good else "FAIL"))
         else:

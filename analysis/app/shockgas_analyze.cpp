@@ -135,9 +135,9 @@ void run_decay(const std::string& input, const std::string& output, const std::s
     auto group = results.section("decay");
     group.set_attribute("exponent", fit.exponent);
     set_measured(group, "exponent_sigma", {fit.exponent_sigma, fit.exponent_sigma_note});
-    group.set_attribute("exponent_fit_sigma", fit.fit_sigma);
+    set_measured(group, "exponent_fit_sigma", {fit.fit_sigma, fit.fit_note});
     set_measured(group, "exponent_window_systematic", systematic);
-    group.set_attribute("chi2_per_dof", fit.chi2_per_dof);
+    set_measured(group, "chi2_per_dof", {fit.chi2_per_dof, fit.fit_note});
     group.set_attribute("prefactor", fit.prefactor);
     group.set_attribute("t_lo", fit.t_lo);
     group.set_attribute("t_hi", fit.t_hi);
@@ -164,6 +164,8 @@ void run_decay(const std::string& input, const std::string& output, const std::s
                               options.scan_step),
             std::vector<std::string>{"t_centre", "t_lo", "t_hi", "exponent", "exponent_sigma", "chi2_per_dof",
                                      "points"});
+        if (history.realizations < 2)
+            scan_file->comment("exponent_sigma, chi2_per_dof nan: one realization, no scatter to estimate them");
         for (const auto& w : windows)
             scan_file->row({std::sqrt(w.t_lo * w.t_hi), w.t_lo, w.t_hi, w.exponent, w.exponent_sigma, w.chi2_per_dof,
                             static_cast<double>(w.points)});
@@ -171,9 +173,10 @@ void run_decay(const std::string& input, const std::string& output, const std::s
     commit_outputs(&results, {data_file.get(), scan_file.get()});
     // One realization: nothing to leave out, so no jackknife sigma; say so
     // rather than print nan. Likewise a window too short for the systematic.
-    fmt::print("decay exponent {:.4f} +- {} +- {}, chi2/dof {:.2f}, window [{:g}, {:g}], {} points\n", fit.exponent,
+    fmt::print("decay exponent {:.4f} +- {} +- {}, chi2/dof {}, window [{:g}, {:g}], {} points\n", fit.exponent,
                format_measured({fit.exponent_sigma, fit.exponent_sigma_note}, "{:.4f}", "jackknife"),
-               format_measured(systematic, "{:.4f}", "window"), fit.chi2_per_dof, fit.t_lo, fit.t_hi, fit.points);
+               format_measured(systematic, "{:.4f}", "window"), format_measured({fit.chi2_per_dof, fit.fit_note}, "{:.2f}"),
+               fit.t_lo, fit.t_hi, fit.points);
 }
 
 void run_crossover(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
@@ -259,7 +262,7 @@ void run_scaling(const std::vector<std::string>& inputs, const std::string& outp
         try {
             const TailFit tail = fit_tail(histogram, tail_rule);
             set_estimate(group, "tail_gamma", tail.gamma);
-            group.set_attribute("tail_gamma_fit_sigma", tail.gamma_fit_sigma);
+            set_measured(group, "tail_gamma_fit_sigma", {tail.gamma_fit_sigma, tail.gamma_fit_sigma_note});
             group.set_attribute("tail_chi2_per_dof", tail.chi2_per_dof);
             group.set_attribute("tail_bins", static_cast<std::int64_t>(tail.bins));
             group.set_attribute("tail_range_lo", tail.z_lo);
@@ -283,7 +286,7 @@ void run_scaling(const std::vector<std::string>& inputs, const std::string& outp
         const auto collapse = fit_scaling_collapse(histograms);
         auto group = results.section("collapse");
         set_estimate(group, "beta", collapse.beta);
-        group.set_attribute("distance_at_best", collapse.distance_at_best);
+        set_measured(group, "distance_at_best", collapse.distance_at_best);
         group.set_attribute("distance_at_one_third", collapse.distance_at_one_third);
         group.set_attribute("max_deviation_at_one_third", collapse.max_deviation_at_one_third);
         fmt::print("scaling exponent {}; collapse distance {:.3g} at 1/3, max |dG| {:.3g}\n",
@@ -558,7 +561,7 @@ void run_compare(const std::string& reference_path, const std::vector<std::strin
     commit_outputs(&results, {table.get(), deviation_curves.get()});
 }
 
-// gamma of the far tail (Eq. (5)) from shockgas-tail output, and ln Phi for gnuplot.
+// gamma of the far tail (Eq. (6)) from shockgas-tail output, and ln Phi for gnuplot.
 void run_far_tail(const std::string& input, const std::string& output, const std::string& data, double z_lo,
                   double z_hi, double window_shift, bool free_linear) {
     const FarTail tail = read_far_tail(input);
@@ -571,7 +574,7 @@ void run_far_tail(const std::string& input, const std::string& output, const std
     auto group = results.section("far_tail");
     set_estimate(group, "gamma", gamma.gamma);
     set_measured(group, "gamma_window_systematic", gamma.window_systematic);
-    group.set_attribute("gamma_fit_sigma", gamma.fit.gamma_fit_sigma);
+    set_measured(group, "gamma_fit_sigma", {gamma.fit.gamma_fit_sigma, gamma.fit.gamma_fit_sigma_note});
     group.set_attribute("a", gamma.fit.a);
     group.set_attribute("b", gamma.fit.b);
     group.set_attribute("c", gamma.fit.c);
@@ -580,15 +583,19 @@ void run_far_tail(const std::string& input, const std::string& output, const std
     group.set_attribute("z_lo", gamma.fit.z_lo);
     group.set_attribute("z_hi", gamma.fit.z_hi);
     group.set_attribute("time", tail.time);
+    group.set_attribute("window_lo", z_lo);
+    group.set_attribute("window_hi", z_hi);
+    if (!gamma.window_note.empty()) group.set_attribute("window_note", gamma.window_note);
     std::unique_ptr<DataFile> table;
     if (!data.empty()) {
         table = std::make_unique<DataFile>(
-            data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (5) form",
+            data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (6) form",
             std::vector<std::string>{"z", "log_phi", "log_phi_sigma", "fitted_log_phi", "local_exponent"});
+        if (!gamma.fit.gamma_note.empty()) table->comment("fitted_log_phi nan: gamma " + gamma.fit.gamma_note);
         for (std::size_t i = 0; i < tail.z.size(); ++i) {
             if (!std::isfinite(tail.log_phi[i])) continue;
             const double z = tail.z[i];
-            // Eq. (5) with EB9's prefactor and linear term: ln Phi = c - 2 ln z - a z^gamma - b z.
+            // Eq. (6) with EB9's prefactor and linear term: ln Phi = c - 2 ln z - a z^gamma - b z.
             const double fitted =
                 gamma.fit.c - 2.0 * std::log(z) - gamma.fit.a * std::pow(z, gamma.fit.gamma) - gamma.fit.b * z;
             const double local = z >= 1.0 ? local_tail_exponent(tail.z, tail.log_phi, z) : NAN;
@@ -601,6 +608,7 @@ void run_far_tail(const std::string& input, const std::string& output, const std
                input, tail.time, format_estimate(gamma.gamma, "{:.3f}"),
                format_measured(gamma.window_systematic, "{:.3f}", "window"), gamma.fit.z_lo, gamma.fit.z_hi,
                gamma.fit.points, gamma.fit.chi2_per_dof, gamma.fit.a, gamma.fit.b, free_linear ? "fitted" : "EB9");
+    if (!gamma.window_note.empty()) fmt::print("note: {}\n", gamma.window_note);
 }
 
 }  // namespace

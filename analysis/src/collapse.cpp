@@ -19,6 +19,7 @@ CollapseEvents read_collapse_events(const std::string& path) {
     events.particles = root.attribute_integer("particles");
     events.realizations = static_cast<std::size_t>(root.attribute_integer("realizations"));
     events.t_max = root.attribute_double("t_max");
+    if (root.has_attribute("velocity_threshold")) events.velocity_threshold = root.attribute_double("velocity_threshold");
     if (!root.has("collapse")) return events;
     const auto group = root.open_group("collapse");
     events.time = group.read_doubles("time");
@@ -46,6 +47,14 @@ CollapseSummary summarize_collapse(const CollapseEvents& events) {
     summary.collapsed = events.time.size();
     summary.realizations = events.realizations;
     const std::string which = fmt::format("eps = {:g}, N = {}: ", events.inelasticity, events.particles);
+    // A threshold delta > 0 makes every collision slower than delta elastic or
+    // sticky: inelastic collapse cannot happen at all, and no N would help.
+    if (events.time.size() < 2 && events.velocity_threshold > 0.0)
+        throw InsufficientData(which + std::to_string(events.time.size()) +
+                               fmt::format(" realizations collapsed: the run has the threshold delta = {:g} > 0, below "
+                                           "which collisions are elastic or sticky, so inelastic collapse cannot "
+                                           "happen; collapse needs runs with delta = 0 (shockgas-sim -d 0)",
+                                           events.velocity_threshold));
     if (events.time.size() < 2)
         throw InsufficientData(which + std::to_string(events.time.size()) +
                                " realizations collapsed; an error bar needs 2 or more (more particles: collapse "

@@ -72,7 +72,7 @@ struct FitAtGamma {
     double c = 0.0, a = 0.0, b = 0.0, chi2 = 0.0;
 };
 
-// Eq. (5) + EB9 at fixed gamma: y = c - a z^gamma - b z, linear in (c, a, b),
+// Eq. (6) + EB9 at fixed gamma: y = c - a z^gamma - b z, linear in (c, a, b),
 // or in (c, a) when b is given (a straight line in z^gamma).
 FitAtGamma fit_at(const Selection& s, double gamma, std::optional<double> linear_coefficient) {
     if (linear_coefficient) {
@@ -97,6 +97,24 @@ FitAtGamma fit_at(const Selection& s, double gamma, std::optional<double> linear
 
 constexpr double gamma_min = 1.0, gamma_max = 6.0;  // brackets the Gaussian (2) and the exact (3) widely
 
+// The requested window [z_lo, z_hi] against the bins fitted: an end that lies
+// more than a bin spacing beyond the nearest fitted bin was cut by the data (the
+// tail ends, or its bins there are unusable). Empty when the window was not cut.
+std::string clipped_window_note(const std::vector<double>& z, double z_lo, double z_hi, const TailExponentFit& fit) {
+    auto spacing_at = [&](double at) {
+        const auto k = static_cast<std::size_t>(std::lower_bound(z.begin(), z.end(), at) - z.begin());
+        if (k + 1 < z.size()) return z[k + 1] - z[k];
+        return k > 0 && k < z.size() ? z[k] - z[k - 1] : 0.0;
+    };
+    const bool low = z_lo < fit.z_lo - spacing_at(fit.z_lo) * (1.0 + 1e-9);
+    const bool high = z_hi > fit.z_hi + spacing_at(fit.z_hi) * (1.0 + 1e-9);
+    if (!low && !high) return "";
+    return fmt::format("the window [{:g}, {:g}] was clipped to the data: usable bins {}, fitted over z in [{:.3g}, "
+                       "{:.3g}]",
+                       z_lo, z_hi, low && high ? "cover less on both ends" : high ? "end before z_hi" : "start after z_lo",
+                       fit.z_lo, fit.z_hi);
+}
+
 }  // namespace
 
 TailExponentFit fit_tail_exponent(const std::vector<double>& z, const std::vector<double>& log_phi,
@@ -104,10 +122,12 @@ TailExponentFit fit_tail_exponent(const std::vector<double>& z, const std::vecto
                                   std::optional<double> linear_coefficient) {
     const Selection s = select(z, log_phi, log_phi_sigma, z_lo, z_hi);
     if (s.z.size() < 6) throw InsufficientData("tail-exponent fit: fewer than 6 usable bins in the window");
-    const double gamma =
+    const SearchMinimum search =
         minimise([&](double g) { return fit_at(s, g, linear_coefficient).chi2; }, gamma_min, gamma_max, 100);
+    const double gamma = search.argmin;
     const FitAtGamma best = fit_at(s, gamma, linear_coefficient);
     TailExponentFit fit;
+    fit.search = search;
     fit.gamma = gamma;
     fit.c = best.c;
     fit.a = best.a;
@@ -117,12 +137,21 @@ TailExponentFit fit_tail_exponent(const std::vector<double>& z, const std::vecto
     fit.chi2_per_dof = best.chi2 / static_cast<double>(s.z.size() - fitted);
     fit.z_lo = s.z.front();
     fit.z_hi = s.z.back();
+    if (search.at_bound) {
+        // The range, not the data, stopped the search: no gamma, no width.
+        fit.gamma = std::numeric_limits<double>::quiet_NaN();
+        fit.gamma_note = search.bound_note();
+        fit.gamma_fit_sigma = std::numeric_limits<double>::quiet_NaN();
+        fit.gamma_fit_sigma_note = "gamma " + search.bound_note();
+        return fit;
+    }
     // Delta chi2 = 1 half-width from the curvature of the profiled chi2(gamma).
     const double h = 1e-3 * gamma;
     const double curvature =
         (fit_at(s, gamma + h, linear_coefficient).chi2 - 2.0 * best.chi2 + fit_at(s, gamma - h, linear_coefficient).chi2) /
         (h * h);
     fit.gamma_fit_sigma = curvature > 0.0 ? std::sqrt(2.0 / curvature) : std::numeric_limits<double>::quiet_NaN();
+    if (!(curvature > 0.0)) fit.gamma_fit_sigma_note = "chi2(gamma) is not curved upwards at its minimum";
     return fit;
 }
 
@@ -149,37 +178,52 @@ TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_h
     result.fit = fit_tail_exponent(tail.z, tail.log_phi, tail.log_phi_sigma, z_lo, z_hi, linear_coefficient);
     const std::size_t chains = tail.log_phi_leave_one_chain_out.size();
     if (chains < 2) throw InsufficientData("tail exponent: the jackknife needs >= 2 chains");
+    result.window_note = clipped_window_note(tail.z, z_lo, z_hi, result.fit);
     // Leave-one-chain-out fits keep the full estimate's weights (sigma).
-    result.gamma = jackknife(chains, [&](std::optional<std::size_t> left_out) {
-        if (!left_out) return result.fit.gamma;
+    result.gamma = bounded_jackknife(chains, [&](std::optional<std::size_t> left_out) {
+        if (!left_out) return result.fit.search;
         return fit_tail_exponent(tail.z, tail.log_phi_leave_one_chain_out[*left_out], tail.log_phi_sigma, z_lo, z_hi,
                                  linear_coefficient)
-            .gamma;
+            .search;
     });
+    if (!result.fit.gamma_note.empty()) {
+        result.window_systematic = Measured::missing("gamma " + result.fit.gamma_note);
+        return result;
+    }
     double lowest = result.fit.gamma, highest = result.fit.gamma;
     std::size_t shifted = 0;  // windows other than the given one that could be fitted
+    std::string shifted_at_bound;  // the first shifted window whose gamma is at a search bound
     for (double lo_shift : {-window_shift, 0.0, window_shift})
         for (double hi_shift : {-window_shift, 0.0, window_shift}) {
             if (lo_shift == 0.0 && hi_shift == 0.0) continue;  // the given window: result.fit
             try {
-                const double g =
-                    fit_tail_exponent(tail.z, tail.log_phi, tail.log_phi_sigma, z_lo + lo_shift, z_hi + hi_shift,
-                                      linear_coefficient)
-                        .gamma;
-                lowest = std::min(lowest, g);
-                highest = std::max(highest, g);
+                const TailExponentFit moved = fit_tail_exponent(tail.z, tail.log_phi, tail.log_phi_sigma,
+                                                                z_lo + lo_shift, z_hi + hi_shift, linear_coefficient);
+                if (!moved.gamma_note.empty()) {
+                    if (shifted_at_bound.empty())
+                        shifted_at_bound = fmt::format("gamma over the moved window [{:g}, {:g}] is {}",
+                                                       z_lo + lo_shift, z_hi + hi_shift, moved.gamma_note);
+                    continue;
+                }
+                lowest = std::min(lowest, moved.gamma);
+                highest = std::max(highest, moved.gamma);
                 ++shifted;
             } catch (const InsufficientData&) {
                 // a shifted window beyond the data: not counted
             }
         }
-    // The spread of the given window alone is not 0 but unknown.
-    result.window_systematic =
-        shifted > 0 ? Measured{(highest - lowest) / 2.0, ""}
-                    : Measured::missing(window_shift > 0.0
-                                            ? fmt::format("no window with its ends moved by +-{:g} holds 6 usable bins",
-                                                          window_shift)
-                                            : std::string("window shift 0: no other window to compare with"));
+    // The spread of the given window alone is not 0 but unknown; nor is a
+    // spread that includes a window whose gamma only the search range bounds.
+    if (!shifted_at_bound.empty())
+        result.window_systematic = Measured::missing(shifted_at_bound);
+    else
+        result.window_systematic =
+            shifted > 0 ? Measured{(highest - lowest) / 2.0, ""}
+                        : Measured::missing(window_shift > 0.0
+                                                ? fmt::format("no window with its ends moved by +-{:g} holds 6 usable "
+                                                              "bins",
+                                                              window_shift)
+                                                : std::string("window shift 0: no other window to compare with"));
     return result;
 }
 

@@ -180,6 +180,33 @@ Estimate jackknife(std::size_t samples, const std::function<double(std::optional
     return result;
 }
 
+std::string SearchMinimum::bound_note() const {
+    const double bound = hi - argmin < argmin - lo ? hi : lo;
+    return fmt::format("at the search bound {:g} of [{:g}, {:g}]: the minimum lies beyond the range", bound, lo, hi);
+}
+
+Measured SearchMinimum::measured() const { return at_bound ? Measured::missing(bound_note()) : Measured{argmin, ""}; }
+
+Estimate bounded_jackknife(std::size_t samples,
+                           const std::function<SearchMinimum(std::optional<std::size_t>)>& estimator) {
+    const SearchMinimum full = estimator(std::nullopt);
+    if (full.at_bound) return Estimate::missing(full.bound_note());
+    std::optional<std::string> replica_at_bound;
+    Estimate result = jackknife(samples, [&](std::optional<std::size_t> left_out) {
+        if (!left_out) return full.argmin;
+        const SearchMinimum replica = estimator(left_out);
+        if (replica.at_bound && !replica_at_bound)
+            replica_at_bound = fmt::format("the jackknife replica without sample {} is {}", *left_out,
+                                           replica.bound_note());
+        return replica.argmin;
+    });
+    if (replica_at_bound) {
+        result.sigma = std::numeric_limits<double>::quiet_NaN();
+        result.note = *replica_at_bound;
+    }
+    return result;
+}
+
 Estimate mean_and_standard_error(std::span<const double> values) {
     if (values.empty()) throw InsufficientData("mean of an empty set");
     double mean = 0.0;

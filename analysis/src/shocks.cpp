@@ -157,7 +157,7 @@ ShockProfile find_shocks(const Snapshot& input, const ShockRule& rule) {
             profile.shock_drop.push_back(-velocity_change);
         }
     }
-    // Segments: maximal stretches of points outside shocks; Eq. (6) line fitted to each.
+    // Segments: maximal stretches of points outside shocks; Eq. (7) line fitted to each.
     std::size_t k = 0;
     while (k < n) {
         if (in_shock[k]) {
@@ -200,7 +200,7 @@ ShockSummary summarize_shocks(const std::vector<Snapshot>& snapshots, const Shoc
         // segments. A dense run is a cluster whose internal velocity drops
         // stay below the segment break: its fitted "slope" is the spread of
         // velocities across a length of ~0.1 spacing (+-50 / t in the paper
-        // size Fig. 5), which says nothing about Eq. (6) and, averaged in,
+        // size Fig. 5), which says nothing about Eq. (7) and, averaged in,
         // swamped the raw mean (-0.79 +- 6.3 there, 0.80 +- 0.04 without).
         for (const auto& segment : profile.segments) {
             if (!(segment.density < 0.5)) {

@@ -111,7 +111,10 @@ DecayWindow decay_window_bounds(double restitution, double velocity_threshold, d
     DecayWindow window;
     window.t_lo = rule.start_factor * t_stick;
     // Eq. (3): the ring ends in one cluster at t ~ N^(3/2); the threshold is
-    // harmless while v ~ t^(-1/3) >> delta, i.e. t << delta^(-3).
+    // harmless while v ~ t^(-1/3) >> delta, i.e. t << delta^(-3) (the paper's
+    // t_valid, without a prefactor: with T = kappa t^(-2/3) the rms velocity
+    // reaches delta at 0.1 delta^(-3), so the window's last decade feels it;
+    // analysis/README.md).
     window.t_hi = std::min(last_time, rule.end_factor * std::pow(particles, 1.5));
     if (velocity_threshold > 0.0) window.t_hi = std::min(window.t_hi, std::pow(velocity_threshold, -3.0));
     return window;
@@ -132,9 +135,27 @@ DecayWindow automatic_decay_window(double restitution, double velocity_threshold
                 start, last_time,
                 run_status == "collapsed" ? "stopped at inelastic collapse (delta = 0 runs stop there)"
                                           : "was interrupted"));
-        throw InsufficientData(fmt::format("{}, but t_hi = {:g} (min of t_max, {:g} N^3/2, delta^-3); run longer or "
-                                           "with more particles",
-                                           start, window.t_hi, rule.end_factor));
+        // Name the option that emptied the window when it was the user's
+        // (--start-factor or --end-factor away from its default), not only
+        // the run: a longer run does not help a window closed by an option.
+        const WindowRule defaults;
+        const double ring_end = rule.end_factor * std::pow(particles, 1.5);
+        const bool end_factor_closes = rule.end_factor != defaults.end_factor && !(ring_end > window.t_lo);
+        const bool start_factor_closes =
+            rule.start_factor != defaults.start_factor &&
+            !(window.t_hi > defaults.start_factor * std::max(rule.scaling_onset, std::pow((1.0 - restitution) / 2.0,
+                                                                                           -1.5)));
+        std::string advice = "run longer or with more particles";
+        if (end_factor_closes)
+            advice = fmt::format("--end-factor {:g} puts {:g} N^3/2 = {:g} before t_lo: raise --end-factor (default "
+                                 "{:g}), or run with more particles",
+                                 rule.end_factor, rule.end_factor, ring_end, defaults.end_factor);
+        else if (start_factor_closes)
+            advice = fmt::format("--start-factor {:g} puts t_lo after t_hi: lower --start-factor (default {:g}), or "
+                                 "run longer",
+                                 rule.start_factor, defaults.start_factor);
+        throw InsufficientData(fmt::format("{}, but t_hi = {:g} (min of t_max, {:g} N^3/2, delta^-3); {}", start,
+                                           window.t_hi, rule.end_factor, advice));
     }
     return window;
 }
@@ -163,6 +184,15 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
     result.fit_sigma = full.slope_sigma();
     result.chi2_per_dof = full.chi2_per_dof();
     result.prefactor = std::exp(full.intercept);
+    if (history.realizations < 2) {
+        // The weights are the standard errors of <T>: with one realization
+        // there are none, and the equal weights put in their place (sigma of
+        // ln T = 1) give a chi2 and a slope width that measure nothing (chi2/dof
+        // ~ 0.00). The exponent itself (the unweighted fit) stands.
+        result.fit_sigma = std::numeric_limits<double>::quiet_NaN();
+        result.chi2_per_dof = std::numeric_limits<double>::quiet_NaN();
+        result.fit_note = "one realization: no standard error of <T> to weigh the fit by; run -R 2 or more";
+    }
     if (history.realizations >= 2) {
         const Estimate jack = jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
             std::vector<double> mean_without(inside.size());

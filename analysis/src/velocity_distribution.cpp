@@ -177,11 +177,13 @@ ScalingCollapse fit_scaling_collapse(const std::vector<VelocityHistogram>& histo
     ScalingCollapse result;
     result.jackknife_groups = jackknife_groups(histograms);
     const std::size_t groups = result.jackknife_groups;
-    result.beta = jackknife(groups, [&](std::optional<std::size_t> left_out) {
+    result.beta = bounded_jackknife(groups, [&](std::optional<std::size_t> left_out) {
         return minimise([&](double beta) { return collapse_distance(histograms, beta, left_out, groups); }, beta_min,
                         beta_max);
     });
-    result.distance_at_best = collapse_distance(histograms, result.beta.value);
+    result.distance_at_best = std::isnan(result.beta.value)
+                                  ? Measured::missing("beta " + result.beta.note)
+                                  : Measured{collapse_distance(histograms, result.beta.value), ""};
     result.distance_at_one_third = collapse_distance(histograms, 1.0 / 3.0);
     result.max_deviation_at_one_third = collapse_max_deviation(histograms, 1.0 / 3.0);
     return result;
@@ -252,7 +254,7 @@ struct ChiSquared {
 ChiSquared tail_chi2(const TailData& data, const std::vector<double>& log_density, double gamma) {
     std::vector<double> power(data.u.size());
     for (std::size_t i = 0; i < data.u.size(); ++i) power[i] = std::pow(data.u[i], gamma);
-    // Eq. (5) at fixed gamma: ln Phi = a - c u^gamma is a straight line in u^gamma.
+    // Eq. (6) at fixed gamma: ln Phi = a - c u^gamma is a straight line in u^gamma.
     const LinearFit fit = weighted_linear_fit(power, log_density, data.log_sigma);
     return {fit.chi2, fit};
 }
@@ -298,26 +300,35 @@ TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule) {
         throw InsufficientData("only " + std::to_string(data.u.size()) +
                                " tail bins have a relative error below the limit; the tail fit needs 4 or more "
                                "(more realizations or particles)");
-    constexpr double gamma_min = 0.5, gamma_max = 8.0;  // brackets Gaussian (2) and Eq. (5) (3) widely
+    constexpr double gamma_min = 0.5, gamma_max = 8.0;  // brackets Gaussian (2) and Eq. (6) (3) widely
     auto best_gamma = [&](const std::vector<double>& log_phi) {
         return minimise([&](double gamma) { return tail_chi2(data, log_phi, gamma).chi2; }, gamma_min, gamma_max, 150);
     };
-    const double gamma = best_gamma(log_density);
+    const SearchMinimum search = best_gamma(log_density);
+    const double gamma = search.argmin;
     const ChiSquared best = tail_chi2(data, log_density, gamma);
     result.c = -best.fit.slope;
     result.bins = data.u.size();
     result.chi2_per_dof = best.chi2 / static_cast<double>(data.u.size() - 3);  // a, c and gamma fitted
     result.z_lo = *std::min_element(data.u.begin(), data.u.end());
     result.z_hi = *std::max_element(data.u.begin(), data.u.end());
+    if (search.at_bound) {
+        // Not a measurement: gamma and both its widths are n/a, with the bound.
+        result.gamma = Estimate::missing(search.bound_note());
+        result.gamma_fit_sigma = std::numeric_limits<double>::quiet_NaN();
+        result.gamma_fit_sigma_note = "gamma " + search.bound_note();
+        return result;
+    }
     // Delta chi2 = 1 half-width from the curvature of chi2(gamma).
     const double h = 1e-3 * gamma;
     const double curvature = (tail_chi2(data, log_density, gamma + h).chi2 - 2.0 * best.chi2 +
                               tail_chi2(data, log_density, gamma - h).chi2) / (h * h);
     result.gamma_fit_sigma = curvature > 0.0 ? std::sqrt(2.0 / curvature) : std::numeric_limits<double>::quiet_NaN();
+    if (!(curvature > 0.0)) result.gamma_fit_sigma_note = "chi2(gamma) is not curved upwards at its minimum";
     // Group jackknife: the same bins and weights, the density from the other groups.
     const std::size_t groups = std::min(realizations, max_jackknife_groups);
-    result.gamma = jackknife(groups, [&](std::optional<std::size_t> left_out) {
-        if (!left_out) return gamma;
+    result.gamma = bounded_jackknife(groups, [&](std::optional<std::size_t> left_out) {
+        if (!left_out) return search;
         const auto partial = histogram.pooled(left_out, groups);
         std::size_t kept = 0;
         for (std::size_t r = 0; r < realizations; ++r) kept += (r % groups != *left_out) ? 1 : 0;

@@ -4,7 +4,8 @@
 # <name>_note attribute giving the reason, never as 0 (read back with
 # shockgas-dump). WORKDIR holds the fixture's runs: a.h5 (two realizations),
 # e05.h5 and e10.h5 (r = 0.9, 0.8), snap1.h5 (one realization, snapshots at
-# t = 10 and 1000).
+# t = 10 and 1000), e10_one.h5 (one realization), hist.h5 (histograms at t = 10
+# and 100), short_tail.h5 (a far tail reaching z ~ 3.3).
 set -u
 analyze=$1 dump=$2 work=$3
 cd "$work" || exit 1
@@ -30,4 +31,23 @@ has not_measured_decay.h5 /decay '^v_exponent_window_systematic_note = "no one-d
 "$analyze" crossover e05.h5 e10.h5 -o not_measured_crossover.h5 >/dev/null || fail "crossover failed"
 has not_measured_crossover.h5 /scaling_in_eps '^v_t_stick_chi2_per_dof = NaN$'
 has not_measured_crossover.h5 /scaling_in_eps '^v_t_stick_chi2_per_dof_note = "need at least 3 points for chi2'
-rm -f not_measured_shocks.h5 not_measured_decay.h5 not_measured_crossover.h5
+# A tail fit that ends at the bound 0.5 of its range: gamma and both widths
+# are NaN with the bound (hist.h5 at t = 100: 4 tail bins); the collapse's
+# distance at the best beta is measured there.
+"$analyze" scaling hist.h5 -o not_measured_scaling.h5 >/dev/null || fail "scaling failed"
+has not_measured_scaling.h5 /histogram1 '^v_tail_gamma = NaN$'
+has not_measured_scaling.h5 /histogram1 '^v_tail_gamma_sigma = NaN$'
+has not_measured_scaling.h5 /histogram1 '^v_tail_gamma_note = "at the search bound 0.5 of \[0.5, 8\]'
+has not_measured_scaling.h5 /histogram1 '^v_tail_gamma_fit_sigma = NaN$'
+has not_measured_scaling.h5 /histogram1 '^v_tail_gamma_fit_sigma_note = "gamma at the search bound 0.5'
+# One realization: the decay fit has no weights, so no chi2/dof nor fit width.
+"$analyze" decay e10_one.h5 --t-lo 10 --t-hi 1000 -o not_measured_one.h5 >/dev/null || fail "decay (R = 1) failed"
+has not_measured_one.h5 /decay '^v_chi2_per_dof = NaN$'
+has not_measured_one.h5 /decay '^v_chi2_per_dof_note = "one realization'
+has not_measured_one.h5 /decay '^v_exponent_fit_sigma = NaN$'
+has not_measured_one.h5 /decay '^v_exponent_fit_sigma_note = "one realization'
+# far-tail over a window beyond the data: the clipping is stored with the range fitted.
+"$analyze" far-tail short_tail.h5 -o not_measured_far_tail.h5 >/dev/null || fail "far-tail failed"
+has not_measured_far_tail.h5 /far_tail '^v_window_note = "the window \[2, 5.5\] was clipped to the data: .*fitted over z in \[2.01, '
+rm -f not_measured_shocks.h5 not_measured_decay.h5 not_measured_crossover.h5 not_measured_scaling.h5 \
+      not_measured_one.h5 not_measured_far_tail.h5

@@ -18,7 +18,8 @@ foreach(_run IN ITEMS "a|-N;200;-r;0.5;-d;0.01;-t;100;-R;2"
                       "snap1|-N;1000;-r;0.9;-d;0.01;-t;1000;-R;1;--snapshot-times;10,1000"
                       "col|-N;2000;-r;0.5;-d;0;-t;10000;-R;3"
                       "col4k|-N;4000;-r;0.5;-d;0;-t;10000;-R;3"
-                      "col06|-N;2000;-r;0.6;-d;0;-t;10000;-R;3")
+                      "col06|-N;2000;-r;0.6;-d;0;-t;10000;-R;3"
+                      "hist|-N;2000;-r;0.5;-d;0.01;-t;1000;-R;4;--histogram-times;10,100")
   string(FIND "${_run}" "|" _bar)
   string(SUBSTRING "${_run}" 0 ${_bar} _name)
   math(EXPR _start "${_bar} + 1")
@@ -27,6 +28,12 @@ foreach(_run IN ITEMS "a|-N;200;-r;0.5;-d;0.01;-t;100;-R;2"
            COMMAND $<TARGET_FILE:shockgas-sim> ${_arguments} -j 1 -q -o "${_analyze_dir}/${_name}.h5")
   set_tests_properties(cli.analyze.setup.${_name} PROPERTIES FIXTURES_SETUP analyze_cases LABELS cli TIMEOUT 120)
 endforeach()
+
+# A far tail that reaches only z ~ 3.3 (shockgas-tail, under a second).
+add_test(NAME cli.analyze.setup.short_tail
+         COMMAND $<TARGET_FILE:shockgas-tail> -t 100 --half-window 100 --z-reach 2.75 --steps-per-bias 3000
+                 --burn-in 500 --chains 3 -j 1 -o "${_analyze_dir}/short_tail.h5")
+set_tests_properties(cli.analyze.setup.short_tail PROPERTIES FIXTURES_SETUP analyze_cases LABELS cli TIMEOUT 120)
 
 # shockgas_analyze_error(<name> <regex> <arguments...>): shockgas-analyze with
 # the arguments and -o <name>.out.h5 must fail as bad input with one line
@@ -154,3 +161,54 @@ shockgas_analyze_error(data_only_needs_data "^shockgas-analyze: error: --data-on
                        decay a.h5 --data-only)
 shockgas_analyze_error(haff_floor_named "fewer than 3 samples with T >= 0.9 T0 \\(--haff-floor\\).*, in 'e05.h5'$"
                        crossover e05.h5 --haff-floor 0.9)
+
+# 11. A fit that ends at a bound of its search range is not a measurement:
+# n/a with the bound (tail gamma over [0.5, 8]; 0.500 +- 0.000 before).
+shockgas_analyze_reports(tail_gamma_at_search_bound
+                         "t=100 +tail gamma n/a \\(at the search bound 0\\.5 of \\[0\\.5, 8\\]"
+                         "tail gamma 0\\.500|nan" scaling hist.h5 -o "${_analyze_dir}/bound_scaling.h5")
+
+# 12. Hints name what the user can change. delta > 0: collapse cannot happen
+# at all (not "more particles"); an empty window made by --end-factor names it.
+shockgas_analyze_error(collapse_with_threshold
+                       "0 realizations collapsed: the run has the threshold delta = 0\\.01 > 0.*inelastic collapse cannot happen.*-d 0\\), in 'a\\.h5'$"
+                       collapse a.h5)
+shockgas_analyze_error(decay_end_factor_named
+                       "t_hi = 8\\.94427 .*; --end-factor 0\\.0001 puts .* raise --end-factor \\(default 0\\.01\\).*, in 'hist\\.h5'$"
+                       decay hist.h5 --end-factor 0.0001)
+
+# 13. One realization: no weights, so chi2/dof (0.00 before) and the fit width are n/a.
+shockgas_analyze_reports(decay_one_realization_chi2
+                         "chi2/dof n/a \\(one realization: no standard error of <T>"
+                         "chi2/dof 0\\.00|nan" decay e10_one.h5 --t-lo 10 --t-hi 1000 -o "${_analyze_dir}/one_decay.h5")
+
+# 14. far-tail: a window beyond the data says it was clipped, with the range fitted.
+shockgas_analyze_reports(far_tail_window_clipped
+                         "note: the window \\[2, 5\\.5\\] was clipped to the data: usable bins end before z_hi, fitted over z in \\[2\\.01, "
+                         "nan" far-tail short_tail.h5 -o "${_analyze_dir}/clipped_far_tail.h5")
+
+# 15. shockgas-look: its hint for a run without a fit window names options it
+# takes (it passes --t-lo/--t-hi to shockgas-analyze decay), not --data-only.
+if(GNUPLOT_EXECUTABLE)
+  add_test(NAME cli.analyze.look_hint
+           COMMAND ${CMAKE_COMMAND} -E env SHOCKGAS_BUILD=${CMAKE_BINARY_DIR}
+                   ${PROJECT_SOURCE_DIR}/tools/shockgas-look "${_analyze_dir}/col.h5" -o "${_analyze_dir}/look_col.png")
+  set_tests_properties(cli.analyze.look_hint PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60
+                       PASS_REGULAR_EXPRESSION "no fit: .*to fit a window of your choice: shockgas-look [^ ]*col\\.h5 --t-lo T --t-hi T"
+                       FAIL_REGULAR_EXPRESSION "--data-only|unknown argument")
+  add_test(NAME cli.analyze.look_window
+           COMMAND ${CMAKE_COMMAND} -E env SHOCKGAS_BUILD=${CMAKE_BINARY_DIR}
+                   ${PROJECT_SOURCE_DIR}/tools/shockgas-look "${_analyze_dir}/col.h5" -o "${_analyze_dir}/look_window.png"
+                   --t-lo 0.1 --t-hi 5)
+  set_tests_properties(cli.analyze.look_window PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60
+                       PASS_REGULAR_EXPRESSION "decay exponent .*window \\[0\\.1, 5\\]"
+                       FAIL_REGULAR_EXPRESSION "unknown argument|error")
+  # A window the user chose that cannot be fitted is a mistake: one line, status 2.
+  add_test(NAME cli.analyze.look_window_refused
+           COMMAND ${_analyze_expect} "^shockgas-look: error: the window \\[50, 100\\] holds 0 sample times"
+                   "${_analyze_dir}/look_refused.png" --
+                   ${CMAKE_COMMAND} -E env SHOCKGAS_BUILD=${CMAKE_BINARY_DIR}
+                   ${PROJECT_SOURCE_DIR}/tools/shockgas-look "${_analyze_dir}/col.h5" -o "${_analyze_dir}/look_refused.png"
+                   --t-lo 50 --t-hi 100)
+  set_tests_properties(cli.analyze.look_window_refused PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+endif()

@@ -104,7 +104,7 @@ class OneRealization(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         self.assertRegex(result.stdout, r"exponent +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
         self.assertRegex(result.stdout, r"exponent_sigma +C\+\+ n/a +scipy n/a .* ok")
-        self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
+        self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ n/a +scipy n/a .* ok")
 
 
 if __name__ == "__main__":

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "shockgas/analysis/far_tail.hpp"
 #include "shockgas/analysis/fit.hpp"
 #include "shockgas/analysis/results.hpp"
 #include "shockgas/analysis/shocks.hpp"
@@ -242,7 +243,7 @@ TEST(AnalysisScaling, KurtosisOfGaussianIsThree) {
 TEST(AnalysisTail, GammaRecoveredWithCalibratedSigma) {
     std::mt19937_64 random(11);
     constexpr int trials = 60;
-    constexpr double gamma_true = 3.0;  // Eq. (5)
+    constexpr double gamma_true = 3.0;  // Eq. (6)
     int inside = 0;
     for (int trial = 0; trial < trials; ++trial) {
         const auto h = synthetic_histogram(random, 1000.0, 1.0 / 3.0, gamma_true, 20, 5000);
@@ -257,7 +258,7 @@ TEST(AnalysisTail, GammaRecoveredWithCalibratedSigma) {
     EXPECT_NEAR(static_cast<double>(inside) / trials, one_sigma_coverage, coverage_tolerance(trials));
 }
 
-// Eq. (6): segments v = (x - q_s)/t of 20 sparse particles each, and between
+// Eq. (7): segments v = (x - q_s)/t of 20 sparse particles each, and between
 // them heavy clusters (the shocks) at the segment ends. With dense_run = s the
 // shock after segment s is replaced by a cluster that is not (yet) a shock:
 // ten particles within 0.09 of a spacing whose velocities rise across it.
@@ -644,4 +645,64 @@ TEST(AnalysisResults, OutputsAreCheckedAgainstInputsAndEachOther) {
                                               {"--curves", "", true}, {"-o", other, false}},
                                       {input}));
     std::filesystem::remove_all(directory);
+}
+
+// A bounded search that ends at an end of its range measures the range, not
+// the data: the estimate is n/a with the bound named, never the bound itself
+// (the tail fit printed gamma = 0.500 +- 0.000, 0.5 being its lower end).
+TEST(AnalysisBounds, CollapseExponentAtTheSearchBoundIsMissing) {
+    std::mt19937_64 random(99);
+    const std::vector<sa::VelocityHistogram> histograms{synthetic_histogram(random, 100.0, 1.0 / 3.0, 2.0, 20, 2000),
+                                                        synthetic_histogram(random, 1e4, 1.0 / 3.0, 2.0, 20, 2000)};
+    // beta = 1/3 lies beyond [0.05, 0.25]: D(beta) still falls at 0.25.
+    const auto clipped = sa::fit_scaling_collapse(histograms, 0.05, 0.25);
+    EXPECT_TRUE(std::isnan(clipped.beta.value)) << clipped.beta.value;
+    EXPECT_TRUE(std::isnan(clipped.beta.sigma)) << clipped.beta.sigma;
+    EXPECT_NE(clipped.beta.note.find("at the search bound 0.25 of [0.05, 0.25]"), std::string::npos)
+        << clipped.beta.note;
+    // Inside the range it is measured as before.
+    const auto inside = sa::fit_scaling_collapse(histograms);
+    EXPECT_NEAR(inside.beta.value, 1.0 / 3.0, 4.0 * inside.beta.sigma);
+    EXPECT_TRUE(inside.beta.note.empty()) << inside.beta.note;
+}
+
+TEST(AnalysisBounds, FarTailExponentAtTheSearchBoundIsMissing) {
+    // ln Phi = -2 ln z - a z^8 - 2.676 z: gamma = 8 lies beyond [1, 6], whose
+    // chi2 falls all the way to 6. Three chains with small independent noise.
+    std::mt19937_64 random(3);
+    std::normal_distribution<double> noise(0.0, 0.01);
+    sa::FarTail tail;
+    tail.time = 100.0;
+    auto exact = [](double z) { return -2.0 * std::log(z) - 0.002 * std::pow(z, 8.0) - 2.676 * z; };
+    for (double z = 2.01; z < 3.5; z += 0.02) {
+        tail.z.push_back(z);
+        tail.log_phi.push_back(exact(z) + noise(random));
+        tail.log_phi_sigma.push_back(0.01);
+    }
+    for (int chain = 0; chain < 3; ++chain) {
+        std::vector<double> without;
+        for (double z : tail.z) without.push_back(exact(z) + noise(random));
+        tail.log_phi_leave_one_chain_out.push_back(without);
+    }
+    const auto gamma = sa::estimate_tail_exponent(tail, 2.0, 3.5);
+    EXPECT_TRUE(std::isnan(gamma.gamma.value)) << gamma.gamma.value;
+    EXPECT_TRUE(std::isnan(gamma.gamma.sigma)) << gamma.gamma.sigma;
+    EXPECT_NE(gamma.gamma.note.find("at the search bound 6 of [1, 6]"), std::string::npos) << gamma.gamma.note;
+    EXPECT_FALSE(gamma.window_systematic.known()) << gamma.window_systematic.value;
+    EXPECT_TRUE(std::isnan(gamma.fit.gamma_fit_sigma)) << gamma.fit.gamma_fit_sigma;
+}
+
+// With one realization the fit's weights (standard errors of <T> over
+// realizations) do not exist: the equal weights put in their place gave
+// chi2/dof = 0.00 and a width from sigma(ln T) = 1. Both are n/a; the
+// exponent (the unweighted fit) stands.
+TEST(AnalysisDecay, OneRealizationHasNoChi2NorFitWidth) {
+    std::mt19937_64 random(23);
+    const auto single = sa::fit_temperature_decay(synthetic_history(random, 2.0 / 3.0, 1), 10.0, 1e4);
+    EXPECT_NEAR(single.exponent, 2.0 / 3.0, 0.05);
+    EXPECT_TRUE(std::isnan(single.chi2_per_dof)) << single.chi2_per_dof;
+    EXPECT_TRUE(std::isnan(single.fit_sigma)) << single.fit_sigma;
+    const auto several = sa::fit_temperature_decay(synthetic_history(random, 2.0 / 3.0, 4), 10.0, 1e4);
+    EXPECT_TRUE(std::isfinite(several.chi2_per_dof));
+    EXPECT_TRUE(std::isfinite(several.fit_sigma));
 }

@@ -28,6 +28,7 @@ struct CollapseEvents {
     std::int64_t particles = 0;         // N
     std::size_t realizations = 0;       // realizations run
     double t_max = 0.0;                 // realizations that did not collapse ran to t_max
+    double velocity_threshold = 0.0;    // delta (root attribute velocity_threshold); > 0: no collapse can happen
     std::vector<double> time;           // one entry per collapsed realization
     std::vector<double> cluster_mass;   // particles in the collapsing cluster, likewise
 };

@@ -1,4 +1,4 @@
-// The tail exponent gamma of Phi(z) ~ exp(-a z^gamma) (Eq. (5); exact value 3
+// The tail exponent gamma of Phi(z) ~ exp(-a z^gamma) (Eq. (6); exact value 3
 // for the sticky gas, EB9 of python/exact_ballistic.py) from the far-tail
 // sampler's output (shockgas-tail, docs/far-tail.md).
 #pragma once
@@ -22,20 +22,24 @@ struct FarTail {
 };
 FarTail read_far_tail(const std::string& path);
 
-// Eq. (5) with the exact tail's prefactor and linear term (EB9):
+// Eq. (6) with the exact tail's prefactor and linear term (EB9):
 //   ln Phi = c - 2 ln z - a z^gamma - b z.
 // b is either fixed (default: EB9's |a_1|/(2D)^(1/3) = 2.676 at D = 1/3, a
 // subleading term known exactly) or free. At fixed gamma the model is
 // linear: in (c, a) with b fixed (weighted_linear_fit against z^gamma), in
 // (c, a, b) with b free (weighted_multilinear_fit); sigma = sigma(ln Phi).
-// gamma minimises chi2 over [1, 6]. With b free, a, b and gamma are
+// gamma minimises chi2 over [1, 6]; a minimum at 1 or 6 is the range, not
+// the data, and gamma is then NaN with the bound named. With b free, a, b and gamma are
 // strongly correlated: over z in [2, 6] gamma's error is ~4x larger. On the
 // exact Phi (python/exact_ballistic.py) the fixed-b fit gives gamma = 3.001
 // over [2, 5.5] and 3.013 over [2, 4] (the O(1/z^2) corrections of EB9).
 // The Delta chi2 = 1 width ignores that neighbouring bins share samples.
 struct TailExponentFit {
-    double gamma = 0.0;
-    double gamma_fit_sigma = 0.0;
+    SearchMinimum search;          // the minimisation over [1, 6]
+    double gamma = 0.0;            // NaN when the search ended at a bound of [1, 6], with gamma_note
+    std::string gamma_note;
+    double gamma_fit_sigma = 0.0;  // NaN (with gamma_fit_sigma_note) when gamma is, or chi2 is not curved up
+    std::string gamma_fit_sigma_note;
     double a = 0.0, b = 0.0, c = 0.0;
     double chi2_per_dof = 0.0;
     std::size_t points = 0;
@@ -58,10 +62,14 @@ double local_tail_exponent(const std::vector<double>& z, const std::vector<doubl
 // gamma over [z_lo, z_hi] with its statistical error from the delete-one-chain
 // jackknife (the chains are independent) and a window systematic: half the
 // spread (max - min)/2 of gamma when z_lo and z_hi move by +-window_shift.
+// gamma is missing when its search ends at a bound (the systematic too), its
+// sigma when a leave-one-chain-out search does; the systematic when a moved
+// window's does. window_note says when the data cut the window short.
 struct TailExponent {
     TailExponentFit fit;
     Estimate gamma;                 // value and jackknife sigma
     Measured window_systematic;     // missing when no shifted window holds enough bins
+    std::string window_note;        // "the window [2, 5.5] was clipped to the data: ..." or empty
     double total_sigma() const;     // statistical (+) systematic in quadrature
 };
 TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_hi, double window_shift = 0.25,

@@ -135,10 +135,28 @@ struct MultilinearFit {
 MultilinearFit weighted_multilinear_fit(std::span<const double> design, std::size_t parameters,
                                         std::span<const double> y, std::span<const double> sigma);
 
+// The argmin of a bounded one-parameter search, and whether it is a
+// measurement. A minimum found at an end of [lo, hi] is not: f still falls
+// beyond the range, so the argmin is the bound the search was given, not a
+// property of the data (it once printed gamma = 0.500 +- 0.000, 0.5 being the
+// lower end of the tail fit's range). Such a result is reported n/a
+// ("at the search bound 0.5 of [0.5, 8]"), never as the bound.
+struct SearchMinimum {
+    double argmin = std::numeric_limits<double>::quiet_NaN();
+    double lo = 0.0, hi = 0.0;  // the search range
+    bool at_bound = false;      // argmin is lo or hi, to the search's tolerance
+    // "at the search bound 0.5 of [0.5, 8]: chi2 still falls beyond it"
+    std::string bound_note() const;
+    // argmin, or missing with bound_note() when at a bound.
+    Measured measured() const;
+};
+
 // Golden-section minimisation of a one-parameter f on [lo, hi] after a grid
 // search (the nonlinear parameter of the fits that are linear in the rest).
+// Every bounded search of the analysis goes through here, and so does the
+// test of whether its result sits on a bound.
 template <class Function>
-double minimise(Function f, double lo, double hi, std::size_t grid = 60) {
+SearchMinimum minimise(Function f, double lo, double hi, std::size_t grid = 60) {
     double best = lo, best_value = std::numeric_limits<double>::infinity();
     const double step = (hi - lo) / static_cast<double>(grid);
     for (std::size_t i = 0; i <= grid; ++i) {
@@ -151,9 +169,10 @@ double minimise(Function f, double lo, double hi, std::size_t grid = 60) {
     }
     double a = std::max(lo, best - step), b = std::min(hi, best + step);
     const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
+    const double tolerance = 1e-7 * (1.0 + std::abs(best));
     double c = b - golden * (b - a), d = a + golden * (b - a);
     double fc = f(c), fd = f(d);
-    for (int iteration = 0; iteration < 60 && b - a > 1e-7 * (1.0 + std::abs(best)); ++iteration) {
+    for (int iteration = 0; iteration < 60 && b - a > tolerance; ++iteration) {
         if (fc < fd) {
             b = d;
             d = c;
@@ -168,8 +187,23 @@ double minimise(Function f, double lo, double hi, std::size_t grid = 60) {
             fd = f(d);
         }
     }
-    return (a + b) / 2.0;
+    SearchMinimum result;
+    result.argmin = (a + b) / 2.0;
+    result.lo = lo;
+    result.hi = hi;
+    // The bracket never leaves [lo, hi]: a minimum beyond an end shrinks it onto
+    // that end, so the argmin lies within the final bracket width of it. Ten
+    // times that width separates it from an interior minimum.
+    result.at_bound = result.argmin - lo <= 10.0 * tolerance || hi - result.argmin <= 10.0 * tolerance;
+    return result;
 }
+
+// The jackknife of an estimate found by a bounded search (minimise). value is
+// missing, with the bound named, when the search over every sample ends at a
+// bound; sigma is missing when a leave-one-out search does (the spread of
+// values clipped to the range is not an error bar). Otherwise as jackknife.
+Estimate bounded_jackknife(std::size_t samples,
+                           const std::function<SearchMinimum(std::optional<std::size_t>)>& estimator);
 
 // Mean and standard error of the mean (sample standard deviation / sqrt(n));
 // for one value the standard error is missing (NaN with a note).

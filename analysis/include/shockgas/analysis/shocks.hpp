@@ -1,4 +1,4 @@
-// Shocks in a velocity snapshot (Eq. 6, Fig. 5): the late profile is a
+// Shocks in a velocity snapshot (Eq. 7, Fig. 5): the late profile is a
 // sawtooth v = (x - q)/t, linear segments of slope 1/t between velocity
 // drops (shocks, i.e. clusters); the number of shocks is about N t^(-2/3).
 #pragma once
@@ -76,7 +76,7 @@ struct ShockProfile {
 ShockProfile find_shocks(const Snapshot& snapshot, const ShockRule& rule = {});
 
 // Over every snapshot at one time: mean shock count (SE over snapshots)
-// against N t^(-2/3), and the segment slope times t (Eq. 6 predicts 1 for a
+// against N t^(-2/3), and the segment slope times t (Eq. 7 predicts 1 for a
 // sparse segment; (1 - rho)/t with rho the segment's number density, since
 // x - q = v t for particles that have not collided). slope_times_t: mean
 // over the sparse segments (rho < 1/2; denser runs are clusters, counted in
@@ -87,7 +87,7 @@ struct ShockSummary {
     Estimate shocks;
     double expected_shocks = 0.0;  // N t^(-2/3)
     Estimate slope_times_t;
-    // Eq. (6) for particles: x - q = v t along a segment, so dv/dx = (1 - dq/dx)/t
+    // Eq. (7) for particles: x - q = v t along a segment, so dv/dx = (1 - dq/dx)/t
     // = (1 - rho)/t; slope t / (1 - rho) should be 1 (segments with rho < 1/2).
     Estimate density_corrected_slope_times_t;
     std::size_t segments = 0;        // sparse segments, behind both slope estimates

@@ -81,13 +81,15 @@ struct DecayFit {
     std::string exponent_sigma_note; // why exponent_sigma is NaN
     double fit_sigma = 0.0;          // from the weights alone (ignores time correlations; for comparison)
     double chi2_per_dof = 0.0;       // with sigma_k = standard error of ln <T(t_k)>
+    std::string fit_note;            // why fit_sigma and chi2_per_dof are NaN (one realization: no weights)
     double prefactor = 0.0;          // T t^alpha
 };
 
 // Fits ln <T>(t_k) = ln C - alpha ln t_k over t_lo <= t_k <= t_hi, weights
 // 1/sigma_k^2 with sigma_k = SE(T_k)/<T_k>; alpha's sigma is the jackknife
 // over realizations (the same weights in every leave-one-out fit), NaN for
-// R = 1 (nothing to leave out). Throws InsufficientData for fewer than 3
+// R = 1 (nothing to leave out). With R = 1 the weights are undefined too: the
+// fit uses equal weights, and fit_sigma and chi2_per_dof are NaN (fit_note). Throws InsufficientData for fewer than 3
 // points in the window.
 DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, double t_hi);
 

@@ -1,6 +1,6 @@
 // Estimators on the mass-weighted velocity distribution P(v, t): the scaling
 // collapse of Eq. (4) with its best exponent, the kurtosis of Phi, and the
-// tail exponent gamma of Eq. (5).
+// tail exponent gamma of Eq. (6).
 #pragma once
 
 #include <cstddef>
@@ -47,13 +47,15 @@ double collapse_distance(const std::vector<VelocityHistogram>& histograms, doubl
 double collapse_max_deviation(const std::vector<VelocityHistogram>& histograms, double beta);
 
 struct ScalingCollapse {
-    Estimate beta;                   // argmin D(beta), sigma from the group jackknife
-    double distance_at_best = 0.0;   // D(beta*)
+    Estimate beta;                   // argmin D(beta), sigma from the group jackknife; n/a at a search bound
+    Measured distance_at_best;       // D(beta*); missing when beta is
     double distance_at_one_third = 0.0;
     double max_deviation_at_one_third = 0.0;
     std::size_t jackknife_groups = 0;
 };
 // Minimises D over beta in [beta_min, beta_max] (grid, then golden section).
+// A minimum at either end of the range is not a measurement: beta is then
+// missing with the bound named (sigma likewise when a jackknife replica's is).
 ScalingCollapse fit_scaling_collapse(const std::vector<VelocityHistogram>& histograms, double beta_min = 0.05,
                                      double beta_max = 0.8);
 
@@ -70,20 +72,23 @@ ScaledDistribution scaled_distribution(const VelocityHistogram& histogram, doubl
 // mass-weighted (3 for a Gaussian); sigma from the group jackknife.
 Estimate velocity_kurtosis(const VelocityHistogram& histogram);
 
-// --- Eq. (5): Phi(z) ~ exp(-c |z|^gamma) for |z| >> 1 ---
+// --- Eq. (6): Phi(z) ~ exp(-c |z|^gamma) for |z| >> 1 ---
 // Both signs of z are folded. Tail bins: |z| >= tail_start * sqrt(<z^2>) whose
 // folded density has relative standard error (realization scatter) at most
 // max_relative_error. For each gamma, ln Phi = a - c |z|^gamma is linear in
 // (a, c) and fitted by weighted_linear_fit with sigma_{ln Phi} = SE/Phi; gamma
-// minimises chi2 (grid then golden section). sigma(gamma) from the group
-// jackknife over realizations; the Delta chi2 = 1 width is reported too.
+// minimises chi2 (grid then golden section) over [0.5, 8]. sigma(gamma) from the group
+// jackknife over realizations; the Delta chi2 = 1 width is reported too. A
+// minimum at 0.5 or 8 is the range, not the data: gamma and both widths are
+// then missing, with the bound named.
 struct TailRule {
     double tail_start = 1.5;         // in units of the rms of z: beyond the Gaussian-like bulk
     double max_relative_error = 0.3; // keeps ln(Phi +- SE) linear in SE (first-order propagation)
 };
 struct TailFit {
-    Estimate gamma;
-    double gamma_fit_sigma = 0.0;  // Delta chi2 = 1 (ignores bin-to-bin correlations)
+    Estimate gamma;                // missing at an end of the search range [0.5, 8] (not a measurement)
+    double gamma_fit_sigma = 0.0;  // Delta chi2 = 1 (ignores bin-to-bin correlations); NaN with the note below
+    std::string gamma_fit_sigma_note;
     double c = 0.0;                // Phi ~ exp(-c |z|^gamma), z in units of the rms of z
     double chi2_per_dof = 0.0;
     std::size_t bins = 0;
