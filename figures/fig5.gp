@@ -1,6 +1,6 @@
 # Fig. 5 of Ben-Naim et al. (1999): shock profile of the inelastic gas.
 # Top: density (mass per unit length, bins of width L/200); bottom: velocity
-# against position, with a line of slope 1/t (Eq. 6: v = (x - q)/t between shocks).
+# against position, with a line of slope 1/t (Eq. 7: v = (x - q)/t between shocks).
 load styledir.'/style.gp'
 load datadir.'/shocks.gp'
 load datadir.'/burgers.gp'
@@ -32,7 +32,7 @@ x0 = L / 2
 # singletons included, so it bounds the detector's count from above), and the inviscid
 # Burgers shocks from the same initial condition with the detector's rule (drop >= v_rms),
 # the like-for-like comparison for the detector.
-# A short reference segment of slope 1/t (Eq. 6) above the profile, as long
+# A short reference segment of slope 1/t (Eq. 7) above the profile, as long
 # as a typical tooth (L / N t^(-2/3)), so it can be compared with the teeth.
 tooth = L / s_shocks0_expected_shock_count
 stats datadir.'/profile.dat' index 0 using 2 nooutput

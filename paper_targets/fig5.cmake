@@ -1,5 +1,5 @@
 # Fig. 5: density and velocity profile at the snapshot time; shocks counted and
-# the slopes of the segments between them fitted (Eq. 6: slope 1/t).
+# the slopes of the segments between them fitted (Eq. 7: slope 1/t).
 shockgas_figure_runs(fig5)
 add_custom_command(
   OUTPUT "${fig5_DIR}/profile.dat" "${fig5_DIR}/shocks.h5" "${fig5_DIR}/shocks.gp"

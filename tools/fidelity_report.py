@@ -330,7 +330,7 @@ if os.path.exists(path):
     d = attrs(path, "shocks0")
     print(f"| Fig. 5 shocks at t = {d['time']:g} | {d['shock_count']:.0f} | N t^(−2/3) = {d['expected_shock_count']:.1f} |")
     print(f"| Fig. 5 segment slope × t, density-corrected | {d['density_corrected_slope_times_t']:.2f} ± "
-          f"{d['density_corrected_slope_times_t_sigma']:.2f} | 1 (Eq. 6) |")
+          f"{d['density_corrected_slope_times_t_sigma']:.2f} | 1 (Eq. 7) |")
 
 path = os.path.join(base, "fig_tradeoff", "tradeoff.h5")
 if os.path.exists(path):

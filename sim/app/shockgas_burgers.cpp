@@ -1,6 +1,6 @@
 // shockgas-burgers: the Burgers velocity profile from the initial condition of
 // a particle run, for Fig. 5 (TARGETS.md: Burgers with nu -> 0 is the sticky
-// gas; shocks <-> clusters, v = (x - q)/t between shocks, Eq. 6).
+// gas; shocks <-> clusters, v = (x - q)/t between shocks, Eq. 7).
 //
 //   shockgas-burgers --run RUN.h5 [--realization k] [--time t] [--cells-per-particle k]
 //                    [--viscosity nu1,nu2,...] [--points P] --output profile.dat

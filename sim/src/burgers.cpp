@@ -178,7 +178,7 @@ double Solver::face_slope(std::int64_t a, std::int64_t b, double t) const {
 
 std::vector<std::int64_t> Solver::lower_hull(double t) const {
     // Lower convex hull (monotone chain) of the nodes (q_c, Y_c) over the copies of the ring
-    // that can hold a minimiser of G_x for x in the central copy. Eq. (6) via Hopf-Lax:
+    // that can hold a minimiser of G_x for x in the central copy. Eq. (7) via Hopf-Lax:
     // argmin_q G_x(q) = argmin_q Y(q) - x q, the hull vertex whose faces bracket slope x.
     const double h = grid_.cell_width(), r = reach(t, 0.0);
     const std::int64_t first = floor_to_int(-r / h) - 1;
@@ -228,7 +228,7 @@ std::vector<double> Solver::inviscid(const std::vector<double>& x, double t) con
                 q = q_in;
             }
         }
-        v[j] = mean_velocity_ + (xj - q) / t;  // Eq. (6): v = (x - q)/t
+        v[j] = mean_velocity_ + (xj - q) / t;  // Eq. (7): v = (x - q)/t
     }
     return v;
 }

@@ -121,7 +121,7 @@ TEST(Figures, VelocityDistributionsCollapseWithOneThird) {
 }
 
 TEST(Figures, ShockSegmentsHaveSlopeOneOverT) {
-    // Eq. (6): between shocks v = (x - q)/t; for particles of density rho in a
+    // Eq. (7): between shocks v = (x - q)/t; for particles of density rho in a
     // segment the slope is (1 - rho)/t (analysis/README.md, "Shocks").
     const double slope = attribute("fig5/shocks.h5", "shocks0", "density_corrected_slope_times_t");
     const double sigma = attribute("fig5/shocks.h5", "shocks0", "density_corrected_slope_times_t_sigma");

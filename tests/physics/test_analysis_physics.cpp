@@ -124,7 +124,7 @@ TEST(AnalysisPhysics, VelocityDistributionCollapsesWithOneThird) {
     for (const auto& h : histograms) {
         const auto kurtosis = sa::velocity_kurtosis(h);
         std::printf("%s: kurtosis %.3f +- %.3f\n", h.label.c_str(), kurtosis.value, kurtosis.sigma);
-        // "Deviates only slightly from a Gaussian" (text after Eq. 5): not a
+        // "Deviates only slightly from a Gaussian" (text after Eq. 6): not a
         // statistical bound but the paper's qualitative claim, read as a kurtosis
         // within 5% of the Gaussian 3 plus the statistical error.
         constexpr double slight_deviation = 0.15;
@@ -150,7 +150,7 @@ TEST(AnalysisPhysics, TailExponentAtQuickFidelity) {
                 tail.z_hi);
     // What holds at this fidelity: the tail is no fatter than Gaussian.
     EXPECT_GT(tail.gamma.value, 2.0 - k_sigma * tail.gamma.sigma);
-    // What the paper claims (Eq. 5, gamma = 3) is NOT reached: within 4.4 rms
+    // What the paper claims (Eq. 6, gamma = 3) is NOT reached: within 4.4 rms
     // the tail is Gaussian (gamma = 2.0 within 1-2 sigma); the cubic term of
     // Frachebourg's exact Phi dominates only further out (README, "Tail").
     // This records the shortfall so that a change in it is noticed.
@@ -166,7 +166,7 @@ TEST(AnalysisPhysics, SawtoothSegmentsHaveSlopeOneOverT) {
                 summary.slope_times_t.value, summary.slope_times_t.sigma, summary.segments);
     std::printf("density-corrected slope x t / (1 - rho) = %.3f +- %.3f\n", summary.density_corrected_slope_times_t.value,
                 summary.density_corrected_slope_times_t.sigma);
-    // Eq. (6): v = (x - q)/t; for the particles of a segment of density rho the
+    // Eq. (7): v = (x - q)/t; for the particles of a segment of density rho the
     // slope is (1 - rho)/t, so slope t / (1 - rho) = 1.
     EXPECT_NEAR(summary.density_corrected_slope_times_t.value, 1.0,
                 k_sigma * summary.density_corrected_slope_times_t.sigma);

@@ -17,7 +17,7 @@ namespace {
 
 // Periodic step: v0 = +1 on [0, L/2), -1 on [L/2, L). Mean zero. Inviscid solution for
 // t < L/4: a stationary shock at L/2 (Rankine-Hugoniot speed (1 + (-1))/2 = 0) and a
-// centred rarefaction at x = 0, v = x/t for |x| < t (Eq. 6 with q = 0).
+// centred rarefaction at x = 0, v = x/t for |x| < t (Eq. 7 with q = 0).
 Grid step_grid(double length, std::int64_t cells) {
     Grid grid;
     grid.ring_length = length;
@@ -127,7 +127,7 @@ TEST(Burgers, GridRefinementConvergesForSmoothData) {
         }
         const Solver solver(grid);
         error.push_back(std::abs(solver.inviscid({x}, t)[0] - exact));
-        // v = (x - q)/t with q resolved to one cell: |error| <= h/t (Eq. 6).
+        // v = (x - q)/t with q resolved to one cell: |error| <= h/t (Eq. 7).
         EXPECT_LE(error.back(), length / static_cast<double>(cells) / t);
         const auto shocks = solver.shocks(t, 0.05);
         ASSERT_EQ(shocks.size(), 1u);

@@ -1,6 +1,6 @@
 // The Burgers equation v_t + v v_x = nu v_xx on a periodic interval, from the
 // initial velocity field of a particle run (TARGETS.md: nu -> 0 gives the
-// sticky gas; shocks <-> clusters, v = (x - q)/t between shocks, Eq. 6).
+// sticky gas; shocks <-> clusters, v = (x - q)/t between shocks, Eq. 7).
 //
 // Initial data: piecewise constant on M equal cells of width h = L/M. The
 // particles of an InitialCondition (spacing L/N, cell of particle i centred on
@@ -11,7 +11,7 @@
 //
 // Both solutions use the Hopf-Lax form of the Lagrangian picture:
 //   G_x(q) = (x - q)^2 / (2t) + Phi0(q),
-// (a) inviscid: q*(x) = argmin_q G_x(q), v = (x - q*)/t            (Eq. 6);
+// (a) inviscid: q*(x) = argmin_q G_x(q), v = (x - q*)/t            (Eq. 7);
 // (b) viscous (Hopf-Cole): v = int (x-q)/t e^{-G_x/(2 nu)} dq / int e^{-G_x/(2 nu)} dq,
 //     i.e. v = -2 nu d ln u/dx with u = int exp(-(x-q)^2/(4 nu t) - Phi0(q)/(2 nu)) dq,
 //     done cell by cell in closed form (G_x is quadratic on each cell) and summed as a
