@@ -193,9 +193,34 @@ int main(int argc, char** argv) {
         shockgas::validate(p);
         if (checkpoint_file.empty()) checkpoint_file = shockgas::checkpoint_path_for(output);
         const std::string base_checkpoint = checkpoint_file;
+        const bool terminal = isatty(STDERR_FILENO) != 0;
+        checkpoint.note = [&session, terminal](const std::string& text) {
+            const std::string line = session.ranks() > 1
+                                         ? fmt::format("shockgas-sim[rank {}]: {}", session.rank(), text)
+                                         : fmt::format("shockgas-sim: {}", text);
+            // On a terminal, overwrite the progress line rather than append to it.
+            if (terminal)
+                fmt::print(stderr, "\r{:<110}\n", line);
+            else
+                fmt::print(stderr, "{}\n", line);
+        };
         if (session.is_root()) {
             shockgas::h5::check_writable(output);
             shockgas::h5::check_not_an_input(output, {init_given});
+            // Without --resume, a checkpoint that --resume would continue (this
+            // path's, or any rank's or gathered file of it) is an interrupted
+            // run's work: refused before any work, whatever the interval (with
+            // checkpoints the run would overwrite and at its end remove it;
+            // without, redo it). A damaged one is passed over with a warning.
+            if (!checkpoint.resume) {
+                std::vector<std::string> files;  // this job's own first: the line names the first found
+                if (session.ranks() == 1) files.push_back(base_checkpoint);
+                for (int k = 0; k < session.ranks() && session.ranks() > 1; ++k)
+                    files.push_back(shockgas::rank_checkpoint_path(base_checkpoint, k));
+                for (const auto& other : shockgas::other_block_checkpoints(base_checkpoint, ""))
+                    if (std::find(files.begin(), files.end(), other) == files.end()) files.push_back(other);
+                for (const auto& warning : shockgas::check_no_interrupted_run(files, p)) checkpoint.note(warning);
+            }
             // --resume refuses a checkpoint of another run before any work.
             // Each rank checks the files it reads as it loads them; under MPI
             // rank 0 first checks them all (every rank's own and the ones
@@ -240,17 +265,6 @@ int main(int argc, char** argv) {
             // file that is not a checkpoint.
             shockgas::check_checkpoint_path(checkpoint.path, {{"output", output}, {"init file", init_given}});
         }
-        const bool terminal = isatty(STDERR_FILENO) != 0;
-        checkpoint.note = [&session, terminal](const std::string& text) {
-            const std::string line = session.ranks() > 1
-                                         ? fmt::format("shockgas-sim[rank {}]: {}", session.rank(), text)
-                                         : fmt::format("shockgas-sim: {}", text);
-            // On a terminal, overwrite the progress line rather than append to it.
-            if (terminal)
-                fmt::print(stderr, "\r{:<110}\n", line);
-            else
-                fmt::print(stderr, "{}\n", line);
-        };
 
         // Memory: estimated before anything is allocated (memory.hpp).
         if (mine.realizations > 0) {

@@ -6,6 +6,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
+#include <optional>
 #include <filesystem>
 
 #include <fcntl.h>
@@ -158,8 +160,11 @@ std::string realization_range(const SimulationParameters& p) {
 
 }  // namespace
 
-void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoint, const SimulationParameters& run,
-                             bool check_realizations) {
+namespace {
+
+// What makes checkpoint another run's than `run` ("t-max 500 vs 1000"), empty
+// if none: check_checkpoint_of_run's rule.
+std::string run_differences(const Checkpoint& checkpoint, const SimulationParameters& run, bool check_realizations) {
     std::vector<std::string> differences;
     if (std::string physics = parameter_differences(checkpoint.parameters, run); !physics.empty())
         differences.push_back(std::move(physics));
@@ -167,17 +172,109 @@ void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoi
     if (check_realizations && (c.first_realization < run.first_realization ||
                                c.first_realization + c.realizations > run.first_realization + run.realizations))
         differences.push_back(fmt::format("realizations {} vs {}", realization_range(run), realization_range(c)));
+    return fmt::format("{}", fmt::join(differences, ", "));
+}
+
+// The checkpoint whose generation file is (PATH for PATH or PATH.previous).
+std::string checkpoint_base(std::string file) {
+    const std::string suffix = previous_checkpoint_path("");
+    if (file.size() > suffix.size() && file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0)
+        file.resize(file.size() - suffix.size());
+    return file;
+}
+
+// How far a checkpoint got: "t = 123.4 of 1000", "1 of 4 realizations done,
+// the furthest at t = 80.5 of 1000" (the furthest engine, as resuming says).
+std::string checkpoint_progress(const Checkpoint& checkpoint) {
+    const SimulationParameters& c = checkpoint.parameters;
+    double t = 0.0;
+    for (const auto& [k, snapshot] : checkpoint.engines)
+        if (const auto it = snapshot.reals.find("scalars"); it != snapshot.reals.end() && !it->second.empty())
+            t = std::max(t, it->second.front());
+    const auto& status = checkpoint.result.realization_status;
+    const auto done = std::count_if(status.begin(), status.end(), [](std::int64_t s) {
+        return s == static_cast<std::int64_t>(RealizationStatus::complete) ||
+               s == static_cast<std::int64_t>(RealizationStatus::collapsed);
+    });
+    if (c.realizations == 1 && done == 0) return fmt::format("t = {:.6g} of {}", t, c.t_max);
+    std::string text = fmt::format("{} of {} realizations done", done, c.realizations);
+    if (!checkpoint.engines.empty()) text += fmt::format(", the furthest at t = {:.6g} of {}", t, c.t_max);
+    return text;
+}
+
+// "2026-11-26 21:45 UTC": when file was last written.
+std::string saved_at(const std::string& file) {
+    struct stat info {};
+    std::tm utc{};
+    if (::stat(file.c_str(), &info) != 0 || gmtime_r(&info.st_mtime, &utc) == nullptr) return "at an unknown time";
+    char text[32] = {};
+    std::strftime(text, sizeof text, "%Y-%m-%d %H:%M UTC", &utc);
+    return text;
+}
+
+}  // namespace
+
+std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>& files,
+                                                  const SimulationParameters& run) {
+    std::vector<std::string> warnings, bases;
+    std::optional<std::pair<std::string, Checkpoint>> found;  // the first generation holding a run
+    for (const std::string& name : files)
+        for (const std::string& file : {name, previous_checkpoint_path(name)}) {
+            const h5::Probe probed = h5::probe(file);
+            if (probed.kind == h5::Probe::Kind::absent) continue;
+            if (probed.kind != h5::Probe::Kind::damaged &&
+                (probed.kind != h5::Probe::Kind::hdf5 || !probed.holds("checkpoint")))
+                continue;  // not a checkpoint: check_checkpoint_path's refusal, where this run writes
+            try {
+                Checkpoint checkpoint = read_checkpoint(file);
+                if (std::find(bases.begin(), bases.end(), checkpoint_base(file)) == bases.end())
+                    bases.push_back(checkpoint_base(file));
+                if (!found) found.emplace(file, std::move(checkpoint));
+            } catch (const std::exception& error) {  // damaged, as load_checkpoint says it
+                const std::string what = error.what();
+                warnings.push_back(fmt::format(
+                    "warning: {}; it cannot be continued: starting from t = 0",
+                    what.find(file) != std::string::npos ? what
+                                                         : fmt::format("checkpoint '{}' is damaged: {}", file, what)));
+            }
+        }
+    if (!found) return warnings;
+    const auto& [file, checkpoint] = *found;
+    // A running process's checkpoint is not an interrupted run: say what the lock says.
+    { const CheckpointLock running(checkpoint_base(file)); }
+    std::vector<std::string> names;
+    for (const std::string& base : bases) {
+        names.push_back(fmt::format("'{}'", base));
+        names.push_back(fmt::format("'{}'", previous_checkpoint_path(base)));
+    }
+    const std::string remove =
+        names.size() == 2 ? fmt::format("{} and {}", names[0], names[1])
+                          : fmt::format("{} and {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
+    const std::string at = fmt::format("{}, saved {}", checkpoint_progress(checkpoint), saved_at(file));
+    if (checkpoint.version != build_info().version)
+        throw InputError(fmt::format("'{}' holds an interrupted run of shockgas {} ({}), which only that version can "
+                                     "continue (this is {}): remove {} to start anew",
+                                     file, checkpoint.version, at, build_info().version, remove));
+    if (const std::string differences = run_differences(checkpoint, run, true); !differences.empty())
+        throw InputError(fmt::format("'{}' holds an interrupted run with other parameters ({} in the checkpoint; {}): "
+                                     "remove {} to start anew, or choose another -o/--checkpoint",
+                                     file, differences, at, remove));
+    throw InputError(fmt::format("'{}' holds an interrupted run ({}): continue it with --resume, or remove {} to start "
+                                 "anew",
+                                 file, at, remove));
+}
+
+void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoint, const SimulationParameters& run,
+                             bool check_realizations) {
+    const std::string differences = run_differences(checkpoint, run, check_realizations);
     if (differences.empty()) return;
     // Both generations of the checkpoint this file is one of.
-    std::string base = file;
-    const std::string suffix = previous_checkpoint_path("");
-    if (base.size() > suffix.size() && base.compare(base.size() - suffix.size(), suffix.size(), suffix) == 0)
-        base.resize(base.size() - suffix.size());
+    const std::string base = checkpoint_base(file);
     throw InputError(fmt::format(
         "checkpoint '{}' belongs to a run with other parameters: {} in the checkpoint; --resume continues only "
         "the same run, so nothing was done: to continue it, give its parameters; to start anew, remove '{}' and "
         "'{}', or choose another -o/--checkpoint",
-        file, fmt::join(differences, ", "), base, previous_checkpoint_path(base)));
+        file, differences, base, previous_checkpoint_path(base)));
 }
 
 void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run) {

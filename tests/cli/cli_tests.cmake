@@ -193,8 +193,9 @@ set_tests_properties(cli.passthrough_run PROPERTIES LABELS cli
 # A run stopped by a signal: its last progress line must not count the stopped
 # realization as done ("1/1 100.0% ETA 0 s", as it did until 2026-11-26). Whether a
 # line follows the stop depends on the interval (a loaded machine may print none).
+# (It leaves a checkpoint, which would refuse its next run without --resume: removed first.)
 add_test(NAME cli.progress_after_interrupt
-         COMMAND bash -c "timeout -s INT 2 \"$0\" -N 100 -t 1e300 -R 1 -q -j 1 --progress-interval 1 -o \"$1\" 2>&1; true"
+         COMMAND bash -c "rm -f \"$1.checkpoint\" \"$1.checkpoint.previous\"; timeout -s INT 2 \"$0\" -N 100 -t 1e300 -R 1 -q -j 1 --progress-interval 1 -o \"$1\" 2>&1; true"
                  ${_sim} "${_cli_dir}/progress_interrupt.h5")
 set_tests_properties(cli.progress_after_interrupt PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "shockgas-sim: interrupted"
@@ -283,7 +284,7 @@ if(SHOCKGAS_PYTHON)
   set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 300)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock resume_other_parameters
-                      memory_fewer_at_once)
+                      rerun_without_resume memory_fewer_at_once)
   add_test(NAME cli.faults.${_case}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/faults_test.sh ${_case} ${_sim} "${_cli_dir}/faults"
                    "${SHOCKGAS_PYTHON}" ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py)

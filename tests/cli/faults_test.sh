@@ -10,10 +10,16 @@
 #                         with a note; one of a live process is kept
 #   lock                  a second --resume of a run in progress is refused with one line naming the
 #                         holder; after the holder is killed with kill -9, a run on it works again
+#                         (its checkpoint first refuses a run without --resume as an interrupted run)
 #   resume_other_parameters  --resume with a checkpoint of a run with other parameters (-t 500 for -t 1000):
 #                         refused before any work, exit 2, one line naming "t-max 500 vs 1000 in the
 #                         checkpoint" and how to start anew; both generations kept; --resume with the
 #                         right parameters then continues from them
+#   rerun_without_resume  the interrupted run's command again without --resume (checkpoints on, or
+#                         --checkpoint-interval 0): refused before any work, exit 2, one line giving how
+#                         far the checkpoint got and when it was saved, --resume and how to start anew;
+#                         both generations and the output kept. A damaged newest generation: refused
+#                         naming the older one; both damaged: one warning each, the run starts from t = 0
 #   memory_fewer_at_once  a --max-memory budget that fits one realization but not two: runs them one at
 #                         a time, says so, and completes
 set -u
@@ -96,9 +102,16 @@ lock)
   [ "$(message_lines second.err)" -eq 1 ] || fail "expected one line from the refused run"
   grep -q "error: checkpoint 'run.h5.checkpoint' is in use by another running shockgas-sim (process $first)" second.err ||
     fail "the refusal does not name the checkpoint and the process holding it"
-  # The lock dies with its holder, even with kill -9 (a shorter run over the same checkpoint, without
-  # --resume: with it, the checkpoint of the longer run would be refused as another run's).
-  "$sim" -N 100000 -r 0.9 -d 0.01 -t 10 -R 1 -q --seed 3 -o run.h5 2>third.err ||
+  # The lock dies with its holder, even with kill -9: its lock file is left, yet a run on the same
+  # checkpoint is not refused for it. (The killed run's checkpoint refuses a run without --resume as
+  # an interrupted run, and --resume would continue its t = 1e6: it is removed, as that refusal says,
+  # and a short run starts anew beside the dead holder's lock file.)
+  [ -e run.h5.checkpoint.lock ] || fail "kill -9 left no lock file: the test did not test"
+  "$sim" -N 100000 -r 0.9 -d 0.01 -t 10 -R 1 -q --seed 3 -o run.h5 2>third.err
+  grep -q "error: 'run.h5.checkpoint' holds an interrupted run" third.err ||
+    fail "the dead holder's checkpoint was not refused as an interrupted run"
+  rm -f run.h5.checkpoint run.h5.checkpoint.previous
+  "$sim" -N 100000 -r 0.9 -d 0.01 -t 10 -R 1 -q --seed 3 -o run.h5 2>fourth.err ||
     fail "a run after the holder died was refused"
   ;;
 resume_other_parameters)
@@ -121,6 +134,46 @@ resume_other_parameters)
   cmp -s kept.h5 ck3.h5 || fail "the refused run wrote an output"
   "$sim" "${args[@]}" -t 1000 --checkpoint-interval 0 --resume -o ck3.h5 2>resumed.err || fail "the right --resume failed"
   grep -q "resuming from 'ck3.h5.checkpoint'" resumed.err || fail "the right --resume did not use the checkpoint"
+  ;;
+rerun_without_resume)
+  args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99 -t 1000)
+  run_until_checkpoints 2 INT first.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o rr.h5
+  [ -e rr.h5.checkpoint ] && [ -e rr.h5.checkpoint.previous ] || fail "the interrupted run left no two generations"
+  cp rr.h5.checkpoint kept.checkpoint
+  cp rr.h5.checkpoint.previous kept.previous
+  cp rr.h5 kept.h5  # the interrupted output
+  saved='saved [0-9]{4}-[0-9]{2}-[0-9]{2} [0-9]{2}:[0-9]{2} UTC'
+  progress='[0-2] of 2 realizations done(, the furthest at t = [0-9.e+]+ of 1000)?'
+  # The same command without --resume, with checkpoints (it would overwrite both generations and
+  # remove them at its end) and without (it would redo the hours the checkpoint holds).
+  for interval in 0.1 0; do
+    timeout 100 "$sim" "${args[@]}" --checkpoint-interval $interval -o rr.h5 2>again$interval.err
+    status=$?
+    [ "$status" -eq 2 ] ||
+      fail "a rerun without --resume (--checkpoint-interval $interval) over an interrupted run's checkpoint was not refused (exit $status)"
+    [ "$(wc -l <again$interval.err)" -eq 1 ] || fail "expected one line from the refused run"
+    grep -Eq "^shockgas-sim: error: 'rr\.h5\.checkpoint' holds an interrupted run \($progress, $saved\): continue it with --resume, or remove 'rr\.h5\.checkpoint' and 'rr\.h5\.checkpoint\.previous' to start anew$" again$interval.err ||
+      fail "the refusal does not say what the checkpoint holds, --resume and how to start anew"
+    cmp -s kept.checkpoint rr.h5.checkpoint && cmp -s kept.previous rr.h5.checkpoint.previous ||
+      fail "the refused run changed the checkpoints"
+    cmp -s kept.h5 rr.h5 || fail "the refused run wrote an output"
+  done
+  # A damaged newest generation: the older one still holds the run.
+  truncate -s $(( $(stat -c %s rr.h5.checkpoint) / 2 )) rr.h5.checkpoint
+  "$sim" "${args[@]}" --checkpoint-interval 0.1 -o rr.h5 2>damaged.err
+  status=$?
+  [ "$status" -eq 2 ] || fail "the older generation of a damaged checkpoint was not protected (exit $status)"
+  [ "$(wc -l <damaged.err)" -eq 1 ] || fail "expected one line from the refused run"
+  grep -Eq "^shockgas-sim: error: 'rr\.h5\.checkpoint\.previous' holds an interrupted run \($progress, $saved\): continue it with --resume, or remove 'rr\.h5\.checkpoint' and 'rr\.h5\.checkpoint\.previous' to start anew$" damaged.err ||
+    fail "the refusal does not name the older generation"
+  cmp -s kept.previous rr.h5.checkpoint.previous || fail "the refused run changed the older generation"
+  # Both damaged: nothing can be continued (as --resume would say), so the run starts, saying so.
+  truncate -s $(( $(stat -c %s rr.h5.checkpoint.previous) / 2 )) rr.h5.checkpoint.previous
+  "$sim" -N 2000 -r 0.8 -d 0.005 -R 1 -q -s 99 -t 50 --checkpoint-interval 0.1 -o rr.h5 2>both.err ||
+    fail "a run over two damaged checkpoint generations failed"
+  [ "$(grep -c "^shockgas-sim: warning: .*'rr\.h5\.checkpoint\(\.previous\)\?' .*; it cannot be continued: starting from t = 0$" both.err)" -eq 2 ] ||
+    fail "expected one warning per damaged generation"
+  [ ! -e rr.h5.checkpoint ] && [ ! -e rr.h5.checkpoint.previous ] || fail "the finished run left checkpoints"
   ;;
 memory_fewer_at_once)
   # 100000 particles: about 25 MiB per running realization with checkpoints (docs/reliability.md); 60 MiB

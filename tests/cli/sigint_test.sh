@@ -4,7 +4,7 @@
 # status = interrupted (read back with h5dump if present, else strings).
 set -u
 sim=$1 output=$2
-rm -f "$output"
+rm -f "$output" "$output.checkpoint" "$output.checkpoint.previous"  # a fresh run: an earlier run's interrupted checkpoint would refuse it (no --resume)
 "$sim" -N 200000 -r 0.9 -d 0.01 -t 1e6 -R 1 -q -o "$output" 2>"$output.stderr" &
 pid=$!
 sleep 1.5

@@ -47,6 +47,19 @@ void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoi
 // (shockgas-sim's rank 0, before the ranks start).
 void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run);
 
+// A run without --resume, before any work: throws InputError if a generation
+// of `files` (the run's checkpoint path and every file a --resume of it would
+// read or gather from) holds a checkpoint, whatever its run or code version:
+// the run would redo what it holds, overwrite it and remove it at its end. The
+// one line says how far it got, when it was saved, and --resume (when this run
+// can continue it) or which files to remove to start anew. A lock held by a
+// running process is refused as CheckpointLock refuses it. A damaged
+// generation (as --resume passes over) does not refuse: returned, one warning
+// line each, for the caller to print. Files that are not checkpoints are left
+// to check_checkpoint_path.
+std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>& files,
+                                                  const SimulationParameters& run);
+
 // The newest usable checkpoint of the run with these parameters and sample
 // times, from path or else its previous generation; nothing if there is none,
 // or if it was written by another code version (noted). A damaged one is
