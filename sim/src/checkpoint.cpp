@@ -148,9 +148,6 @@ std::string layout_problem(const Checkpoint& c, const SimulationParameters& p, c
     return "";
 }
 
-}  // namespace
-
-namespace {
 
 // "3", "0..9": a block of realizations, for messages.
 std::string realization_range(const SimulationParameters& p) {
@@ -158,9 +155,23 @@ std::string realization_range(const SimulationParameters& p) {
                                : fmt::format("{}..{}", p.first_realization, p.first_realization + p.realizations - 1);
 }
 
-}  // namespace
+// Why `file`, a checkpoint generation, could not be read: the reader's message
+// when it names the file, else "checkpoint 'FILE' is damaged: ...".
+std::string damage_of(const std::string& file, const std::exception& error) {
+    const std::string what = error.what();
+    return what.find(file) != std::string::npos ? what : fmt::format("checkpoint '{}' is damaged: {}", file, what);
+}
 
-namespace {
+// "'a' and 'a.previous'", "'a', 'a.previous', 'b' and 'b.previous'": both
+// generations of each checkpoint, for a message saying what to remove.
+std::string both_generations(const std::vector<std::string>& bases) {
+    std::vector<std::string> names;
+    for (const std::string& base : bases) {
+        names.push_back(fmt::format("'{}'", base));
+        names.push_back(fmt::format("'{}'", previous_checkpoint_path(base)));
+    }
+    return fmt::format("{} and {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
+}
 
 // What makes checkpoint another run's than `run` ("t-max 500 vs 1000"), empty
 // if none: check_checkpoint_of_run's rule.
@@ -231,25 +242,15 @@ std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>
                     bases.push_back(checkpoint_base(file));
                 if (!found) found.emplace(file, std::move(checkpoint));
             } catch (const std::exception& error) {  // damaged, as load_checkpoint says it
-                const std::string what = error.what();
-                warnings.push_back(fmt::format(
-                    "warning: {}; it cannot be continued: starting from t = 0",
-                    what.find(file) != std::string::npos ? what
-                                                         : fmt::format("checkpoint '{}' is damaged: {}", file, what)));
+                warnings.push_back(
+                    fmt::format("warning: {}; it cannot be continued: starting from t = 0", damage_of(file, error)));
             }
         }
     if (!found) return warnings;
     const auto& [file, checkpoint] = *found;
     // A running process's checkpoint is not an interrupted run: say what the lock says.
     { const CheckpointLock running(checkpoint_base(file)); }
-    std::vector<std::string> names;
-    for (const std::string& base : bases) {
-        names.push_back(fmt::format("'{}'", base));
-        names.push_back(fmt::format("'{}'", previous_checkpoint_path(base)));
-    }
-    const std::string remove =
-        names.size() == 2 ? fmt::format("{} and {}", names[0], names[1])
-                          : fmt::format("{} and {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
+    const std::string remove = both_generations(bases);
     const std::string at = fmt::format("{}, saved {}", checkpoint_progress(checkpoint), saved_at(file));
     if (checkpoint.version != build_info().version)
         throw InputError(fmt::format("'{}' holds an interrupted run of shockgas {} ({}), which only that version can "
@@ -268,13 +269,11 @@ void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoi
                              bool check_realizations) {
     const std::string differences = run_differences(checkpoint, run, check_realizations);
     if (differences.empty()) return;
-    // Both generations of the checkpoint this file is one of.
-    const std::string base = checkpoint_base(file);
     throw InputError(fmt::format(
         "checkpoint '{}' belongs to a run with other parameters: {} in the checkpoint; --resume continues only "
-        "the same run, so nothing was done: to continue it, give its parameters; to start anew, remove '{}' and "
-        "'{}', or choose another -o/--checkpoint",
-        file, differences, base, previous_checkpoint_path(base)));
+        "the same run, so nothing was done: to continue it, give its parameters; to start anew, remove {}, or "
+        "choose another -o/--checkpoint",
+        file, differences, both_generations({checkpoint_base(file)})));
 }
 
 void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run) {
@@ -307,10 +306,7 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
         try {
             checkpoint = read_checkpoint(candidate);
         } catch (const std::exception& error) {  // h5::Error (checksums, truncation) or InputError (layout)
-            const std::string what = error.what();
-            damaged.push_back(what.find(candidate) != std::string::npos
-                                  ? what
-                                  : fmt::format("checkpoint '{}' is damaged: {}", candidate, what));
+            damaged.push_back(damage_of(candidate, error));
             continue;
         }
         // Another run: refused, before any work (the run would overwrite
