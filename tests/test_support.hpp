@@ -70,6 +70,19 @@ inline CheckpointOptions frequent_checkpoints(const std::string& name, std::atom
     return options;
 }
 
+// Makes the run of `options` stop (as Ctrl-C does) once `count` checkpoints
+// are written: from the note of that checkpoint, in the thread that wrote it,
+// so that the rest of the run is still ahead (a polling thread waiting for a
+// later one could be scheduled after the run had ended on a loaded machine:
+// 1 run in 24 failed so).
+inline void stop_after_checkpoints(CheckpointOptions& options, const std::atomic<int>& written,
+                                   std::atomic<bool>& stop, int count) {
+    options.note = [&written, &stop, count, note = options.note](const std::string& text) {
+        note(text);
+        if (written.load() >= count) stop.store(true);
+    };
+}
+
 // The ensemble run of `p` with checkpoints every 20 ms (named `name`) against
 // the same run without: pausing a realization to deposit its state must change
 // nothing, bit for bit. Returns both results for further checks.

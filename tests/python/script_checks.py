@@ -11,6 +11,30 @@ SOURCE = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__
 PYTHON = sys.executable  # the interpreter ctest runs the test with (SHOCKGAS_PYTHON): numpy, scipy, h5py
 
 
+SKIP = 77  # the tests' SKIP_RETURN_CODE (tests/python/python_tests.cmake)
+
+
+def require(*modules):
+    """Imports each module and returns them in order; when one is missing (a machine without Debian's
+    python3-numpy, -scipy or -h5py) prints "SKIP: needs a, b and c (<why>)" and exits SKIP, so ctest
+    reports the test skipped rather than failed."""
+    import importlib
+    try:
+        return [importlib.import_module(name) for name in modules]
+    except ImportError as error:  # pragma: no cover - depends on the machine
+        names = ", ".join(modules[:-1]) + " and " + modules[-1] if len(modules) > 1 else modules[0]
+        print("SKIP: needs %s (%s)" % (names, error))
+        sys.exit(SKIP)
+
+
+def arguments(count):
+    """The test's own `count` leading arguments (programs, the work directory), taken off sys.argv so
+    that unittest.main() reads only its own."""
+    taken = sys.argv[1:1 + count]
+    del sys.argv[1:1 + count]
+    return taken[0] if count == 1 else taken
+
+
 def script(*relative):
     return os.path.join(SOURCE, *relative)
 

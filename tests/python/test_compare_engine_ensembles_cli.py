@@ -24,16 +24,10 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-try:
-    import h5py  # only to alter copies of runs (a time grid, a histogram group) on purpose
-    import numpy  # noqa: F401
-    import scipy  # noqa: F401
-except ImportError as error:  # pragma: no cover
-    print("SKIP: needs numpy, scipy and h5py (%s)" % error)
-    sys.exit(77)
+# h5py only to alter copies of runs (a time grid, a histogram group) on purpose
+h5py, *_ = sc.require("h5py", "numpy", "scipy")
 
-SIM, WORK = sys.argv[1:3]
-del sys.argv[1:3]
+SIM, WORK = sc.arguments(2)
 os.makedirs(WORK, exist_ok=True)
 TOOL = sc.script("tools", "compare_engine_ensembles.py")
 NAME = "compare_engine_ensembles.py"

@@ -19,15 +19,9 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-try:
-    import h5py  # noqa: F401
-    import numpy  # noqa: F401
-except ImportError as error:  # pragma: no cover
-    print("SKIP: needs numpy and h5py (%s)" % error)
-    sys.exit(77)
+sc.require("h5py", "numpy")
 
-SIM, WORK = sys.argv[1:3]
-del sys.argv[1:3]
+SIM, WORK = sc.arguments(2)
 TOOL = sc.script("tools", "fidelity_report.py")
 NAME = "fidelity_report.py"
 

@@ -30,8 +30,7 @@ except ImportError as error:  # pragma: no cover
     print("SKIP: needs numpy and h5py (%s)" % error)
     sys.exit(77)
 
-SIM, WORK = sys.argv[1:3]
-del sys.argv[1:3]
+SIM, WORK = sc.arguments(2)
 TOOL = sc.script("python", "reference_gas.py")
 NAME = "reference_gas.py"
 # The reference and shockgas-sim on a 4-particle start agree to rounding (docs/reference-check.md:

@@ -24,16 +24,9 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-try:
-    import h5py  # noqa: F401
-    import numpy  # noqa: F401
-    import scipy  # noqa: F401
-except ImportError as error:  # pragma: no cover
-    print("SKIP: needs numpy, scipy and h5py (%s)" % error)
-    sys.exit(77)
+sc.require("h5py", "numpy", "scipy")
 
-SIM, ANALYZE, WORK = sys.argv[1:4]
-del sys.argv[1:4]
+SIM, ANALYZE, WORK = sc.arguments(3)
 TOOL = sc.script("python", "refit_check.py")
 NAME = "refit_check.py"
 # The agreement refit_check.py itself defaults to: the C++ and scipy fits of the same numbers agree

@@ -25,15 +25,9 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-try:
-    import h5py  # noqa: F401  (the tool imports them first)
-    import numpy  # noqa: F401
-except ImportError as error:  # pragma: no cover
-    print("SKIP: needs numpy and h5py (%s)" % error)
-    sys.exit(77)
+sc.require("h5py", "numpy")
 
-WORK = sys.argv[1]
-del sys.argv[1]
+WORK = sc.arguments(1)
 TOOL = sc.script("tools", "reproduce-check")
 NAME = "reproduce-check"
 

@@ -34,16 +34,9 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-try:
-    import h5py  # noqa: F401
-    import numpy  # noqa: F401
-    import scipy  # noqa: F401
-except ImportError as error:  # pragma: no cover
-    print("SKIP: needs numpy, scipy and h5py (%s)" % error)
-    sys.exit(77)
+sc.require("h5py", "numpy", "scipy")
 
-WORK = sys.argv[1]
-del sys.argv[1]
+WORK = sc.arguments(1)
 sys.path.insert(0, sc.script("python"))
 from shockgas import cli  # noqa: E402
 
@@ -129,15 +122,21 @@ class MissingModule(unittest.TestCase):
                                        cwd=WORK, env=without_pythonpath()), "reproduce-check", "no such file")
 
 
+def directory_with_a_file(name, text):
+    """A fresh directory WORK/name holding one file, plain.txt, with `text`: (directory, file)."""
+    directory = path(name)
+    shutil.rmtree(directory, ignore_errors=True)
+    os.makedirs(directory)
+    plain = os.path.join(directory, "plain.txt")
+    with open(plain, "w") as handle:
+        handle.write(text)
+    return directory, plain
+
+
 class Outputs(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.dir = path("outputs")
-        shutil.rmtree(cls.dir, ignore_errors=True)
-        os.makedirs(cls.dir)
-        cls.plain = os.path.join(cls.dir, "plain.txt")
-        with open(cls.plain, "w") as handle:
-            handle.write("a file\n")
+        cls.dir, cls.plain = directory_with_a_file("outputs", "a file\n")
 
     def script(self, folder, name, *arguments):
         return sc.run([sc.PYTHON, sc.script(folder, name), *arguments], cwd=WORK)
@@ -181,12 +180,7 @@ class Checks(unittest.TestCase):
     """shockgas.cli.output_file_problem and output_directory_problem."""
 
     def setUp(self):
-        self.dir = path("checks")
-        shutil.rmtree(self.dir, ignore_errors=True)
-        os.makedirs(self.dir)
-        self.plain = os.path.join(self.dir, "plain.txt")
-        with open(self.plain, "w") as handle:
-            handle.write("kept\n")
+        self.dir, self.plain = directory_with_a_file("checks", "kept\n")
 
     def test_file(self):
         missing = os.path.join(self.dir, "missing", "deeper")

@@ -21,16 +21,9 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-try:
-    import h5py  # noqa: F401
-    import numpy  # noqa: F401
-    import scipy  # noqa: F401
-except ImportError as error:  # pragma: no cover
-    print("SKIP: needs numpy, scipy and h5py (%s)" % error)
-    sys.exit(77)
+sc.require("h5py", "numpy", "scipy")
 
-WORK = sys.argv[1]
-del sys.argv[1]
+WORK = sc.arguments(1)
 UNKNOWN = "--no-such-option"
 
 # (folder, script, arguments before the unknown option: the required ones, so that the refusal is

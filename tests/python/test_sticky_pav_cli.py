@@ -51,15 +51,9 @@ from unittest import mock
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-try:
-    import numpy  # noqa: F401
-    import scipy  # noqa: F401
-except ImportError as error:  # pragma: no cover
-    print("SKIP: needs numpy and scipy (%s)" % error)
-    sys.exit(77)
+numpy, _ = sc.require("numpy", "scipy")
 
-WORK = sys.argv[1]
-del sys.argv[1]
+WORK = sc.arguments(1)
 TOOL = sc.script("python", "sticky_pav.py")
 NAME = "sticky_pav.py"
 sys.path.insert(0, sc.script("python"))

@@ -169,14 +169,8 @@ TEST(Checkpoint, StoppedRunResumedFromItsFileEqualsUninterruptedRun) {
     std::atomic<int> written{0};
     CheckpointOptions options = shockgas::testing::frequent_checkpoints("stopped", written);
     std::atomic<bool> stop{false};
-    // Stopped (as Ctrl-C does) from the note of the first periodic
-    // checkpoint, in the thread that wrote it, so that most of the run is
-    // still ahead: a polling thread waiting for a later one could be scheduled
-    // after the run had ended on a loaded machine (1 run in 24 failed so).
-    options.note = [&written, &stop, count = options.note](const std::string& text) {
-        count(text);
-        if (written.load() >= 1) stop.store(true);
-    };
+    // Stopped at the first periodic checkpoint, so that most of the run is still ahead.
+    shockgas::testing::stop_after_checkpoints(options, written, stop, 1);
     const EnsembleResult stopped = shockgas::run_ensemble(p, nullptr, &stop, {}, options);
     ASSERT_EQ(stopped.status, "interrupted") << "the run ended before it was stopped: the test did not test";
     ASSERT_TRUE(std::filesystem::exists(options.path));
@@ -260,10 +254,7 @@ TEST(Checkpoint, ResumedRunReportsTheCollisionRateOfThisProcessOnly) {
     std::atomic<int> written{0};
     CheckpointOptions options = shockgas::testing::frequent_checkpoints("rate", written);
     std::atomic<bool> stop{false};
-    options.note = [&written, &stop, count = options.note](const std::string& text) {
-        count(text);
-        if (written.load() >= 2) stop.store(true);
-    };
+    shockgas::testing::stop_after_checkpoints(options, written, stop, 2);
     const EnsembleResult stopped = shockgas::run_ensemble(p, nullptr, &stop, {}, options);
     ASSERT_EQ(stopped.status, "interrupted") << "the run ended before it was stopped: the test did not test";
     const auto checkpoint = shockgas::read_checkpoint(options.path);
