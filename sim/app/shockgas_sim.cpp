@@ -212,28 +212,17 @@ int main(int argc, char** argv) {
             // run's work: refused before any work, whatever the interval (with
             // checkpoints the run would overwrite and at its end remove it;
             // without, redo it). A damaged one is passed over with a warning.
-            if (!checkpoint.resume) {
-                std::vector<std::string> files;  // this job's own first: the line names the first found
-                if (session.ranks() == 1) files.push_back(base_checkpoint);
-                for (int k = 0; k < session.ranks() && session.ranks() > 1; ++k)
-                    files.push_back(shockgas::rank_checkpoint_path(base_checkpoint, k));
-                for (const auto& other : shockgas::other_block_checkpoints(base_checkpoint, ""))
-                    if (std::find(files.begin(), files.end(), other) == files.end()) files.push_back(other);
-                for (const auto& warning : shockgas::check_no_interrupted_run(files, p)) checkpoint.note(warning);
-            }
+            if (!checkpoint.resume)
+                for (const auto& warning :
+                     shockgas::check_no_interrupted_run(shockgas::job_checkpoints(base_checkpoint, session.ranks()), p))
+                    checkpoint.note(warning);
             // --resume refuses a checkpoint of another run before any work.
             // Each rank checks the files it reads as it loads them; under MPI
             // rank 0 first checks them all (every rank's own and the ones
             // gathered from), so that the job ends here with one line rather
             // than in a rank that has started.
-            if (checkpoint.resume && session.ranks() > 1) {
-                auto files = shockgas::other_block_checkpoints(base_checkpoint, "");
-                for (int k = 0; k < session.ranks(); ++k)
-                    if (const auto own = shockgas::rank_checkpoint_path(base_checkpoint, k);
-                        std::find(files.begin(), files.end(), own) == files.end())
-                        files.push_back(own);
-                shockgas::check_resume_checkpoints(files, p);
-            }
+            if (checkpoint.resume && session.ranks() > 1)
+                shockgas::check_resume_checkpoints(shockgas::job_checkpoints(base_checkpoint, session.ranks()), p);
         }
         shockgas::SimulationParameters mine = session.share(p);
         checkpoint.run_first_realization = p.first_realization;

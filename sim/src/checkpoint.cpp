@@ -276,6 +276,15 @@ void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoi
         file, differences, both_generations({checkpoint_base(file)})));
 }
 
+std::vector<std::string> job_checkpoints(const std::string& base, int ranks) {
+    std::vector<std::string> files;
+    if (ranks == 1) files.push_back(base);
+    for (int k = 0; k < ranks && ranks > 1; ++k) files.push_back(rank_checkpoint_path(base, k));
+    for (const auto& other : other_block_checkpoints(base, ""))
+        if (std::find(files.begin(), files.end(), other) == files.end()) files.push_back(other);
+    return files;
+}
+
 void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run) {
     for (const std::string& name : files)
         for (const std::string& file : {name, previous_checkpoint_path(name)}) {

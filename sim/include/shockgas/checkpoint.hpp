@@ -101,6 +101,13 @@ std::string rank_checkpoint_path(const std::string& base, int rank);
 // base (one process) and base.rank0, base.rank1, ... (MPI ranks) for as long
 // as they (or their previous generations) exist.
 std::vector<std::string> other_block_checkpoints(const std::string& base, const std::string& own);
+
+// Every checkpoint file a job of `ranks` processes with checkpoint path `base`
+// may continue from: its own first (base itself, or each rank's
+// rank_checkpoint_path), then the other blocks' files that gathering takes
+// (other_block_checkpoints), each once. What check_no_interrupted_run and,
+// under MPI, check_resume_checkpoints look at before a run starts.
+std::vector<std::string> job_checkpoints(const std::string& base, int ranks);
 // After the output is written: removes the checkpoints a rank gathered from
 // (gather_checkpoint's sources, either generation), except those of the
 // current job's own ranks, which each rank removes itself.
