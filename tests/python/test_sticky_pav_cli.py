@@ -111,6 +111,13 @@ class ErrorBars(unittest.TestCase):
     or exponential of mean 1 (masses, as Phi and m F(m))."""
 
     TRIALS, CLUSTERS = 400, 2000
+    # Counting errors: chi2/bins of plain counts has sd ~0.012 over the trials around 1 - 1/33 (the
+    # bins share the clusters), so 0.06 is 5 sd; with mass weights it runs ~10% high (test_masses),
+    # hence a one-sided 1.2 above and 0.95 below. The scatter of two realizations, which these error
+    # bars replaced, gives a median above 5 (47 with masses, infinite in most plain trials).
+    COUNTS_DELTA = 0.06
+    MASSES_RANGE = (0.95, 1.2)
+    SCATTER_FLOOR = 5.0
 
     def hist(self, rng, p, masses, realizations=2):
         parts = []
@@ -145,16 +152,16 @@ class ErrorBars(unittest.TestCase):
         # bins share the K clusters), 0.975 here. From the scatter of two, chi2/bins is infinite in
         # most trials (a bin where both realizations hold the same count), 47 (median) with masses.
         counting, scatter = self.chi2_per_bin(masses=False)
-        self.assertAlmostEqual(counting, 1.0, delta=0.06)
-        self.assertGreater(scatter, 5.0)
+        self.assertAlmostEqual(counting, 1.0, delta=self.COUNTS_DELTA)
+        self.assertGreater(scatter, self.SCATTER_FLOOR)
 
     def test_masses(self):
         # The squared weights are estimated from each bin's own clusters (10 to 200 here): with
         # weights as broad as an exponential's this puts chi2/bins ~10% high (1.12; 1.07 with ten
         # times the clusters), the price of an error bar that needs no spread.
         counting, scatter = self.chi2_per_bin(masses=True)
-        self.assertTrue(0.95 < counting < 1.2, counting)
-        self.assertGreater(scatter, 5.0)
+        self.assertTrue(self.MASSES_RANGE[0] < counting < self.MASSES_RANGE[1], counting)
+        self.assertGreater(scatter, self.SCATTER_FLOOR)
 
     def test_realizations_holding_the_same_counts_still_have_an_error_bar(self):
         rng = numpy.random.default_rng(5)

@@ -662,7 +662,10 @@ TEST(AnalysisBounds, CollapseExponentAtTheSearchBoundIsMissing) {
         << clipped.beta.note;
     // Inside the range it is measured as before.
     const auto inside = sa::fit_scaling_collapse(histograms);
-    EXPECT_NEAR(inside.beta.value, 1.0 / 3.0, 4.0 * inside.beta.sigma);
+    // 4 sigma: one seeded sample, checked only for being a measurement again,
+    // not for its coverage (AnalysisScaling's tests calibrate that).
+    constexpr double beta_sigmas = 4.0;
+    EXPECT_NEAR(inside.beta.value, 1.0 / 3.0, beta_sigmas * inside.beta.sigma);
     EXPECT_TRUE(inside.beta.note.empty()) << inside.beta.note;
 }
 
@@ -699,7 +702,10 @@ TEST(AnalysisBounds, FarTailExponentAtTheSearchBoundIsMissing) {
 TEST(AnalysisDecay, OneRealizationHasNoChi2NorFitWidth) {
     std::mt19937_64 random(23);
     const auto single = sa::fit_temperature_decay(synthetic_history(random, 2.0 / 3.0, 1), 10.0, 1e4);
-    EXPECT_NEAR(single.exponent, 2.0 / 3.0, 0.05);
+    // synthetic_history gives each realization its own slope b ~ N(0, 0.01) in
+    // ln T against ln t, which one realization cannot average out: 5 of its sd.
+    constexpr double one_realization_tolerance = 5 * 0.01;
+    EXPECT_NEAR(single.exponent, 2.0 / 3.0, one_realization_tolerance);
     EXPECT_TRUE(std::isnan(single.chi2_per_dof)) << single.chi2_per_dof;
     EXPECT_TRUE(std::isnan(single.fit_sigma)) << single.fit_sigma;
     const auto several = sa::fit_temperature_decay(synthetic_history(random, 2.0 / 3.0, 4), 10.0, 1e4);
