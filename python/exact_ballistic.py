@@ -103,13 +103,17 @@ except ImportError as error:  # pragma: no cover - depends on the machine
     sys.exit(2)
 
 try:  # one-line refusals, exit status 2 (python/shockgas/cli.py, the project's one place for them)
-    from shockgas.cli import ArgumentParser, cannot_write, output_directory_problem
+    from shockgas.cli import ArgumentParser, atomic_output, cannot_write, output_directory_problem
 except ImportError:
     # The figure project of an installation runs this script (numpy and scipy) from share/shockgas/python
     # with no PYTHONPATH, where the shockgas module (numpy and h5py) is not on Python's path for every
-    # prefix: it then runs all the same, with argparse's usage block above an error line, and an
-    # --out-dir that cannot be written is found when it is made or written rather than before.
+    # prefix: it then runs all the same, with argparse's usage block above an error line, an
+    # --out-dir that cannot be written is found when it is made or written rather than before, and
+    # its files are written in place (open), not beside and renamed.
     from argparse import ArgumentParser
+
+    def atomic_output(path, mode="w"):
+        return open(path, mode)
 
     def output_directory_problem(path):
         return None
@@ -398,7 +402,7 @@ def _effective_tail_fit(D, zlo, zhi):
 
 
 def _write_table(path, header_lines, columns, names):
-    with open(path, "w") as fh:
+    with atomic_output(path, "w") as fh:
         for h in header_lines:
             fh.write("# " + h + "\n")
         fh.write("# " + " ".join(names) + "\n")
@@ -426,7 +430,8 @@ def main(argv=None):
 
 def write_theory(out_dir, D):
     """Writes phi.dat, phi_tail.dat, mass_distribution.dat, constants.json and constants.gp in out_dir
-    and prints the constants."""
+    (each beside its name and renamed onto it once whole: an error leaves the previous one) and prints
+    the constants."""
     const = compute_constants(D)
     kappa = const["kappa"]
 
@@ -505,10 +510,10 @@ def write_theory(out_dir, D):
                   "changes under grid refinement: %s" % (abs(1 - const["scaled"]["mass_sum_rule"]),
                                                           {k: "%.1e" % v for k, v in const["scaled"]["resolution_change"].items()})),
     )
-    with open(os.path.join(out_dir, "constants.json"), "w") as fh:
+    with atomic_output(os.path.join(out_dir, "constants.json"), "w") as fh:
         json.dump(out, fh, indent=2)
     # The same constants as gnuplot variables, for the figures' theory curves.
-    with open(os.path.join(out_dir, "constants.gp"), "w") as fh:
+    with atomic_output(os.path.join(out_dir, "constants.gp"), "w") as fh:
         fh.write("# exact sticky-gas constants (python/exact_ballistic.py), D = %.10g\n" % D)
         for key in ("kappa", "nu", "kurtosis", "tail_constant_c"):
             fh.write("exact_%s = %.10g\n" % (key, out[key]))

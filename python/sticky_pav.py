@@ -61,7 +61,9 @@ A user's mistake is one line "sticky_pav.py: error: ..." on stderr and exit stat
 (python/shockgas/cli.py; where the shockgas module is out of reach, argparse's usage block comes
 above that line). That includes an output (--clusters-out, --json, --hist-dir) that cannot be
 written, checked before the work (a missing directory, a file in the way, no permission, a
-read-only file system) and when written (a full disk).
+read-only file system) and when written (a full disk). Each output file is written beside its
+destination and renamed onto it once whole (shockgas.cli.atomic_output): a failure or Ctrl-C leaves
+the previous file as it was.
 """
 import contextlib
 import json
@@ -76,13 +78,18 @@ except ImportError as error:  # pragma: no cover - depends on the machine
           "python3-scipy)" % (error.name or error), file=sys.stderr)
     sys.exit(2)
 try:  # one-line refusals, exit status 2 (python/shockgas/cli.py, the project's one place for them)
-    from shockgas.cli import ArgumentParser, cannot_write, output_directory_problem, output_file_problem
+    from shockgas.cli import (ArgumentParser, atomic_output, cannot_write, output_directory_problem,
+                              output_file_problem)
 except ImportError:
     # This solver needs numpy alone, and is installed beside exact_ballistic.py in share/shockgas/python,
     # where the shockgas module (numpy and h5py) is not on Python's path for every prefix: it then runs
-    # all the same, with argparse's usage block above the error line, and an output that cannot be
-    # written is found when it is written (after the work) rather than before.
+    # all the same, with argparse's usage block above the error line, an output that cannot be
+    # written is found when it is written (after the work) rather than before, and outputs are
+    # written in place (open), not beside and renamed.
     from argparse import ArgumentParser
+
+    def atomic_output(path, mode="w"):
+        return open(path, mode)
 
     def output_file_problem(path):
         return None
@@ -395,7 +402,7 @@ def write_histogram_comparison(ens, out_dir):
                 rec[name]["nbins_without_first_bin"] = int(use[1:].sum())
                 rec[name]["first_bin_sim_over_theory"] = float(mean[0] / th[0])
             centers = 0.5 * (edges[1:] + edges[:-1])
-            with open(os.path.join(out_dir, "%s_t%g.dat" % (name, t)), "w") as fh:
+            with atomic_output(os.path.join(out_dir, "%s_t%g.dat" % (name, t)), "w") as fh:
                 fh.write("# PAV sticky gas N=%d, %d realizations, t=%g; theory = exact_ballistic bin average\n"
                          % (ens["N"], R, t))
                 fh.write("# sim: mean over realizations; sim_err: its counting error (each cluster one count of "
@@ -490,7 +497,7 @@ def solve(args):
             return 0
         # Closed here, so that a failure to write (a full disk) is told, not lost at exit.
         with writing(args.clusters_out, "--clusters-out"):
-            with open(args.clusters_out, "w") as fh:
+            with atomic_output(args.clusters_out, "w") as fh:
                 write_clusters(fh, res)
         return 0
 
@@ -535,7 +542,7 @@ def solve(args):
                      mn["first_bin_sim_over_theory"], chi2(mm["chi2"], mm["nbins"])))
     if args.json:
         with writing(args.json, "--json"):
-            with open(args.json, "w") as fh:
+            with atomic_output(args.json, "w") as fh:
                 json.dump(dict(N=args.N, realizations=args.realizations, seed=args.seed, copies=args.copies,
                                seconds=ens["seconds"], kappa=const["kappa"], nu=const["nu"],
                                kurtosis_exact=const["kurtosis"], rows=rows, fits=fits, histograms=hist),

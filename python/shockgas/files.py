@@ -27,6 +27,7 @@ import h5py
 import numpy as np
 
 from ._h5 import Group, decode_attributes, open_file, read_group
+from .cli import atomic_output_path
 from .schema import SchemaError, check_schema_version
 
 # kind -> (recognise(root attributes, top-level names) -> bool,
@@ -356,24 +357,14 @@ def write_initial_condition(path, position, velocity, mass=None, ring_length=Non
     _check_initial_condition(position, velocity, mass, ring_length)
     path = os.fspath(path)
     _refuse_to_replace(path, overwrite)
-    directory, name = os.path.split(os.path.abspath(path))
+    directory = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(directory):
         raise FileNotFoundError(errno.ENOENT, f"no directory {directory} to write it in", path)
-    temporary = os.path.join(directory, f".{name}.tmp.{os.getpid()}.{os.urandom(4).hex()}")
-    try:
-        with h5py.File(temporary, "x") as handle:
+    with atomic_output_path(path, replace=overwrite) as temporary:  # never replaces when not asked
+        with h5py.File(temporary, "w") as handle:
             handle.attrs["ring_length"] = ring_length
             handle["position"] = position
             handle["velocity"] = velocity
             if mass is not None:
                 handle["mass"] = mass
         _refuse_to_replace(path, overwrite)  # again: something may have appeared meanwhile
-        if overwrite:
-            os.replace(temporary, path)
-        else:
-            os.link(temporary, path)  # fails if the name was taken meanwhile: never replaces
-            os.remove(temporary)
-    except BaseException:
-        if os.path.lexists(temporary):
-            os.remove(temporary)
-        raise

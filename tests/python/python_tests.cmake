@@ -116,3 +116,10 @@ add_test(NAME python.script_environment
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_script_environment_cli.py
                  "${_py_work}/script_environment")
 set_tests_properties(python.script_environment PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# Every output a Python script writes is written whole or not at all (shockgas.cli.atomic_output, the
+# rule of the C++ programs' TextFile): interrupted by a file-size limit or Ctrl-C, sticky_pav.py's
+# --clusters-out, --json, --hist-dir and exact_ballistic.py's --out-dir leave the previous file whole and
+# no temporary; symbolic links, /dev/stdout, permissions (~3 s).
+add_test(NAME python.atomic_output
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_atomic_output.py "${_py_work}/atomic_output")
+set_tests_properties(python.atomic_output PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
