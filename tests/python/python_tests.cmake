@@ -92,7 +92,8 @@ add_test(NAME python.fidelity_report_inputs
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/fidelity_report_inputs")
 set_tests_properties(python.fidelity_report_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
 # python/sticky_pav.py: histograms at small t, --hist-dir's chi2 with two realizations (counting errors),
-# fits of too few times or realizations or of a time without spread, outputs that cannot be written (~17 s).
+# fits of too few times or realizations or of a time without spread, --compare's jackknife sigma against the
+# spread over 100 ensembles, outputs that cannot be written (~19 s).
 add_test(NAME python.sticky_pav_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_sticky_pav_cli.py
                  "${_py_work}/sticky_pav_inputs")
