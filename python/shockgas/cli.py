@@ -297,10 +297,12 @@ def atomic_output(path, mode="w", **open_arguments):
     an error, a full disk or Ctrl-C leaves the previous file whole and no partial one. `mode` is
     "w", "wt" or "wb"; open_arguments are open()'s (encoding, newline, ...).
 
-    A path written through is opened to append, after this process's own standard output and error
-    are flushed: /dev/stdout redirected by a shell to a file (`>` or `>>`) then gets the output after
-    what the file held and what the script printed before, where "w" would truncate it (losing
-    both); a device or a FIFO is written alike either way."""
+    A path written through that is this process's own standard output or error (/dev/stdout, or
+    the file a shell redirected it to) is written through a duplicate of that descriptor, after the
+    stream is flushed: it shares the shell's offset, so under `>` or `>>` the output lands after what
+    the file held and what the script printed before, and before what it prints after, where "w"
+    would truncate it (losing both). Any other path written through (/dev/fd/3 under `3>>`, a
+    device, a FIFO) is opened to append, never truncated (the C++ TextFile does the same)."""
     if mode not in ("w", "wt", "wb"):
         raise ValueError(f"atomic_output: mode {mode!r}: an output is written whole ('w', 'wt' or 'wb')")
     target = os.fspath(path)
@@ -309,6 +311,27 @@ def atomic_output(path, mode="w", **open_arguments):
             for stream in (sys.stdout, sys.stderr):
                 if stream is not None:
                     stream.flush()
+            descriptor = _standard_descriptor_at(name)
+            if descriptor is not None:
+                with os.fdopen(os.dup(descriptor), mode, **open_arguments) as handle:
+                    yield handle
+                return
             mode = mode.replace("w", "a")
         with open(name, mode, **open_arguments) as handle:  # closed (and flushed) before the rename
             yield handle
+
+
+def _standard_descriptor_at(path):
+    """1 or 2 when path is the file this process's standard output or error is open on, else None."""
+    try:
+        target = os.stat(path)
+    except OSError:
+        return None
+    for descriptor in (1, 2):
+        try:
+            open_file = os.fstat(descriptor)
+        except OSError:
+            continue
+        if (open_file.st_dev, open_file.st_ino) == (target.st_dev, target.st_ino):
+            return descriptor
+    return None

@@ -1,5 +1,6 @@
 #include "shockgas/text_file.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -8,6 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -21,6 +23,24 @@ namespace {
 InputError text_file_error(const std::string& kind, const std::string& path, const std::string& why) {
     return InputError(fmt::format("cannot write {}{}: {}", kind, path.empty() ? "standard output" : "'" + path + "'",
                                   why));
+}
+
+// The process's own standard output or error when path is the same file
+// (/dev/stdout, /proc/self/fd/1, or the file a shell redirected it to), else
+// null. Writing such a path through its own stream keeps the shell's
+// redirection whole: opening it anew with "w" truncated a `>> log` to nothing,
+// and a second open file description would write at its own offset, over
+// what the program prints.
+std::FILE* standard_stream_at(const std::string& path) {
+    struct stat target {};
+    if (::stat(path.c_str(), &target) != 0) return nullptr;
+    for (const auto& [descriptor, stream] : {std::pair{STDOUT_FILENO, stdout}, std::pair{STDERR_FILENO, stderr}}) {
+        struct stat open_file {};
+        if (::fstat(descriptor, &open_file) == 0 && open_file.st_dev == target.st_dev &&
+            open_file.st_ino == target.st_ino)
+            return stream;
+    }
+    return nullptr;
 }
 
 }  // namespace
@@ -66,6 +86,7 @@ void check_text_writable(const std::string& path, const std::string& kind) {
 TextFile::TextFile(const std::string& path, std::string kind) : target_(path), kind_(std::move(kind)) {
     if (target_.empty()) {
         stream_ = stdout;
+        borrowed_ = true;
         return;
     }
     // Beyond a file-size limit (ulimit -f) the kernel would kill the process
@@ -73,19 +94,28 @@ TextFile::TextFile(const std::string& path, std::string kind) : target_(path), k
     // h5::AtomicFile does).
     std::signal(SIGXFSZ, SIG_IGN);
     replaced_ = replaced_file(target_);
-    if (!replaced_.empty()) temporary_ = replaced_ + ".tmp." + std::to_string(::getpid());
-    stream_ = std::fopen(temporary_.empty() ? target_.c_str() : temporary_.c_str(), "w");
+    if (!replaced_.empty()) {
+        temporary_ = replaced_ + ".tmp." + std::to_string(::getpid());
+        stream_ = std::fopen(temporary_.c_str(), "w");
+    } else if ((stream_ = standard_stream_at(target_)) != nullptr) {
+        borrowed_ = true;
+    } else {
+        // Appended, never truncated: through /dev/fd/N or /proc a regular file
+        // may be reached that holds what others wrote (a shell's `3>> log`);
+        // a device or FIFO is the same either way.
+        stream_ = std::fopen(target_.c_str(), "a");
+    }
     if (stream_ == nullptr) fail(errno);
 }
 
 TextFile::~TextFile() {
-    if (stream_ != nullptr && stream_ != stdout) std::fclose(stream_);
+    if (stream_ != nullptr && !borrowed_) std::fclose(stream_);
     if (!committed_ && !temporary_.empty()) std::remove(temporary_.c_str());
 }
 
 void TextFile::fail(int error) {
     // The message names the file the user asked for; the temporary one goes.
-    if (stream_ != nullptr && stream_ != stdout) std::fclose(stream_);
+    if (stream_ != nullptr && !borrowed_) std::fclose(stream_);
     stream_ = nullptr;
     if (!temporary_.empty()) std::remove(temporary_.c_str());
     // stdio need not set errno on a short write; an unknown cause is an I/O error.
@@ -105,7 +135,7 @@ void TextFile::close() {
     // A regular file's bytes reach the disk before it is renamed into place;
     // devices and FIFOs have nothing to sync (fsync fails on them).
     if (!temporary_.empty() && ::fsync(::fileno(stream_)) != 0) fail(errno);
-    if (stream_ == stdout) return;
+    if (borrowed_) return;
     std::FILE* stream = stream_;
     stream_ = nullptr;
     errno = 0;

@@ -102,6 +102,16 @@ shockgas_analyze_error(data_full_disk_large
 # A device is written through, not replaced: the table arrives on standard output.
 shockgas_analyze_reports(data_to_standard_output "# decay exponent in moving windows.*decay exponent" "error"
                          decay a.h5 ${_window} -o "${_analyze_dir}/stdout_decay.h5" --scan /dev/stdout)
+# The same under a shell's `> file`: /dev/stdout is then that file, and opening it anew ("w") truncated it
+# and wrote at an offset of its own, so the report overwrote the table's start. It is written through the
+# program's own standard output now (sim/src/text_file.cpp), the table before the report.
+add_test(NAME cli.analyze.data_to_redirected_standard_output
+         COMMAND sh -c "\"$1\" decay a.h5 --t-lo 1 --t-hi 100 -o stdout_file_decay.h5 --scan /dev/stdout > stdout_file.txt && cat stdout_file.txt"
+                 sh ${_analyze_program} WORKING_DIRECTORY "${_analyze_dir}")
+set_tests_properties(cli.analyze.data_to_redirected_standard_output PROPERTIES LABELS cli
+                     FIXTURES_REQUIRED analyze_cases TIMEOUT 60
+                     PASS_REGULAR_EXPRESSION "^# decay exponent in moving windows[^\n]*\n# t_centre[^\n]*\n[0-9].*\ndecay exponent "
+                     FAIL_REGULAR_EXPRESSION "error")
 
 # 5. Fits with no slope (one eps, one N) are refused naming the inputs; two points leave no chi2.
 shockgas_analyze_error(crossover_one_eps "every input has eps = 0.05 \\('e05.h5', 'e05.h5'\\)"

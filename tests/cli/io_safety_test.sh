@@ -14,7 +14,8 @@
 #   merge_checkpoint             shockgas-merge of a checkpoint: refused, saying it is a checkpoint
 #   dump_output_is_input         shockgas-dump -o naming its input: refused, the input kept (it was truncated)
 #   dump_outputs                 shockgas-dump writes a file (no temporary left), /dev/null and /dev/stdout
-#                                (written through, still devices), and reports a full disk on -o and on
+#                                (written through, still devices; a `>> log` kept whole, /dev/fd/3 under
+#                                `3>>` appended to), and reports a full disk on -o and on
 #                                standard output (> /dev/full) as an error instead of exit 0
 set -u
 case_name=$1 dir=$2 sim=$3 merge=$4 dump=$5 python=${6:-}
@@ -134,6 +135,17 @@ dump_outputs)
   [ -c /dev/null ] || fail "/dev/null is no longer a device"
   "$dump" snapshots s.h5 -o /dev/stdout >stdout.txt 2>stdout.err || fail "a dump to /dev/stdout failed"
   cmp -s stdout.txt out.txt || fail "-o /dev/stdout wrote other text than -o FILE"
+  # Under `>> log` the log keeps what it held: /dev/stdout is the log itself, and
+  # opening it anew with "w" had truncated it to nothing.
+  echo "what the log held before" >log.txt
+  "$dump" snapshots s.h5 -o /dev/stdout >>log.txt 2>log.err || fail "a dump to /dev/stdout >> log failed"
+  [ "$(head -n 1 log.txt)" = "what the log held before" ] || fail "-o /dev/stdout under >> truncated the log"
+  tail -n +2 log.txt | cmp -s - out.txt || fail "-o /dev/stdout under >> wrote other text than -o FILE"
+  # A descriptor the shell opened to append (/dev/fd/3 under `3>> log`) is appended to as well.
+  echo "what the log held before" >fd3.txt
+  "$dump" snapshots s.h5 -o /dev/fd/3 3>>fd3.txt 2>fd3.err || fail "a dump to /dev/fd/3 failed"
+  [ "$(head -n 1 fd3.txt)" = "what the log held before" ] || fail "-o /dev/fd/3 under 3>> truncated the file"
+  tail -n +2 fd3.txt | cmp -s - out.txt || fail "-o /dev/fd/3 wrote other text than -o FILE"
   refused "^shockgas-dump: error: cannot write '/dev/full': No space left on device$" \
     "$dump" snapshots s.h5 -o /dev/full
   [ -c /dev/full ] || fail "/dev/full is no longer a device"

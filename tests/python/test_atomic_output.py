@@ -327,6 +327,19 @@ class AtomicOutput(unittest.TestCase):
         self.assertEqual(os.stat(log).st_ino, before)
         self.assertEqual(temporaries(self.dir), [])
 
+    def test_dev_stdout_redirected_without_append(self):
+        # `script > log`: the shell's descriptor has its own offset, which a second open of /dev/stdout
+        # would not share, so what the script prints after its output would overwrite it.
+        log = os.path.join(self.dir, "log.txt")
+        script = ("import sys\nfrom shockgas import cli\nprint('printed first')\n"
+                  "with cli.atomic_output('/dev/stdout') as handle:\n    handle.write('the output\\n')\n"
+                  "print('printed after')\n")
+        with open(log, "w") as truncated:
+            result = subprocess.run([sc.PYTHON, "-c", script], stdout=truncated, stderr=subprocess.PIPE, text=True,
+                                    env=dict(os.environ, PYTHONPATH=sc.script("python")))
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(text(log), "printed first\nthe output\nprinted after\n")
+
     def test_permissions_are_what_open_gives(self):
         umask = os.umask(0o027)
         try:

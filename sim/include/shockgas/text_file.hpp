@@ -6,8 +6,10 @@
 // link). A path that exists and is not a regular file (a device such as
 // /dev/null or /dev/full, a FIFO, /dev/stdout or any link through /dev or
 // /proc) is written through directly and never renamed over, since that would
-// replace the device, or detach a shell's redirection; an empty path is
-// standard output. Every write, the flush and the close are
+// replace the device, or detach a shell's redirection. Such a path is
+// appended to, never truncated, and one that is the process's own standard
+// output or error (/dev/stdout under `>> log`) is written through that stream;
+// an empty path is standard output. Every write, the flush and the close are
 // checked; a failure throws InputError "cannot write <kind>'PATH': <reason>".
 // The HDF5 outputs have their own atomic writer (h5::AtomicFile).
 #pragma once
@@ -32,7 +34,7 @@ public:
     void write(std::string_view text);
     // Writes out what is buffered (a full disk often shows only here), syncs a
     // temporary file and closes it, keeping it until commit(). Standard output
-    // is flushed and checked, not closed.
+    // (or error) is flushed and checked, not closed.
     void close();
     // close(), then renames the temporary file onto the target.
     void commit();
@@ -46,6 +48,7 @@ private:
     std::string replaced_;   // the regular file commit() replaces (a link's target); empty: written through
     std::string temporary_;  // empty: written in place (standard output, a device)
     std::FILE* stream_ = nullptr;
+    bool borrowed_ = false;  // stdout or stderr (the path is that file): flushed, never closed
     bool committed_ = false;
 };
 
