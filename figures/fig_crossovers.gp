@@ -2,6 +2,9 @@
 # leaves its initial value (T = T0/2); t_stick ~ eps^-3/2, where the Haff decay
 # gives way to the sticky-gas t^(-2/3) (T reaches twice the fitted Haff curve);
 # and T(t_stick) ~ eps. Lines: least-squares power laws, exponents +- sigma.
+# Dashed: the t_stick the same rule reads on an exact eps^(-3/2) crossover
+# (Haff's law with its derived constant joined to the sticky gas's exact
+# kappa t^(-2/3)); at these eps Haff's finite-eps terms tilt it to about -1.52.
 load styledir.'/style.gp'
 load datadir.'/crossovers.gp'
 set title sprintf('Crossover times against inelasticity ε = (1 - r)/2  (%s)', fidelity_note)
@@ -20,6 +23,7 @@ f_temperature(x) = fit_temperature_at_stick_prefactor * x**fit_temperature_at_st
 plot datadir.'/crossovers.dat' using 1:2:3 with yerrorbars lt 3 title 't_{dissip}', \
      f_dissip(x) with lines lt 3 title sprintf('t_{dissip} ∝ ε^{%.3f ± %.3f}  (-1 at leading order; Haff: 0.345/(ε(1-ε)))', fit_t_dissip_exponent, fit_t_dissip_exponent_sigma), \
      datadir.'/crossovers.dat' using 1:4:5 with yerrorbars lt 4 title 't_{stick}', \
-     f_stick(x) with lines lt 4 title sprintf('t_{stick} ∝ ε^{%.3f ± %.3f}  (expected -3/2)', fit_t_stick_exponent, fit_t_stick_exponent_sigma), \
+     f_stick(x) with lines lt 4 title sprintf('t_{stick} ∝ ε^{%.3f ± %.3f}  (-3/2 as ε → 0)', fit_t_stick_exponent, fit_t_stick_exponent_sigma), \
+     datadir.'/crossovers.dat' using 1:10 with linespoints lt 4 dt 2 pt 6 title sprintf('exact ε^{-3/2} crossover, same rule: ε^{%.3f} here', fit_t_stick_reference_exponent), \
      datadir.'/crossovers.dat' using 1:6:7 with yerrorbars lt 5 title 'T(t_{stick})', \
      f_temperature(x) with lines lt 5 title sprintf('T(t_{stick}) ∝ ε^{%.3f ± %.3f}  (expected +1)', fit_temperature_at_stick_exponent, fit_temperature_at_stick_exponent_sigma)

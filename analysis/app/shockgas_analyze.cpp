@@ -184,14 +184,15 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
     std::vector<double> inelasticity;
     for (const auto& input : inputs) inelasticity.push_back((1.0 - run_parameters(input).restitution) / 2.0);
     require_distinct(inelasticity, inputs, "eps", "fitting the crossovers");
-    std::vector<Estimate> t_dissip, t_stick, temperature;
+    std::vector<Estimate> t_dissip, t_stick, temperature, reference_stick;
     ResultsFile results(output, "shockgas-analyze crossover", inputs);
     std::unique_ptr<DataFile> file;
     if (!data.empty())
         file = std::make_unique<DataFile>(data, "crossovers per inelasticity",
                                           std::vector<std::string>{"eps", "t_dissip", "t_dissip_sigma", "t_stick",
                                                                    "t_stick_sigma", "T_stick", "T_stick_sigma",
-                                                                   "haff_rate", "haff_rate_sigma"});
+                                                                   "haff_rate", "haff_rate_sigma",
+                                                                   "t_stick_reference"});
     for (std::size_t k = 0; k < inputs.size(); ++k) {
         const double eps = inelasticity[k];
         const auto crossovers = on_input(inputs[k], [&] {
@@ -200,16 +201,23 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
         t_dissip.push_back(crossovers.t_dissip);
         t_stick.push_back(crossovers.t_stick);
         temperature.push_back(crossovers.temperature_at_stick);
+        // The same rule on an exact eps^(-3/2) crossover: what t_stick would be
+        // read at this eps without any physics beyond Haff's law and the sticky gas.
+        const Measured reference = reference_stick_time(eps, rule);
+        // Weighted as the measured t_stick, so that the two exponents are fitted alike.
+        reference_stick.push_back({reference.value, reference.value * crossovers.t_stick.sigma / crossovers.t_stick.value});
         auto group = results.section("crossover" + std::to_string(k));
         group.set_attribute("inelasticity", eps);
         set_estimate(group, "t_dissip", crossovers.t_dissip);
         set_estimate(group, "t_stick", crossovers.t_stick);
         set_estimate(group, "temperature_at_stick", crossovers.temperature_at_stick);
         set_estimate(group, "haff_rate", crossovers.haff_rate);
+        set_measured(group, "t_stick_reference", reference);
         if (file)
             file->row({eps, crossovers.t_dissip.value, crossovers.t_dissip.sigma, crossovers.t_stick.value,
                        crossovers.t_stick.sigma, crossovers.temperature_at_stick.value,
-                       crossovers.temperature_at_stick.sigma, crossovers.haff_rate.value, crossovers.haff_rate.sigma});
+                       crossovers.temperature_at_stick.sigma, crossovers.haff_rate.value, crossovers.haff_rate.sigma,
+                       reference.value});
         fmt::print("eps {:<8g} t_dissip {}  t_stick {}  T(t_stick) {}\n", eps,
                    format_estimate(crossovers.t_dissip, "{:.4g}", "{:.2g}"),
                    format_estimate(crossovers.t_stick, "{:.4g}", "{:.2g}"),
@@ -233,6 +241,23 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
                    "{:.3f}); chi2/dof {}\n",
                    dissip_fit.slope, dissip_fit.slope_sigma(), stick_fit.slope, stick_fit.slope_sigma(),
                    temperature_fit.slope, temperature_fit.slope_sigma(), chi2);
+        // The exponent an exact eps^(-3/2) crossover shows through the same rule at these eps
+        // (reference_stick_time): finite eps tilts it, so the data's exponent is read against it.
+        Measured reference_exponent;
+        const auto missing = std::find_if(reference_stick.begin(), reference_stick.end(),
+                                          [](const Estimate& e) { return std::isnan(e.value); });
+        if (missing == reference_stick.end())
+            reference_exponent = {fit_against_inelasticity(inelasticity, reference_stick).slope, ""};
+        else
+            reference_exponent = Measured::missing(
+                fmt::format("no reference t_stick at eps = {:g}", inelasticity[missing - reference_stick.begin()]));
+        set_measured(group, "t_stick_reference_exponent", reference_exponent);
+        fmt::print("t_stick of an exact eps^(-3/2) crossover (Haff's law joined to kappa t^(-2/3)) read by the same rule "
+                   "at these eps: eps^({}); the data minus it: {}\n",
+                   format_measured(reference_exponent, "{:.3f}"),
+                   reference_exponent.known()
+                       ? fmt::format("{:.3f} +- {:.3f}", stick_fit.slope - reference_exponent.value, stick_fit.slope_sigma())
+                       : std::string("n/a"));
     }
     commit_outputs(&results, {file.get()});
 }

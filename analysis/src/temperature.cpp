@@ -8,16 +8,17 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
 
+#include "shockgas/exact_constants.hpp"
 #include "shockgas/h5.hpp"
 
 namespace shockgas::analysis {
 
 namespace {
 
-// Initial temperature of the paper's initial condition: velocities uniform on
-// [-1, 1] have variance 1/3 (TARGETS.md, "Units").
-constexpr double uniform_initial_temperature = 1.0 / 3.0;
+using exact::uniform_initial_temperature;
 
 std::vector<std::size_t> indices_in_window(const std::vector<double>& time, double t_lo, double t_hi) {
     std::vector<std::size_t> inside;
@@ -346,6 +347,51 @@ Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRul
     result.t_stick = component(&CrossoverValues::t_stick);
     result.temperature_at_stick = component(&CrossoverValues::temperature_at_stick);
     return result;
+}
+
+Measured reference_stick_time(double inelasticity, const CrossoverRule& rule) {
+    const double initial = uniform_initial_temperature;
+    const double kappa = exact::sticky_gas_temperature_prefactor;
+    // Eq. (2): the Haff rate a of sqrt(T0 / T) = 1 + a t.
+    const double rate = exact::haff_constant_uniform * inelasticity * (1.0 - inelasticity) * std::sqrt(initial);
+    // T_ref / T_Haff = max(1, g(t)), g(t) = kappa t^(-2/3) (1 + a t)^2 / T0,
+    // in ln t; g falls until t = 1/(2a) and rises after it.
+    struct Reference {
+        double rate, kappa, initial, level;
+    } reference{rate, kappa, initial, rule.stick_ratio};
+    const auto excess = [](double log_time, void* parameters) {
+        const auto& p = *static_cast<const Reference*>(parameters);
+        const double t = std::exp(log_time);
+        return std::log(p.kappa / p.initial) - 2.0 / 3.0 * log_time + 2.0 * std::log1p(p.rate * t) - std::log(p.level);
+    };
+    // The Haff fit sees only Haff's branch if T_Haff >= kappa t^(-2/3) up to
+    // the floor's time, (1/sqrt(floor) - 1)/a.
+    const double floor_time = (1.0 / std::sqrt(rule.haff_floor) - 1.0) / rate;
+    reference.level = 1.0;
+    if (floor_time > 0.5 / rate && excess(std::log(floor_time), &reference) > 0.0)
+        return Measured::missing(fmt::format("at eps = {:g} Haff's law meets kappa t^(-2/3) above T = {:g} T0 "
+                                             "(--haff-floor): no Haff regime to fit",
+                                             inelasticity, rule.haff_floor));
+    reference.level = rule.stick_ratio;
+    double low = std::log(0.5 / rate);
+    if (excess(low, &reference) >= 0.0)
+        return Measured::missing(fmt::format("at eps = {:g} kappa t^(-2/3) exceeds Haff's law by {:g} "
+                                             "(--stick-ratio) throughout",
+                                             inelasticity, rule.stick_ratio));
+    double high = low + 1.0;
+    while (excess(high, &reference) < 0.0) high += 1.0;  // g grows as t^(4/3): a few steps
+    gsl_function function{excess, &reference};
+    gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    gsl_root_fsolver_set(solver, &function, low, high);
+    int status = GSL_CONTINUE;
+    for (int iteration = 0; iteration < 200 && status == GSL_CONTINUE; ++iteration) {
+        gsl_root_fsolver_iterate(solver);
+        status = gsl_root_test_interval(gsl_root_fsolver_x_lower(solver), gsl_root_fsolver_x_upper(solver), 1e-14,
+                                        0.0);
+    }
+    const double root = gsl_root_fsolver_root(solver);
+    gsl_root_fsolver_free(solver);
+    return {std::exp(root), ""};
 }
 
 }  // namespace shockgas::analysis

@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "shockgas/exact_constants.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/parameters.hpp"
 #include "shockgas/provenance.hpp"
@@ -27,7 +28,7 @@ namespace {
 constexpr double velocity_variance = 1.0 / 3.0;  // <v^2> of the uniform law on [-1, 1], kept for the Gaussian
 // Exact sticky-gas constants (python/exact_ballistic.py): kappa = Var Phi (EB7)
 // and the linear tail coefficient |a_1|/(2D)^(1/3) of EB9 at D = 1/3.
-constexpr double exact_phi_variance = 0.2128532;
+constexpr double exact_phi_variance = exact::sticky_gas_temperature_prefactor;
 constexpr double exact_tail_linear_coefficient = 2.676;
 // The autoregressive Gaussian move v' = rho v + sqrt(1 - rho^2) xi keeps the
 // prior (it is reversible for it) and changes v by ~ 0.45 sigma: a small step

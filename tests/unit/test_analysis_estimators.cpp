@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "shockgas/analysis/collapse.hpp"
 #include "shockgas/analysis/far_tail.hpp"
 #include "shockgas/analysis/fit.hpp"
 #include "shockgas/analysis/results.hpp"
@@ -181,6 +182,74 @@ TEST(AnalysisCrossover, HaffCurveGivesItsTimes) {
     // t_stick lies after the asymptotes' intersection T0/(a t)^2 = B t^-2/3 (~ 1e2 here).
     EXPECT_GT(crossovers.t_stick.value, crossovers.t_dissip.value);
     EXPECT_LT(crossovers.t_stick.value, 1e3);
+}
+
+// reference_stick_time: the t_stick the rule reads on Haff's law (Eq. (2))
+// joined to the sticky gas's exact kappa t^(-2/3) (Eq. (3)).
+namespace reference {
+constexpr double haff_a = 6.0 * 1.7320508075688772 / 5.0;  // E3, docs/haff-and-collapse.md
+constexpr double kappa = 0.2128531785;                     // EB7, python/exact_ballistic.py
+constexpr double t0 = 1.0 / 3.0;
+// The values below come from an independent solve of kappa t^(-2/3) (1 + a t)^2 / T0 = 2
+// (scipy.optimize.brentq on the rising branch, /usr/bin/python3, 2026-11-27), printed to 10 digits.
+constexpr double independent_relative_tolerance = 1e-9;
+// Over eps = 0.05 ... 0.00625 the same solve fitted (numpy.polyfit, equal weights) -1.5221825178.
+constexpr double finite_eps_exponent = -1.5221825178;
+constexpr double finite_eps_exponent_tolerance = 1e-8;
+// As eps -> 0 the "1 +" of Haff's law fades as 1/(a t_stick) ~ eps^(1/2): over eps = 1e-7 ... 1e-6 the
+// exponent is -3/2 to 2.1e-4 (the same solve: -1.5002068), and t_stick at eps = 1e-8 is the leading
+// order (2 / (kappa A^2 eps^2))^(3/4) to 7e-5 (0.99993).
+constexpr double leading_order_exponent_tolerance = 5e-4;
+constexpr double leading_order_relative_tolerance = 2e-4;
+// A sampled reference, 40 samples per decade, read by find_crossovers: the log-log interpolation
+// between samples 10^(1/40) apart of a ratio that bends there moves t_stick by less than this.
+constexpr double sampled_relative_tolerance = 2e-3;
+}  // namespace reference
+
+TEST(AnalysisCrossover, ReferenceStickTimeSolvesHaffJoinedToTheStickyGas) {
+    const std::vector<double> inelasticity{0.05, 0.025, 0.0125, 0.00625};
+    const std::vector<double> independent{145.9135743561, 418.3173037456, 1203.2838859738, 3455.8132196557};
+    std::vector<sa::Estimate> times;
+    for (std::size_t k = 0; k < inelasticity.size(); ++k) {
+        const auto t = sa::reference_stick_time(inelasticity[k]);
+        ASSERT_TRUE(t.known()) << t.note;
+        EXPECT_NEAR(t.value, independent[k], reference::independent_relative_tolerance * independent[k]);
+        times.push_back({t.value, 0.01 * t.value});
+    }
+    EXPECT_NEAR(sa::fit_against_inelasticity(inelasticity, times).slope, reference::finite_eps_exponent,
+                reference::finite_eps_exponent_tolerance);
+    // Eq. (3)'s eps^(-3/2) as eps -> 0, with its leading-order prefactor.
+    const std::vector<double> small{1e-7, 1e-6};
+    std::vector<sa::Estimate> small_times;
+    for (double eps : small) small_times.push_back({sa::reference_stick_time(eps).value, 1.0});
+    EXPECT_NEAR(sa::fit_against_inelasticity(small, small_times).slope, -1.5, reference::leading_order_exponent_tolerance);
+    const double eps = 1e-8;
+    const double leading = std::pow(2.0 / (reference::kappa * reference::haff_a * reference::haff_a * eps * eps), 0.75);
+    EXPECT_NEAR(sa::reference_stick_time(eps).value, leading, reference::leading_order_relative_tolerance * leading);
+    // eps = 0.3: Haff's law meets kappa t^(-2/3) above T0/4, inside the Haff fit's window.
+    const auto none = sa::reference_stick_time(0.3);
+    EXPECT_FALSE(none.known());
+    EXPECT_NE(none.note.find("no Haff regime to fit"), std::string::npos) << none.note;
+}
+
+TEST(AnalysisCrossover, RuleReadsTheReferenceAtItsStickTime) {
+    // The reference sampled as a run would be and read by find_crossovers: the same t_stick, so the
+    // reference is what the rule would measure on an exact eps^(-3/2) crossover.
+    const double eps = 0.025;
+    const double a = reference::haff_a * eps * (1.0 - eps) * std::sqrt(reference::t0);
+    std::vector<double> time, temperature;
+    for (int k = 0; k <= 200; ++k) time.push_back(std::pow(10.0, k / 40.0));
+    std::mt19937_64 random(5);
+    std::normal_distribution<double> noise(0.0, 1e-9);  // two realizations that differ, for the jackknife
+    for (int r = 0; r < 2; ++r)
+        for (double t : time) {
+            const double haff = reference::t0 / std::pow(1.0 + a * t, 2.0);
+            const double sticky = reference::kappa * std::pow(t, -2.0 / 3.0);
+            temperature.push_back((t < 0.5 / a ? haff : std::max(haff, sticky)) * (1.0 + noise(random)));
+        }
+    const auto read = sa::find_crossovers(sa::TemperatureHistory::from(time, 2, temperature)).t_stick.value;
+    const double expected = sa::reference_stick_time(eps).value;
+    EXPECT_NEAR(read, expected, reference::sampled_relative_tolerance * expected);
 }
 
 namespace {
