@@ -180,12 +180,13 @@ void run_decay(const std::string& input, const std::string& output, const std::s
 }
 
 void run_crossover(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
-                   const CrossoverRule& rule) {
+                   const CrossoverRule& fit_rule, bool derived_haff_constant) {
     std::vector<double> inelasticity;
     for (const auto& input : inputs) inelasticity.push_back((1.0 - run_parameters(input).restitution) / 2.0);
     require_distinct(inelasticity, inputs, "eps", "fitting the crossovers");
     std::vector<Estimate> t_dissip, t_stick, temperature, reference_stick;
     ResultsFile results(output, "shockgas-analyze crossover", inputs);
+    results.root().set_attribute("haff_constant", std::string(derived_haff_constant ? "derived" : "fit"));
     std::unique_ptr<DataFile> file;
     if (!data.empty())
         file = std::make_unique<DataFile>(data, "crossovers per inelasticity",
@@ -195,6 +196,8 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
                                                                    "t_stick_reference"});
     for (std::size_t k = 0; k < inputs.size(); ++k) {
         const double eps = inelasticity[k];
+        CrossoverRule rule = fit_rule;
+        if (derived_haff_constant) rule.haff_rate = derived_haff_rate(eps);
         const auto crossovers = on_input(inputs[k], [&] {
             return find_crossovers(read_temperature_run(inputs[k]).history, rule);
         });
@@ -203,7 +206,7 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
         temperature.push_back(crossovers.temperature_at_stick);
         // The same rule on an exact eps^(-3/2) crossover: what t_stick would be
         // read at this eps without any physics beyond Haff's law and the sticky gas.
-        const Measured reference = reference_stick_time(eps, rule);
+        const Measured reference = reference_stick_time(eps, fit_rule);
         // Weighted as the measured t_stick, so that the two exponents are fitted alike.
         reference_stick.push_back({reference.value, reference.value * crossovers.t_stick.sigma / crossovers.t_stick.value});
         auto group = results.section("crossover" + std::to_string(k));
@@ -677,6 +680,13 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     crossover->add_option("--stick-ratio", crossover_rule.stick_ratio, "t_stick: T / T_Haff reaches this (> 1)")
         ->capture_default_str();
+    std::string haff_constant = "fit";
+    crossover
+        ->add_option("--haff-constant", haff_constant,
+                     "Haff curve's rate: fit (on T >= floor * T0) or derived (A = 6 sqrt(3)/5, no fit: free of the "
+                     "lattice start's transient, which the fit's window reaches at eps >= 0.025)")
+        ->check(CLI::IsMember({"fit", "derived"}))
+        ->capture_default_str();
 
     TailRule tail_rule;
     auto* scaling = app.add_subcommand("scaling", "P(v,t) collapse (beta, distance), kurtosis and tail gamma");
@@ -797,7 +807,7 @@ int main(int argc, char** argv) {
                                                  "and rises), not {}",
                                                  crossover_rule.stick_ratio));
                 check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
-                run_crossover(inputs, output, data, crossover_rule);
+                run_crossover(inputs, output, data, crossover_rule, haff_constant == "derived");
             }
             if (*scaling) {
                 require_positive("--tail-start", tail_rule.tail_start, " (in units of the rms of z)");

@@ -275,6 +275,27 @@ std::optional<double> first_crossing(const std::vector<double>& time, const std:
     return std::nullopt;
 }
 
+// The Haff rate a fitted as sqrt(T0/<T>) = b + a t (intercept free: the
+// lattice start delays the first crossings) on the samples with
+// <T> >= haff_floor T0, weighted by <T>'s standard errors.
+double fitted_haff_rate(const std::vector<double>& time, const std::vector<double>& mean,
+                        const std::vector<double>& weights_sigma, const CrossoverRule& rule) {
+    const double initial = uniform_initial_temperature;
+    std::vector<double> haff_time, haff_y, haff_sigma;
+    for (std::size_t k = 0; k < time.size() && mean[k] >= rule.haff_floor * initial; ++k) {
+        haff_time.push_back(time[k]);
+        haff_y.push_back(std::sqrt(initial / mean[k]));
+        // d sqrt(T0/T) = -(1/2) sqrt(T0/T) dT / T
+        haff_sigma.push_back(0.5 * std::sqrt(initial / mean[k]) * weights_sigma[k] / mean[k]);
+    }
+    if (haff_time.size() < 3)
+        throw InsufficientData(fmt::format("fewer than 3 samples with T >= {:g} T0 (--haff-floor): the homogeneous "
+                                           "(Haff) regime is not resolved; sample more densely (--samples-per-decade), "
+                                           "use a smaller inelasticity or a lower floor",
+                                           rule.haff_floor));
+    return weighted_linear_fit(haff_time, haff_y, haff_sigma).slope;
+}
+
 struct CrossoverValues {
     double t_dissip, haff_rate, t_stick, temperature_at_stick;
 };
@@ -290,20 +311,7 @@ CrossoverValues crossovers_of(const TemperatureHistory& history, const std::vect
         throw InsufficientData("<T> never crosses T0/2 between the first and last sample; "
                                "t_dissip is outside the run (first sample too late or t_max too short)");
     // Eq. (2) rearranged: sqrt(T0 / T) = 1 + a t, linear in t with a = A eps.
-    std::vector<double> haff_time, haff_y, haff_sigma;
-    for (std::size_t k = 0; k < samples && mean[k] >= rule.haff_floor * initial; ++k) {
-        haff_time.push_back(history.time[k]);
-        haff_y.push_back(std::sqrt(initial / mean[k]));
-        // d sqrt(T0/T) = -(1/2) sqrt(T0/T) dT / T
-        haff_sigma.push_back(0.5 * std::sqrt(initial / mean[k]) * weights_sigma[k] / mean[k]);
-    }
-    if (haff_time.size() < 3)
-        throw InsufficientData(fmt::format("fewer than 3 samples with T >= {:g} T0 (--haff-floor): the homogeneous "
-                                           "(Haff) regime is not resolved; sample more densely (--samples-per-decade), "
-                                           "use a smaller inelasticity or a lower floor",
-                                           rule.haff_floor));
-    const LinearFit haff = weighted_linear_fit(haff_time, haff_y, haff_sigma);
-    const double rate = haff.slope;
+    const double rate = rule.haff_rate ? *rule.haff_rate : fitted_haff_rate(history.time, mean, weights_sigma, rule);
     std::vector<double> ratio(samples);
     for (std::size_t k = 0; k < samples; ++k) {
         const double haff_temperature = initial / std::pow(1.0 + rate * history.time[k], 2.0);
@@ -349,11 +357,14 @@ Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRul
     return result;
 }
 
+double derived_haff_rate(double inelasticity) {
+    return exact::haff_constant_uniform * inelasticity * (1.0 - inelasticity) * std::sqrt(uniform_initial_temperature);
+}
+
 Measured reference_stick_time(double inelasticity, const CrossoverRule& rule) {
     const double initial = uniform_initial_temperature;
     const double kappa = exact::sticky_gas_temperature_prefactor;
-    // Eq. (2): the Haff rate a of sqrt(T0 / T) = 1 + a t.
-    const double rate = exact::haff_constant_uniform * inelasticity * (1.0 - inelasticity) * std::sqrt(initial);
+    const double rate = derived_haff_rate(inelasticity);
     // T_ref / T_Haff = max(1, g(t)), g(t) = kappa t^(-2/3) (1 + a t)^2 / T0,
     // in ln t; g falls until t = 1/(2a) and rises after it.
     struct Reference {

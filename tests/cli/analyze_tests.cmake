@@ -120,6 +120,11 @@ shockgas_analyze_error(collapse_one_eps "every input has eps = 0.25 \\('col.h5',
                        collapse col.h5 col.h5 --vs eps)
 shockgas_analyze_error(collapse_one_n "every input has N = 2000 \\('col.h5', 'col.h5'\\)"
                        collapse col.h5 col.h5 --vs N)
+# --haff-constant: fit (the default) or derived; anything else is refused by name.
+shockgas_analyze_error(haff_constant_unknown "--haff-constant: fitted not in \\{fit,derived\\}"
+                       crossover e05.h5 e10.h5 --haff-constant fitted)
+shockgas_analyze_reports(crossover_derived_haff_constant "t_stick ~ eps\\^.*the data minus it" "error|nan"
+                         crossover e05.h5 e10.h5 --haff-constant derived -o "${_analyze_dir}/derived_crossover.h5")
 shockgas_analyze_reports(crossover_two_points "chi2/dof n/a \\(need at least 3 points for chi2, got 2\\)" "nan|inf"
                          crossover e05.h5 e10.h5 -o "${_analyze_dir}/two_points_crossover.h5")
 shockgas_analyze_reports(collapse_two_n "<t_collapse> ~ N\\^.* \\(chi2/dof n/a \\(need at least 3 points" "nan|inf"

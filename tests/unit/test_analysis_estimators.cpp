@@ -206,6 +206,34 @@ constexpr double leading_order_relative_tolerance = 2e-4;
 constexpr double sampled_relative_tolerance = 2e-3;
 }  // namespace reference
 
+TEST(AnalysisCrossover, GivenHaffRateReplacesTheFit) {
+    // --haff-constant derived: the rule's Haff rate is used as given, so the fit's window (and a start
+    // transient inside it) no longer moves t_stick. Haff's law with a = 0.05, its first samples raised
+    // by 3% as the lattice start raises them, then a sticky-gas tail.
+    constexpr double rate = 0.05, sticky = 0.2;
+    std::vector<double> time, temperature;
+    for (int k = 0; k <= 80; ++k) time.push_back(std::pow(10.0, k / 20.0));
+    std::mt19937_64 random(4);
+    std::normal_distribution<double> noise(0.0, 1e-4);
+    for (int r = 0; r < 4; ++r)
+        for (double t : time)
+            temperature.push_back((1.0 / 3.0 / std::pow(1.0 + rate * t, 2.0) * (t < 10.0 ? 1.03 : 1.0) +
+                                   sticky * std::pow(t, -2.0 / 3.0) * std::exp(-20.0 / t)) * (1.0 + noise(random)));
+    const auto history = sa::TemperatureHistory::from(time, 4, temperature);
+    sa::CrossoverRule given;
+    given.haff_rate = rate;
+    const auto fitted = sa::find_crossovers(history);
+    const auto derived = sa::find_crossovers(history, given);
+    EXPECT_EQ(derived.haff_rate.value, rate);
+    EXPECT_EQ(derived.haff_rate.sigma, 0.0);
+    // The transient and the sticky tail inside the fit's window move the fitted rate (by 8% here) and
+    // with it t_stick; the given rate is immune to both.
+    EXPECT_GT(std::abs(fitted.haff_rate.value - rate), 0.01 * rate);
+    EXPECT_NE(fitted.t_stick.value, derived.t_stick.value);
+    // The rate A eps (1 - eps) sqrt(T0), Eq. (2) with A = 6 sqrt(3)/5 (E3).
+    EXPECT_DOUBLE_EQ(sa::derived_haff_rate(0.05), reference::haff_a * 0.05 * 0.95 * std::sqrt(reference::t0));
+}
+
 TEST(AnalysisCrossover, ReferenceStickTimeSolvesHaffJoinedToTheStickyGas) {
     const std::vector<double> inelasticity{0.05, 0.025, 0.0125, 0.00625};
     const std::vector<double> independent{145.9135743561, 418.3173037456, 1203.2838859738, 3455.8132196557};

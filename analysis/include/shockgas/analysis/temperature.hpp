@@ -127,6 +127,13 @@ Measured window_systematic(const TemperatureHistory& history, double t_lo, doubl
 struct CrossoverRule {
     double haff_floor = 0.25;   // Haff fit on T >= T0/4: past t_dissip, still homogeneous
     double stick_ratio = 2.0;   // departure from Haff by a factor 2 marks t_stick
+    // Set: the Haff rate a used instead of the fit (derived_haff_rate, for
+    // shockgas-analyze --haff-constant derived). The fit's window T >= T0/4
+    // ends at t = 18 and 32 for eps = 0.05 and 0.025, inside the lattice
+    // start's transient, where the fitted a exceeds the derived one by 1.5%
+    // and 1.0%; that steepens the t_stick exponent by 0.016 +- 0.002 over
+    // eps = 0.05 ... 0.00625 (analysis/README.md).
+    std::optional<double> haff_rate;
 };
 struct Crossovers {
     double initial_temperature = 0.0;  // T0 = <T>(first sample)
@@ -151,5 +158,9 @@ Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRul
 // the reason, where the Haff fit's window would reach the sticky branch (eps
 // too large for a Haff regime at this floor) or no such t exists.
 Measured reference_stick_time(double inelasticity, const CrossoverRule& rule = {});
+
+// Haff's rate a = A eps (1 - eps) sqrt(T0) of sqrt(T0/T) = 1 + a t, with the
+// derived A = 6 sqrt(3)/5 of the uniform start (Eq. (2), E3).
+double derived_haff_rate(double inelasticity);
 
 }  // namespace shockgas::analysis
