@@ -161,21 +161,30 @@ TEST(AnalysisDecay, WindowRuleAndScan) {
     for (const auto& w : scan) EXPECT_NEAR(w.exponent, 2.0 / 3.0, 5.0 * w.exponent_sigma);
 }
 
-TEST(AnalysisCrossover, HaffCurveGivesItsTimes) {
-    // Pure Haff cooling, Eq. (2): T = T0 / (1 + a t)^2 with T0 = 1/3, followed by
-    // a sticky-gas tail B t^-2/3 that takes over where it is larger.
-    constexpr double rate = 0.05, sticky = 0.2;
+namespace {
+
+// Pure Haff cooling, Eq. (2): T = T0 / (1 + a t)^2 with T0 = 1/3 (its samples
+// before t = 10 raised by the factor `early`, as the lattice start raises
+// them), plus a sticky-gas tail B t^-2/3 that takes over where it is larger;
+// 20 samples per decade from t = 1 to 10^4, relative Gaussian noise.
+sa::TemperatureHistory haff_then_sticky(double rate, double sticky, std::size_t realizations, double relative_noise,
+                                        std::uint64_t seed, double early = 1.0) {
     std::vector<double> time, temperature;
     for (int k = 0; k <= 80; ++k) time.push_back(std::pow(10.0, k / 20.0));
-    std::mt19937_64 random(3);
-    std::normal_distribution<double> noise(0.0, 1e-3);
-    constexpr std::size_t realizations = 8;
+    std::mt19937_64 random(seed);
+    std::normal_distribution<double> noise(0.0, relative_noise);
     for (std::size_t r = 0; r < realizations; ++r)
         for (double t : time)
-            temperature.push_back((1.0 / 3.0 / std::pow(1.0 + rate * t, 2.0) + sticky * std::pow(t, -2.0 / 3.0) *
-                                   std::exp(-20.0 / t)) * (1.0 + noise(random)));
-    const auto crossovers = sa::find_crossovers(
-        sa::TemperatureHistory::from(time, static_cast<std::int64_t>(realizations), temperature));
+            temperature.push_back((1.0 / 3.0 / std::pow(1.0 + rate * t, 2.0) * (t < 10.0 ? early : 1.0) +
+                                   sticky * std::pow(t, -2.0 / 3.0) * std::exp(-20.0 / t)) * (1.0 + noise(random)));
+    return sa::TemperatureHistory::from(time, static_cast<std::int64_t>(realizations), temperature);
+}
+
+}  // namespace
+
+TEST(AnalysisCrossover, HaffCurveGivesItsTimes) {
+    constexpr double rate = 0.05, sticky = 0.2;
+    const auto crossovers = sa::find_crossovers(haff_then_sticky(rate, sticky, 8, 1e-3, 3));
     // t_dissip: T0 / (1 + a t)^2 = T0 / 2 -> t = (sqrt 2 - 1) / a, shifted slightly by the sticky term.
     EXPECT_NEAR(crossovers.t_dissip.value, (std::sqrt(2.0) - 1.0) / rate, 0.15 * (std::sqrt(2.0) - 1.0) / rate);
     EXPECT_NEAR(crossovers.haff_rate.value, rate, 0.2 * rate);
@@ -211,15 +220,7 @@ TEST(AnalysisCrossover, GivenHaffRateReplacesTheFit) {
     // transient inside it) no longer moves t_stick. Haff's law with a = 0.05, its first samples raised
     // by 3% as the lattice start raises them, then a sticky-gas tail.
     constexpr double rate = 0.05, sticky = 0.2;
-    std::vector<double> time, temperature;
-    for (int k = 0; k <= 80; ++k) time.push_back(std::pow(10.0, k / 20.0));
-    std::mt19937_64 random(4);
-    std::normal_distribution<double> noise(0.0, 1e-4);
-    for (int r = 0; r < 4; ++r)
-        for (double t : time)
-            temperature.push_back((1.0 / 3.0 / std::pow(1.0 + rate * t, 2.0) * (t < 10.0 ? 1.03 : 1.0) +
-                                   sticky * std::pow(t, -2.0 / 3.0) * std::exp(-20.0 / t)) * (1.0 + noise(random)));
-    const auto history = sa::TemperatureHistory::from(time, 4, temperature);
+    const auto history = haff_then_sticky(rate, sticky, 4, 1e-4, 4, 1.03);
     sa::CrossoverRule given;
     given.haff_rate = rate;
     const auto fitted = sa::find_crossovers(history);
