@@ -53,6 +53,7 @@ def stick_expectation(scaling_in_eps):
         return "−3/2"
     return f"−3/2 as ε → 0; {reference:.3f} read by the same rule on an exact ε^(−3/2) crossover at these ε"
 
+
 def print_help():
     """--help: the usage line, this docstring (less its own usage line) and the arguments, as argparse
     would print them; the words are parsed by hand below (their refusals are this script's own)."""

@@ -361,37 +361,45 @@ double derived_haff_rate(double inelasticity) {
     return exact::haff_constant_uniform * inelasticity * (1.0 - inelasticity) * std::sqrt(uniform_initial_temperature);
 }
 
+namespace {
+
+// ln(g(t) / level) at t = e^log_time, g(t) = kappa t^(-2/3) (1 + a t)^2 / T0:
+// T_ref / T_Haff on the reference's sticky branch (Eqs. (2) and (3)).
+double log_sticky_over_haff(double log_time, double rate, double level) {
+    return std::log(exact::sticky_gas_temperature_prefactor / uniform_initial_temperature) - 2.0 / 3.0 * log_time +
+           2.0 * std::log1p(rate * std::exp(log_time)) - std::log(level);
+}
+
+struct StickyOverHaff {
+    double rate, level;
+};
+
+double log_sticky_over_haff_at(double log_time, void* parameters) {
+    const auto& p = *static_cast<const StickyOverHaff*>(parameters);
+    return log_sticky_over_haff(log_time, p.rate, p.level);
+}
+
+}  // namespace
+
 Measured reference_stick_time(double inelasticity, const CrossoverRule& rule) {
-    const double initial = uniform_initial_temperature;
-    const double kappa = exact::sticky_gas_temperature_prefactor;
     const double rate = derived_haff_rate(inelasticity);
-    // T_ref / T_Haff = max(1, g(t)), g(t) = kappa t^(-2/3) (1 + a t)^2 / T0,
-    // in ln t; g falls until t = 1/(2a) and rises after it.
-    struct Reference {
-        double rate, kappa, initial, level;
-    } reference{rate, kappa, initial, rule.stick_ratio};
-    const auto excess = [](double log_time, void* parameters) {
-        const auto& p = *static_cast<const Reference*>(parameters);
-        const double t = std::exp(log_time);
-        return std::log(p.kappa / p.initial) - 2.0 / 3.0 * log_time + 2.0 * std::log1p(p.rate * t) - std::log(p.level);
-    };
+    // T_ref / T_Haff = max(1, g(t)); in ln t, g falls until t = 1/(2a) and rises after it.
     // The Haff fit sees only Haff's branch if T_Haff >= kappa t^(-2/3) up to
     // the floor's time, (1/sqrt(floor) - 1)/a.
     const double floor_time = (1.0 / std::sqrt(rule.haff_floor) - 1.0) / rate;
-    reference.level = 1.0;
-    if (floor_time > 0.5 / rate && excess(std::log(floor_time), &reference) > 0.0)
+    if (floor_time > 0.5 / rate && log_sticky_over_haff(std::log(floor_time), rate, 1.0) > 0.0)
         return Measured::missing(fmt::format("at eps = {:g} Haff's law meets kappa t^(-2/3) above T = {:g} T0 "
                                              "(--haff-floor): no Haff regime to fit",
                                              inelasticity, rule.haff_floor));
-    reference.level = rule.stick_ratio;
+    StickyOverHaff reference{rate, rule.stick_ratio};
     double low = std::log(0.5 / rate);
-    if (excess(low, &reference) >= 0.0)
+    if (log_sticky_over_haff_at(low, &reference) >= 0.0)
         return Measured::missing(fmt::format("at eps = {:g} kappa t^(-2/3) exceeds Haff's law by {:g} "
                                              "(--stick-ratio) throughout",
                                              inelasticity, rule.stick_ratio));
     double high = low + 1.0;
-    while (excess(high, &reference) < 0.0) high += 1.0;  // g grows as t^(4/3): a few steps
-    gsl_function function{excess, &reference};
+    while (log_sticky_over_haff_at(high, &reference) < 0.0) high += 1.0;  // g grows as t^(4/3): a few steps
+    gsl_function function{log_sticky_over_haff_at, &reference};
     gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     gsl_root_fsolver_set(solver, &function, low, high);
     int status = GSL_CONTINUE;

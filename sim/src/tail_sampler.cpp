@@ -25,7 +25,7 @@ namespace shockgas {
 
 namespace {
 
-constexpr double velocity_variance = 1.0 / 3.0;  // <v^2> of the uniform law on [-1, 1], kept for the Gaussian
+constexpr double velocity_variance = exact::uniform_initial_temperature;  // <v^2> of the uniform law on [-1, 1], kept for the Gaussian
 // Exact sticky-gas constants (python/exact_ballistic.py): kappa = Var Phi (EB7)
 // and the linear tail coefficient |a_1|/(2D)^(1/3) of EB9 at D = 1/3.
 constexpr double exact_phi_variance = exact::sticky_gas_temperature_prefactor;
