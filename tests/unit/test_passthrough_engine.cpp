@@ -406,6 +406,60 @@ HybridSwitchRule never_switch() {
     return rule;
 }
 
+// Starts whose crossings fall exactly on sample times (dyadic positions and
+// velocities, so every crossing time is computed without rounding): the
+// state at a sample includes every collision at its time, elastic crossings
+// included, as the event engine's does. The pass-through engine's sorts had
+// left a pair level at the sample to the next step, so the count at t lagged
+// by one per such crossing (found by an independent audit, 2026-11-27: N = 2,
+// t = 3 gave 1 collision for 2). The expected counts are worked out by hand:
+// on a ring of length L two free lines meet whenever their relative
+// displacement passes a multiple of L.
+TEST(PassThroughEngine, CountsACrossingAtTheSampleTimeAsTheEventEngineDoes) {
+    struct Case {
+        const char* name;
+        InitialCondition start;
+        std::vector<std::pair<double, std::uint64_t>> expected;  // (sample time, collisions by then)
+    };
+    const auto ring = [](double length, std::vector<double> position, std::vector<double> velocity) {
+        InitialCondition start;
+        start.ring_length = length;
+        start.position = std::move(position);
+        start.velocity = std::move(velocity);
+        start.mass.assign(start.position.size(), 1.0);
+        return start;
+    };
+    const std::vector<Case> cases = {
+        // Relative speed 1, gap 1 ahead, L = 2: meetings at t = 1, 3, 5, 7.
+        {"N = 2", ring(2.0, {0.0, 1.0}, {0.5, -0.5}), {{1.0, 1}, {2.0, 1}, {3.0, 2}, {5.0, 3}, {7.0, 4}}},
+        // L = 4. Pairs (0,1): gap 1, closing at 1, meets at 1, 5, 9, 13; (0,2):
+        // gap 2, closing at 1/2, at 4, 12; (1,2): gap 1, opening at 1/2, so the
+        // first meeting is round the ring, gap 3 at 1/2: at 6, 14.
+        {"N = 3", ring(4.0, {0.0, 1.0, 2.0}, {0.5, -0.5, 0.0}),
+         {{1.0, 1}, {4.0, 2}, {5.0, 3}, {6.0, 4}, {9.0, 5}, {12.0, 6}, {13.0, 7}, {14.0, 8}}},
+    };
+    // delta above every relative speed: every collision is elastic.
+    const CollisionModel model{0.5, 10.0, Subthreshold::elastic};
+    for (const Case& c : cases) {
+        for (const auto paths : {PassThroughEngine::Paths::mixed, PassThroughEngine::Paths::steps_only,
+                                 PassThroughEngine::Paths::kinetic_only}) {
+            PassThroughEngine engine(c.start, model);
+            engine.set_paths(paths);
+            EventEngine reference(c.start, model, CollapseCriterion{});
+            HybridEngine hybrid(c.start, model, CollapseCriterion{}, nullptr, switch_at(0.5));
+            for (const auto& [t, collisions] : c.expected) {
+                engine.advance_to(t);
+                reference.advance_to(t);
+                hybrid.advance_to(t);
+                EXPECT_EQ(reference.collisions(), collisions) << c.name << ", event engine, t = " << t;
+                EXPECT_EQ(engine.collisions(), collisions)
+                    << c.name << ", paths " << static_cast<int>(paths) << ", t = " << t;
+                EXPECT_EQ(hybrid.collisions(), collisions) << c.name << ", hybrid engine, t = " << t;
+            }
+        }
+    }
+}
+
 // Before the switch the hybrid engine is the windowed event engine: the same
 // clusters bit for bit and the same collision counts at every sample, with
 // the measured rule (the switch comes after these samples) and with a rule

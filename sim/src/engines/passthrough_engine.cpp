@@ -35,6 +35,17 @@ double adapted_length(double current, double length, std::uint64_t crossings, do
     const double proposal = per_line > 0.0 ? length * target / per_line : step_change_limit * current;
     return std::clamp(proposal, current / step_change_limit, current * step_change_limit);
 }
+
+// Whether a line behind another has crossed it by time t, from their positions
+// at t: it is beyond the other, or level with it and still closing. A crossing
+// at exactly t counts as done, since the state at a sample time includes every
+// collision at that time (the event engines run every event due by then); a
+// level pair left to the next sort made the collision count at such a sample
+// lag by one. Every sort below orders by this, so each swap is one crossing.
+bool crossed(double behind_position, double behind_velocity, double ahead_position, double ahead_velocity) {
+    return behind_position > ahead_position ||
+           (behind_position == ahead_position && behind_velocity > ahead_velocity);
+}
 }  // namespace
 
 std::string PassThroughEngine::unsupported_reason(const std::vector<double>& mass, const CollisionModel& model,
@@ -524,13 +535,14 @@ void PassThroughEngine::sort_in_place(std::int64_t lo, std::int64_t hi) {
     for (std::int64_t i = lo + 1; i <= hi; ++i) {
         const auto m = static_cast<std::size_t>(i - lo);
         const double item_end = sorted_end_[m];
-        if (!(sorted_end_[m - 1] > item_end)) continue;
         const Line item = line_[static_cast<std::size_t>(wrap_index(i))];
+        if (!crossed(sorted_end_[m - 1], line_[static_cast<std::size_t>(wrap_index(i - 1))].v, item_end, item.v))
+            continue;
         std::int64_t j = i;
         for (; j > lo; --j) {
             const auto before = static_cast<std::size_t>(j - 1 - lo);
             const Line& previous = line_[static_cast<std::size_t>(wrap_index(j - 1))];
-            if (!(sorted_end_[before] > item_end) ||
+            if (!crossed(sorted_end_[before], previous.v, item_end, item.v) ||
                 classify(model_, previous.v - item.v) == CollisionKind::inelastic)
                 break;
             place(previous, j - 1, j);
@@ -831,16 +843,16 @@ PassThroughEngine::Sorted PassThroughEngine::load(std::int64_t i, double t) cons
     return {axis_position(line, frame, t), frame, line};
 }
 
-// Stable insertion sort; one swap per crossing. A pair found
-// crossed while closing at >= delta is left as it is: its inelastic collision
-// is due (see the header).
+// Insertion sort by crossed() (stable for level lines that do not close); one
+// swap per crossing. A pair found crossed while closing at >= delta is left
+// as it is: its inelastic collision is due (see the header).
 std::uint64_t PassThroughEngine::insertion_sort(std::vector<Sorted>& buffer) const {
     std::uint64_t swaps = 0;
     for (std::size_t i = 1; i < buffer.size(); ++i) {
-        if (!(buffer[i - 1].position > buffer[i].position)) continue;
+        if (!crossed(buffer[i - 1].position, buffer[i - 1].line.v, buffer[i].position, buffer[i].line.v)) continue;
         const Sorted item = buffer[i];
         std::size_t j = i;
-        while (j > 0 && buffer[j - 1].position > item.position &&
+        while (j > 0 && crossed(buffer[j - 1].position, buffer[j - 1].line.v, item.position, item.line.v) &&
                classify(model_, buffer[j - 1].line.v - item.line.v) != CollisionKind::inelastic) {
             buffer[j] = buffer[j - 1];
             --j;
@@ -882,14 +894,14 @@ void PassThroughEngine::sort_stretch(std::int64_t& lo, std::int64_t& hi, double 
         for (std::int64_t j = lo - 1; j >= left_end; --j) {
             const double p = unwrapped_position(j, t);
             if (p < smallest - margin) break;
-            if (p > smallest) new_lo = j;
+            if (p >= smallest) new_lo = j;  // level: possibly crossed (crossed()); the sort decides
         }
         const std::int64_t right_end = ring_block_ ? new_lo + n - 1 : block_hi_;
         std::int64_t new_hi = hi;
         for (std::int64_t j = hi + 1; j <= right_end; ++j) {
             const double p = unwrapped_position(j, t);
             if (p > largest + margin) break;
-            if (p < largest) new_hi = j;
+            if (p <= largest) new_hi = j;
         }
         if (new_lo == lo && new_hi == hi) return;
         if (new_hi - new_lo + 1 > n) new_hi = new_lo + n - 1;
@@ -915,7 +927,7 @@ void PassThroughEngine::close_ring() {
     for (;;) {
         const Sorted& last = buffer_.back();
         const Sorted& first = buffer_.front();
-        if (!(last.position > first.position + ring_length_)) return;
+        if (!crossed(last.position, last.line.v, first.position + ring_length_, first.line.v)) return;
         if (classify(model_, last.line.v - first.line.v) == CollisionKind::inelastic) return;  // due now
         swap_across_seam(true);
     }
@@ -936,7 +948,7 @@ void PassThroughEngine::swap_across_seam(bool sink) {
     ++collisions_;
     if (!sink) return;
     const auto closing = [this](const Sorted& behind, const Sorted& ahead) {
-        return behind.position > ahead.position &&
+        return crossed(behind.position, behind.line.v, ahead.position, ahead.line.v) &&
                classify(model_, behind.line.v - ahead.line.v) != CollisionKind::inelastic;
     };
     for (std::size_t j = 0; j + 1 < buffer_.size() && closing(buffer_[j], buffer_[j + 1]); ++j) {
