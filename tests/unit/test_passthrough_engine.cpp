@@ -421,21 +421,14 @@ TEST(PassThroughEngine, CountsACrossingAtTheSampleTimeAsTheEventEngineDoes) {
         InitialCondition start;
         std::vector<std::pair<double, std::uint64_t>> expected;  // (sample time, collisions by then)
     };
-    const auto ring = [](double length, std::vector<double> position, std::vector<double> velocity) {
-        InitialCondition start;
-        start.ring_length = length;
-        start.position = std::move(position);
-        start.velocity = std::move(velocity);
-        start.mass.assign(start.position.size(), 1.0);
-        return start;
-    };
+    using shockgas::testing::unit_masses;
     const std::vector<Case> cases = {
         // Relative speed 1, gap 1 ahead, L = 2: meetings at t = 1, 3, 5, 7.
-        {"N = 2", ring(2.0, {0.0, 1.0}, {0.5, -0.5}), {{1.0, 1}, {2.0, 1}, {3.0, 2}, {5.0, 3}, {7.0, 4}}},
+        {"N = 2", unit_masses(2.0, {0.0, 1.0}, {0.5, -0.5}), {{1.0, 1}, {2.0, 1}, {3.0, 2}, {5.0, 3}, {7.0, 4}}},
         // L = 4. Pairs (0,1): gap 1, closing at 1, meets at 1, 5, 9, 13; (0,2):
         // gap 2, closing at 1/2, at 4, 12; (1,2): gap 1, opening at 1/2, so the
         // first meeting is round the ring, gap 3 at 1/2: at 6, 14.
-        {"N = 3", ring(4.0, {0.0, 1.0, 2.0}, {0.5, -0.5, 0.0}),
+        {"N = 3", unit_masses(4.0, {0.0, 1.0, 2.0}, {0.5, -0.5, 0.0}),
          {{1.0, 1}, {4.0, 2}, {5.0, 3}, {6.0, 4}, {9.0, 5}, {12.0, 6}, {13.0, 7}, {14.0, 8}}},
     };
     // delta above every relative speed: every collision is elastic.

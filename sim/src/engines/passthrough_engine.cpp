@@ -535,6 +535,8 @@ void PassThroughEngine::sort_in_place(std::int64_t lo, std::int64_t hi) {
     for (std::int64_t i = lo + 1; i <= hi; ++i) {
         const auto m = static_cast<std::size_t>(i - lo);
         const double item_end = sorted_end_[m];
+        // Most lines are ahead of the one before: one compare, no line loaded.
+        if (sorted_end_[m - 1] < item_end) continue;
         const Line item = line_[static_cast<std::size_t>(wrap_index(i))];
         if (!crossed(sorted_end_[m - 1], line_[static_cast<std::size_t>(wrap_index(i - 1))].v, item_end, item.v))
             continue;
