@@ -4,7 +4,8 @@
 # stopped. Asserts that start runs a target in the background and records its end with rc = 0; that a
 # second start while one runs starts nothing; that stop ends every process of the build and the
 # simulation writes its last checkpoint on the way (so a later start resumes it); and that
-# paper-tier.times records each start and end.
+# paper-tier.times records each start and end; and that --jobs 2 runs two targets at once (two that
+# each wait for the other to start, so that one at a time times out).
 set -u
 tool=$1 sim=$2 work=$3
 fail() {
@@ -18,9 +19,22 @@ cat >"$work/project/CMakeLists.txt" <<'EOF'
 cmake_minimum_required(VERSION 3.20)
 project(paper_tier_test NONE)
 add_custom_target(quick COMMAND ${CMAKE_COMMAND} -E touch ${CMAKE_BINARY_DIR}/quick.done)
+# Each of these starts, then waits up to 30 s for the other to start: both finish only side by side.
+add_custom_target(side_a COMMAND sh ${CMAKE_SOURCE_DIR}/meet.sh ${CMAKE_BINARY_DIR} a b)
+add_custom_target(side_b COMMAND sh ${CMAKE_SOURCE_DIR}/meet.sh ${CMAKE_BINARY_DIR} b a)
+add_custom_target(side_by_side DEPENDS side_a side_b)
 # Long enough (N = 20000 to t = 1e6 with the event engine: minutes) to be stopped while it runs.
 add_custom_target(simulate COMMAND ${SIM} -N 20000 -t 1e6 -R 1 -q --resume --checkpoint-interval 3600
                   --output ${CMAKE_BINARY_DIR}/run.h5)
+EOF
+cat >"$work/project/meet.sh" <<'EOF'
+touch "$1/$2.started"
+i=0
+while [ ! -f "$1/$3.started" ]; do
+  i=$((i + 1)); [ $i -le 300 ] || { echo "$2 waited 30 s for $3"; exit 1; }
+  sleep 0.1
+done
+touch "$1/$2.met"
 EOF
 cmake -S "$work/project" -B "$work/build" -DSIM="$sim" >/dev/null || fail "the test project did not configure"
 build=$work/build
@@ -40,6 +54,14 @@ wait_until_stopped || fail "the quick target still runs after 60 s"
 [ -f "$build/quick.done" ] || fail "the quick target did not run"
 tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=0$' || fail "no end with rc=0: $(cat "$build/paper-tier.times")"
 
+"$tool" start --build "$build" --jobs 2 side_by_side >/dev/null || fail "start with --jobs 2 failed"
+tail -n 1 "$build/paper-tier.times" | grep -q ' jobs 2$' || fail "the start did not record its jobs: $(tail -n 1 "$build/paper-tier.times")"
+wait_until_stopped || fail "the two side-by-side targets still run after 60 s"
+[ -f "$build/a.met" ] && [ -f "$build/b.met" ] || fail "--jobs 2 did not run two targets at once"
+tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=0$' || fail "side by side: no end with rc=0"
+bad_jobs=$("$tool" start --build "$build" --jobs 0 quick 2>&1) && fail "--jobs 0 was accepted"
+echo "$bad_jobs" | grep -q "at least 1" || fail "--jobs 0: $bad_jobs"
+
 own_autogroup=$(cat /proc/$$/autogroup 2>/dev/null)
 "$tool" start --build "$build" simulate || fail "start of the simulation failed"
 status=$("$tool" status --build "$build")
@@ -57,7 +79,7 @@ if [ "$(cat /proc/sys/kernel/sched_autogroup_enabled 2>/dev/null)" = 1 ]; then
 fi
 again=$("$tool" start --build "$build" simulate)
 echo "$again" | grep -q "already running" || fail "a second start did not see the first: $again"
-[ "$(grep -c '^start' "$build/paper-tier.times")" = 2 ] || fail "a second start was recorded"
+[ "$(grep -c '^start' "$build/paper-tier.times")" = 3 ] || fail "a second start was recorded"
 # Wait until the simulation itself runs, then stop the whole build.
 for ((i = 0; i < 300; ++i)); do
   pgrep -g "$pid" -f "run.h5" >/dev/null && break
