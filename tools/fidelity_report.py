@@ -33,6 +33,7 @@ without a file or with one that does not exist, and unknown options. -h or --hel
 (exit 0), wherever it stands, even where numpy and h5py are missing.
 """
 import glob
+import math
 import os
 import signal
 import sys
@@ -332,9 +333,21 @@ if os.path.exists(path):
         a = results[g].attrs
         line = f"| Fig. 4 {a['label']}: kurtosis"
         value = f"{a['kurtosis']:.3f} ± {a['kurtosis_sigma']:.3f}"
+        # A short run's tail often has too few bins, or a fit or jackknife replica at the search
+        # bound (analysis/README.md, Tail): say so rather than print NaN.
         if "tail_gamma" in a:
             line += ", tail γ"
-            value += f"; γ = {a['tail_gamma']:.2f} ± {a['tail_gamma_sigma']:.2f}"
+            if math.isnan(a["tail_gamma"]):
+                value += "; γ n/a (at the search bound)"
+            elif math.isnan(a["tail_gamma_sigma"]):
+                # The jackknife's σ is n/a; the fit's own Δχ² = 1 width still bounds γ.
+                value += (f"; γ = {a['tail_gamma']:.2f} ± {a['tail_gamma_fit_sigma']:.2f} (Δχ² = 1; jackknife n/a: "
+                          "a replica at the search bound)")
+            else:
+                value += f"; γ = {a['tail_gamma']:.2f} ± {a['tail_gamma_sigma']:.2f}"
+        elif "tail_error" in a:
+            line += ", tail γ"
+            value += "; γ n/a (too few tail bins)"
         print(f"{line} | {value} | 3.041 (exact Φ); γ = 3 asymptotically |")
 path = os.path.join(base, "fig5", "shocks.h5")
 if os.path.exists(path):

@@ -10,7 +10,11 @@ traceback): asking that quick build for paper (it has no paper_targets/paper/; t
 paper_targets/ only), also with --progress; a build whose paper_targets/quick/ holds no results;
 --check-readme with no file after it (IndexError) or with a file that does not exist
 (FileNotFoundError); a build directory that does not exist; an unknown fidelity (exit 1 before).
+Fig. 4's tail rows (a scaling.h5 written here with each case shockgas-analyze stores) print n/a with
+the reason, or the fit's Δχ² = 1 width where only the jackknife failed, and never "nan" (they printed
+"γ = 0.75 ± nan" for a quick build's short runs, 2026-11-27).
 """
+import math
 import os
 import shutil
 import sys
@@ -19,7 +23,9 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-sc.require("h5py", "numpy")
+h5py, _ = sc.require("h5py", "numpy")
+sys.path.insert(0, sc.script("python"))
+import shockgas.schema  # noqa: E402
 
 SIM, WORK = sc.arguments(2)
 TOOL = sc.script("tools", "fidelity_report.py")
@@ -39,8 +45,40 @@ class Inputs(unittest.TestCase):
         os.makedirs(figure)
         result = sc.run([SIM, "-N", 1000, "-r", 0, "-t", 100, "-R", 2, "-j", 1, "-q", "-o", "r0.h5"], cwd=figure)
         assert result.returncode == 0, result.stderr
+        cls.write_tail_cases(os.path.join(cls.build, "paper_targets", "quick", "fig4"))
         cls.empty = os.path.join(WORK, "configured")
         os.makedirs(os.path.join(cls.empty, "paper_targets", "quick", "fig1"))
+
+    @staticmethod
+    def write_tail_cases(directory):
+        """scaling.h5 as shockgas-analyze scaling writes it, one histogram per way the tail fit ends:
+        a fit with its jackknife; a jackknife replica at the search bound (σ NaN); γ itself at the
+        bound (NaN); too few tail bins (tail_error, no tail_gamma)."""
+        os.makedirs(directory)
+        nan = math.nan
+        cases = [{"tail_gamma": 3.04, "tail_gamma_sigma": 1.24, "tail_gamma_fit_sigma": 1.5},
+                 {"tail_gamma": 0.75, "tail_gamma_sigma": nan, "tail_gamma_fit_sigma": 0.73},
+                 {"tail_gamma": nan, "tail_gamma_sigma": nan, "tail_gamma_fit_sigma": nan},
+                 {"tail_error": "only 3 tail bins have a relative error below the limit"}]
+        with h5py.File(os.path.join(directory, "scaling.h5"), "w") as f:
+            f.attrs["program"] = "shockgas-analyze scaling"
+            f.attrs["schema_version"] = max(shockgas.schema.SCHEMA_VERSIONS)
+            f.create_group("collapse").attrs.update({"beta": 0.335, "beta_sigma": 0.006})
+            for i, case in enumerate(cases):
+                group = f.create_group(f"histogram{i}")
+                group.attrs.update({"label": f"case{i}", "kurtosis": 3.0, "kurtosis_sigma": 0.1, **case})
+
+    def test_tail_rows_say_why_a_number_is_missing(self):
+        result = report(self.build, "quick")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = {line.split(":")[0].split()[-1]: line for line in result.stdout.splitlines()
+                if line.startswith("| Fig. 4 case")}
+        self.assertEqual(len(rows), 4, result.stdout)
+        self.assertIn("γ = 3.04 ± 1.24 |", rows["case0"])
+        self.assertIn("γ = 0.75 ± 0.73 (Δχ² = 1; jackknife n/a", rows["case1"])
+        self.assertIn("γ n/a (at the search bound)", rows["case2"])
+        self.assertIn("γ n/a (too few tail bins)", rows["case3"])
+        self.assertNotIn("nan", result.stdout.lower())
 
     def test_the_quick_build_is_reported(self):
         result = report(self.build, "quick")
