@@ -32,7 +32,7 @@ g = v1 - v2 > 0, one of three things happens:
 * delta = 0 and r > 0 is the pure inelastic gas, which undergoes inelastic collapse (infinitely many
   collisions in finite time; the paper's introduction and its t_stick ~ eps^(-3/2) argument). As in
   shockgas-sim, collapse is declared at an inelastic collision (g >= delta, r > 0) slower than
-  `collapse_speed`; that realization then stops: samples at t >= the collapse time are NaN (see
+  `collapse_speed` with three or more clusters in contact; that realization then stops: samples at t >= the collapse time are NaN (see
   "Collapse" below).
 
 Observables at a sample time t (the state after every event at time <= t), per docs/model.md:
@@ -76,11 +76,12 @@ collides at the same time, after 0. For disjoint pairs (no common cluster) the o
 Where three clusters meet at one point the outcome can depend on the order; for equal masses and
 elastic collisions it does not (three exchanges, whatever the order), and neither does it for merges.
 
-Collapse: at an inelastic collision (g >= delta, r > 0) with g < collapse_speed the run stops at that
-time t_c, as shockgas-sim does (docs/haff-and-collapse.md). `collapse` then holds t_c, g, the number
+Collapse: at an inelastic collision (g >= delta, r > 0) with g < collapse_speed, where the run of
+neighbours around the pair whose gaps are below 1e-6 of the mean spacing L/N has three or more
+clusters (two alone cannot collapse: a slow pair on a small ring at delta = 0 is a cooled gas), the
+run stops at that time t_c, as shockgas-sim does (docs/haff-and-collapse.md). `collapse` then holds t_c, g, the number
 of collisions before that one (it is not counted or processed: shockgas-sim's /collapse/collisions
-counts the same way), the pair, and the collapsing cluster's mass: the run of neighbours around the
-pair whose gaps are below 1e-6 of the mean spacing L/N. Samples at t < t_c are the state before that
+counts the same way), the pair, and the collapsing cluster's mass (that run's). Samples at t < t_c are the state before that
 collision, samples at t >= t_c are NaN, as in shockgas-sim's time series. Its second criterion (a
 stall: max(10^6, 10 N) events advancing time by less than 10^-12 max(1, t)) is not reproduced: it
 needs 10^6 events.
@@ -209,9 +210,7 @@ def _simulate(position, velocity, mass, ring_length, restitution, threshold, sub
         g = v[i] - v[j]
         m1, m2 = m[i], m[j]
         if g >= delta and r > zero and g < slow:
-            # Inelastic collapse: stop here, without counting this collision (as /collapse/collisions).
-            status = COLLAPSED
-            # The collapsing cluster: the run of neighbours around the pair whose gaps are below 1e-6 of
+            # The cluster in contact: the run of neighbours around the pair whose gaps are below 1e-6 of
             # the mean spacing L/N (docs/haff-and-collapse.md).
             members, close = {i, j}, number(1e-6) * L / n
             k = i
@@ -222,9 +221,13 @@ def _simulate(position, velocity, mass, ring_length, restitution, threshold, sub
             while len(members) < K and gap[k] < close:
                 k = (k + 1) % K
                 members.add(k)
-            collapse = {"time": float(t), "relative_speed": float(g), "collisions": state["events"], "pair": (i, j),
-                        "cluster_mass": float(total(m[k] for k in members))}
-            break
+            # Inelastic collapse needs three bodies in contact (a slow pair alone is a cooled gas): stop
+            # here, without counting this collision (as /collapse/collisions).
+            if len(members) >= 3:
+                status = COLLAPSED
+                collapse = {"time": float(t), "relative_speed": float(g), "collisions": state["events"],
+                            "pair": (i, j), "cluster_mass": float(total(m[k] for k in members))}
+                break
         state["events"] += 1
         event_times.append(float(t))
         if r == zero or (g < delta and subthreshold == "sticky"):

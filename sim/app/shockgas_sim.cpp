@@ -126,7 +126,8 @@ int main(int argc, char** argv) {
                    "(exact when r = 0, hybrid where passthrough applies, else event)")
         ->capture_default_str();
     app.add_option("--collapse-speed", p.collapse.collapse_speed,
-                   "declare inelastic collapse at an inelastic collision slower than this")
+                   "declare inelastic collapse at an inelastic collision slower than this with three or more "
+                   "clusters in contact")
         ->capture_default_str();
     app.add_option("-o,--output", output, "output HDF5 file (written atomically)")->capture_default_str();
     shockgas::CheckpointOptions checkpoint;

@@ -235,6 +235,13 @@ def hand_cases():
                   mass=[1000.0, 1.0, 1000.0], t_max=3.0, samples=(1.9, 2.0), expect_collapse=True,
                   note="N=3, r = 0.9 (masses 1000, 1, 1000): ~1200 collisions, gaps far below the spacing of "
                        "doubles near the positions"))
+    # Cooling is not collapse: two particles alone, and three above the three-body threshold r = 7 - 4 sqrt 3,
+    # lose relative speed geometrically, g < 1e-12 by t ~ 1e12, but never collide infinitely often in finite
+    # time (shockgas-sim reported these "collapsed" until 2026-11-27).
+    c.append(case("cooling_pair_r05", [0.0, 1.0], [0.75, -0.25], 0.5, 0.0, L=2.0, t_max=1e14,
+                  expect_collapse=False, note="N=2, r = 0.5, delta = 0: Haff cooling to g ~ 1e-14, no collapse"))
+    c.append(case("cooling_triple_r05", [0.0, 1.0, 2.5], [0.6, -0.1, -0.5], 0.5, 0.0, L=4.0, t_max=1e14,
+                  expect_collapse=False, note="N=3, r = 0.5 > 7 - 4 sqrt 3, delta = 0: no collapse"))
     rng = np.random.default_rng(9)   # the third of seeds 0, 1, ... whose start collapses before t = 40
     c.append(case("collapse_random_r05", np.sort(rng.uniform(0, 10, 10)), rng.uniform(-1, 1, 10), 0.5, 0.0,
                   t_max=12.0, expect_collapse=True, count_tolerance=COLLAPSE_BURST_COUNT_TOL, note="N=10, r = 0.5, random start: collapses at t = 8.97"))

@@ -127,6 +127,22 @@ TEST(EventEngine, ThreeBodyCollapseThreshold) {
     EXPECT_GT(three_body_outcome(0.5), 0);
 }
 
+// Cooling is not collapse. Two particles on a ring of 2 (relative speed 1, r = 0.5, delta = 0) meet
+// every 2/g time units and g halves at each collision, so by t = 1e14 g ~ 2e-14 is far below the
+// collapse speed 1e-12, and the time between collisions grows without end: nothing collapses. Three on
+// a ring above the three-body threshold cool likewise. Both were reported collapsed near t ~ 1e12 until
+// the relative-speed rule asked for three clusters in contact (2026-11-27).
+TEST(EventEngine, CoolingRingsOfTwoAndThreeDoNotCollapse) {
+    EventEngine pair(make(2.0, {0.0, 1.0}, {0.75, -0.25}), CollisionModel{0.5, 0.0, Subthreshold::elastic}, {});
+    EXPECT_TRUE(pair.advance_to(1e14));
+    EXPECT_FALSE(pair.collapse().has_value());
+    EXPECT_GT(pair.collisions(), 40u);  // g = 2^-k after k collisions: below 1e-12 from k = 40 on
+    EventEngine triple(make(4.0, {0.0, 1.0, 2.5}, {0.6, -0.1, -0.5}), CollisionModel{0.5, 0.0, Subthreshold::elastic},
+                       {});
+    EXPECT_TRUE(triple.advance_to(1e14));
+    EXPECT_FALSE(triple.collapse().has_value());
+}
+
 TEST(EventEngine, CollapseReportNamesTimeAndCluster) {
     const auto initial = make(1e6, {0.0, 1.0, 2.0}, {1.0, 0.0, -0.9});
     EventEngine engine(initial, CollisionModel{0.03, 0.0, Subthreshold::elastic}, {});

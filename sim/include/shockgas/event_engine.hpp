@@ -87,7 +87,14 @@ private:
     static void log_left(double, std::int32_t, double) {}
     static void log_right(double, std::int32_t, std::int32_t, double, double) {}
     static void became_block_end(std::int32_t) {}
-    void detect_collapse(std::int32_t left, double relative_speed, double t, const char* criterion);
+    // The clusters in contact around the pair (left, its right neighbour) at t: how many, and their mass.
+    struct ContactCluster {
+        std::int64_t members;
+        double mass;
+    };
+    ContactCluster contact_cluster(std::int32_t left, double t) const;
+    void detect_collapse(std::int32_t left, double relative_speed, double t, const char* criterion,
+                         const ContactCluster& cluster);
     void move_anchor_clock(std::int32_t slot, double t);
 
     std::vector<Cluster> cluster_;

@@ -103,7 +103,7 @@ void EventEngine::collide_pair(std::int32_t i, double t) {
     // geometrically to nothing in an inelastic collision.
     if (t - stall_reference_time_ <= criterion_.stall_time_fraction * std::max(1.0, t)) {
         if (++stall_events_ >= stall_window_) {
-            detect_collapse(i, relative_speed, t, "stall");
+            detect_collapse(i, relative_speed, t, "stall", contact_cluster(i, t));
             return;
         }
     } else {
@@ -111,16 +111,23 @@ void EventEngine::collide_pair(std::int32_t i, double t) {
         stall_events_ = 0;
     }
     if (kind == CollisionKind::inelastic && relative_speed < criterion_.collapse_speed) {
-        detect_collapse(i, relative_speed, t, "relative_speed");
-        return;
+        // Collapse needs three bodies: two alone separate after each collision (McNamara & Young
+        // 1992). A slow pair with no third cluster in contact is a cooled gas, not a collapse: a
+        // ring of N = 2 ... 8 at delta = 0 reaches g < 1e-12 by Haff cooling alone near t ~ 1e12
+        // and was reported collapsed there. Every collapse the figures record has 10 or more.
+        const ContactCluster cluster = contact_cluster(i, t);
+        if (cluster.members >= 3) {
+            detect_collapse(i, relative_speed, t, "relative_speed", cluster);
+            return;
+        }
     }
 
     detail::collide_neighbours(*this, i, t, kind);
 }
 
-void EventEngine::detect_collapse(std::int32_t i, double relative_speed, double t, const char* criterion) {
-    // The collapsing cluster: the run of clusters around the triggering pair
-    // that are in contact (gap below collapse_contact_fraction * L / N).
+EventEngine::ContactCluster EventEngine::contact_cluster(std::int32_t i, double t) const {
+    // The run of clusters around the pair that are in contact (gap below
+    // collapse_contact_fraction * L / N).
     const double contact = collapse_contact_fraction * ring_length_ / static_cast<double>(particles_);
     double mass = cluster_[static_cast<std::size_t>(i)].mass;
     std::int64_t members = 1;
@@ -133,7 +140,13 @@ void EventEngine::detect_collapse(std::int32_t i, double relative_speed, double 
         mass += cluster_[static_cast<std::size_t>(s)].mass;
         s = cluster_[static_cast<std::size_t>(s)].prev;
     }
-    collapse_ = CollapseReport{t, i, static_cast<std::int64_t>(std::llround(mass)), relative_speed, criterion};
+    return {members, mass};
+}
+
+void EventEngine::detect_collapse(std::int32_t i, double relative_speed, double t, const char* criterion,
+                                  const ContactCluster& cluster) {
+    // The collapsing cluster is the pair's contact cluster.
+    collapse_ = CollapseReport{t, i, static_cast<std::int64_t>(std::llround(cluster.mass)), relative_speed, criterion};
     now_ = t;
 }
 
