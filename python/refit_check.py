@@ -11,9 +11,10 @@ the root attribute `input_path` (or --run). Estimator (analysis/src/temperature.
   * y_k = ln <T>_k, x_k = ln t_k, sigma_k = SE(T_k)/<T_k>, SE = sample std (n-1) / sqrt(n);
   * weighted least squares with weights 1/sigma_k^2 (scipy.optimize.curve_fit, absolute_sigma=True);
     exponent = -slope; chi2/dof = sum(residual^2/sigma^2)/(K-2);
-  * sigma: delete-one jackknife over realizations, with the full-sample SE(T_k) divided by the
-    delete-one mean (what fit_power_law does with the replica's y),
-    sqrt((n-1)/n sum (theta_i - mean theta)^2).
+  * sigma: delete-one jackknife over realizations, each replica the whole weighted fit on the other
+    n - 1 realizations (their mean and their SE(T_k)), sqrt((n-1)/n sum (theta_i - mean theta)^2);
+  * an SE not above 1e-12 <T>_k (identical realizations, or a single one) gives equal weights:
+    sigma_k = 1.
 With one realization there is no jackknife and no standard error to weight by: the C++ prints
 "+- n/a" and stores exponent_sigma and chi2_per_dof NaN; then the exponent (an unweighted fit) is
 compared and the other two are reported as n/a (they agree when both sides give none).
@@ -85,20 +86,23 @@ def refit(run, t_lo, t_hi):
     if len(t) < 3:
         raise InputError(f"{run.file}: {len(t)} sample times in the window [{t_lo:g}, {t_hi:g}] reached by every "
                          f"realization; the decay fit had more: this is not the analysed run")
-    mean = T.mean(axis=0)
-    se = T.std(axis=0, ddof=1) / np.sqrt(R) if R >= 2 else mean.copy()
-    se = np.where(se > 0, se, mean)     # no scatter (or one realization): equal weights, as the C++ does
-    sigma = se / mean                    # d ln y = dy / y
     x = np.log(t)
-    slope, chi2 = weighted_slope(x, np.log(mean), sigma)
-    exponent = -slope
+
+    def fit(rows):
+        """-slope and chi2 of the weighted fit on these realizations (rows of T)."""
+        n = rows.shape[0]
+        mean = rows.mean(axis=0)
+        se = rows.std(axis=0, ddof=1) / np.sqrt(n) if n >= 2 else np.zeros_like(mean)
+        # No scatter above rounding (identical realizations, or one): equal weights, as the C++ does.
+        se = np.where(se > 1e-12 * mean, se, mean)
+        slope, chi2 = weighted_slope(x, np.log(mean), se / mean)   # d ln y = dy / y
+        return -slope, chi2
+
+    exponent, chi2 = fit(T)
     if R < 2:  # one realization: nothing to leave out, the C++ stores NaN ("+- n/a")
         jack_sigma = float("nan")
     else:
-        # fit_power_law divides the absolute SE by the y it is given: in a jackknife replica that is
-        # the delete-one mean, so sigma_k = SE_k / <T>_(i),k there (SE_k from the full sample).
-        replicas = [np.delete(T, i, axis=0).mean(axis=0) for i in range(R)]
-        jack = np.array([-weighted_slope(x, np.log(m), se / m)[0] for m in replicas])
+        jack = np.array([fit(np.delete(T, i, axis=0))[0] for i in range(R)])
         jack_sigma = float(np.sqrt((R - 1) / R * np.sum((jack - jack.mean()) ** 2)))
     # One realization: no standard error, so no weights, and chi2 has no meaning (the C++ stores NaN).
     chi2_per_dof = chi2 / (len(t) - 2) if R >= 2 else float("nan")

@@ -117,46 +117,81 @@ ShockProfile find_shocks(const Snapshot& input, const ShockRule& rule) {
             break;
         }
     if (start == n) return profile;  // everything compressive: one cluster, no profile
-    std::vector<bool> in_shock(n, false);
-    std::vector<std::size_t> order(n);  // walk order: point index at step s
-    for (std::size_t s = 0; s < n; ++s) order[s] = (start + s) % n;
-    std::vector<double> unwrapped(n);   // positions made monotone along the walk
-    unwrapped[0] = snapshot.position[order[0]];
-    for (std::size_t s = 1; s < n; ++s) unwrapped[s] = unwrapped[s - 1] + gap(order[s - 1]);
-    std::size_t s = 0;
-    while (s + 1 < n) {  // pair s joins steps s and s + 1
-        if (!compressive(order[s])) {
-            ++s;
-            continue;
-        }
-        const std::size_t run_begin = s;
-        double velocity_change = 0.0;
-        for (;;) {
-            while (s + 1 < n && compressive(order[s])) {
-                velocity_change += drop(order[s]);
+    // One walk round the ring from `start`: the points in walk order, their positions made monotone
+    // along it, which of them lie in a segment-breaking run, and the counted shocks.
+    struct Walk {
+        std::vector<std::size_t> order;  // walk order: point index at step s
+        std::vector<double> unwrapped;
+        std::vector<bool> in_shock;
+        std::vector<double> shock_position, shock_drop;
+    };
+    auto walk_from = [&](std::size_t first) {
+        Walk walk;
+        walk.order.resize(n);
+        walk.in_shock.assign(n, false);
+        for (std::size_t s = 0; s < n; ++s) walk.order[s] = (first + s) % n;
+        const auto& order = walk.order;
+        walk.unwrapped.resize(n);
+        walk.unwrapped[0] = snapshot.position[order[0]];
+        for (std::size_t s = 1; s < n; ++s) walk.unwrapped[s] = walk.unwrapped[s - 1] + gap(order[s - 1]);
+        std::size_t s = 0;
+        while (s + 1 < n) {  // pair s joins steps s and s + 1
+            if (!compressive(order[s])) {
                 ++s;
+                continue;
             }
-            // A compressive run resuming within merge_gap_points expanding
-            // pairs belongs to the same shock (a cluster whose members have
-            // not all merged yet): the net velocity change spans both.
-            std::size_t next = s;
-            while (next + 1 < n && next - s < rule.merge_gap_points && !compressive(order[next])) ++next;
-            if (next == s || next + 1 >= n || !compressive(order[next])) break;
-            for (; s < next; ++s) velocity_change += drop(order[s]);
-        }
-        // Points run_begin..s form the run.
-        if (-velocity_change >= rule.segment_break_fraction * v_rms)
-            for (std::size_t k = run_begin; k <= s; ++k) in_shock[k] = true;
-        if (-velocity_change >= rule.jump_fraction * v_rms) {
-            double mass = 0.0, centre = 0.0;
-            for (std::size_t k = run_begin; k <= s; ++k) {
-                mass += snapshot.mass[order[k]];
-                centre += snapshot.mass[order[k]] * unwrapped[k];
+            const std::size_t run_begin = s;
+            double velocity_change = 0.0;
+            for (;;) {
+                while (s + 1 < n && compressive(order[s])) {
+                    velocity_change += drop(order[s]);
+                    ++s;
+                }
+                // A compressive run resuming within merge_gap_points expanding
+                // pairs belongs to the same shock (a cluster whose members have
+                // not all merged yet): the net velocity change spans both.
+                std::size_t next = s;
+                while (next + 1 < n && next - s < rule.merge_gap_points && !compressive(order[next])) ++next;
+                if (next == s || next + 1 >= n || !compressive(order[next])) break;
+                for (; s < next; ++s) velocity_change += drop(order[s]);
             }
-            profile.shock_position.push_back(centre / mass);
-            profile.shock_drop.push_back(-velocity_change);
+            // Points run_begin..s form the run.
+            if (-velocity_change >= rule.segment_break_fraction * v_rms)
+                for (std::size_t k = run_begin; k <= s; ++k) walk.in_shock[k] = true;
+            if (-velocity_change >= rule.jump_fraction * v_rms) {
+                double mass = 0.0, centre = 0.0;
+                for (std::size_t k = run_begin; k <= s; ++k) {
+                    mass += snapshot.mass[order[k]];
+                    centre += snapshot.mass[order[k]] * walk.unwrapped[k];
+                }
+                walk.shock_position.push_back(centre / mass);
+                walk.shock_drop.push_back(-velocity_change);
+            }
         }
-    }
+        return walk;
+    };
+    Walk walk = walk_from(start);
+    // The walk must begin where a segment begins: just after a segment-breaking run, followed by more
+    // expanding pairs than a merge bridges. Begun inside a segment (the first expanding pair's point,
+    // as until 2026-11-27), it split that segment in two, and with --merge-gap it could count a shock
+    // whose parts lay at both ends of the walk twice (an independent audit: 306 segments for a
+    // 300-tooth sawtooth, 51 shocks for 50). So the first walk finds such a point and a second walk
+    // starts there; without one (no segment break at all) the first walk stands.
+    auto expanding_stretch_from = [&](std::size_t point) {
+        for (std::size_t j = 0; j <= rule.merge_gap_points; ++j)
+            if (compressive((point + j) % n)) return false;
+        return true;
+    };
+    for (std::size_t p = 1; p < n; ++p)
+        if (walk.in_shock[p - 1] && !walk.in_shock[p] && expanding_stretch_from(walk.order[p - 1])) {
+            walk = walk_from(walk.order[p]);
+            break;
+        }
+    profile.shock_position = std::move(walk.shock_position);
+    profile.shock_drop = std::move(walk.shock_drop);
+    const auto& order = walk.order;
+    const auto& unwrapped = walk.unwrapped;
+    const auto& in_shock = walk.in_shock;
     // Segments: maximal stretches of points outside shocks; Eq. (7) line fitted to each.
     std::size_t k = 0;
     while (k < n) {

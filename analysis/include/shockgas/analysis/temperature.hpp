@@ -26,8 +26,15 @@ struct TemperatureHistory {
     double at(std::size_t realization, std::size_t k) const { return temperature[realization * time.size() + k]; }
     // Mean over realizations, leaving out one realization when asked (jackknife).
     double mean(std::size_t k, std::optional<std::size_t> left_out = std::nullopt) const;
-    // Standard error of the mean at time k: sample std over realizations / sqrt(R).
-    double standard_error(std::size_t k) const;
+    // Standard error of the mean at time k: sample std over realizations / sqrt(R), leaving out one
+    // realization when asked (a jackknife replica's own weights). NaN with fewer than 2 values.
+    double standard_error(std::size_t k, std::optional<std::size_t> left_out = std::nullopt) const;
+    // The standard errors of the mean at the samples `indices`, from the realizations an estimate uses
+    // (all, or all but left_out): a weighted fit's sigmas. Where one is not above rounding level
+    // relative to the mean (identical realizations, or one left), equal relative weights take its
+    // place: fallback_fraction x the mean.
+    std::vector<double> fit_sigmas(const std::vector<std::size_t>& indices, std::optional<std::size_t> left_out,
+                                   double fallback_fraction) const;
 
     static TemperatureHistory from(const TimeSeries& series);
     static TemperatureHistory from(const EnsembleResult& result);
