@@ -3,13 +3,35 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "shockgas/h5.hpp"
 
 namespace shockgas::analysis {
+
+namespace {
+
+// What is wrong with /collapse/realization, if anything: each realization collapses at most once and
+// is one of the run's R. A realization listed twice (a damaged or hand-made file) would count one
+// collapse twice and pass the all-collapsed check with one missing (an independent audit, 2026-11-27).
+std::optional<std::string> repeated_realization(const h5::Group& group, std::size_t realizations) {
+    if (!group.has("realization")) return std::nullopt;  // files without it: nothing to check
+    std::vector<std::int64_t> index = group.read_integers("realization");
+    for (const std::int64_t r : index)
+        if (r < 0 || static_cast<std::size_t>(r) >= realizations)
+            return fmt::format("realization holds {}, outside the run's 0 ... {}", r, realizations - 1);
+    std::sort(index.begin(), index.end());
+    const auto twice = std::adjacent_find(index.begin(), index.end());
+    if (twice != index.end()) return fmt::format("realization {} collapses twice", *twice);
+    return std::nullopt;
+}
+
+}  // namespace
 
 CollapseEvents read_collapse_events(const std::string& path) {
     const auto file = h5::File::open_read(path);
@@ -31,6 +53,8 @@ CollapseEvents read_collapse_events(const std::string& path) {
         problem = fmt::format("cluster_mass holds {} values but time {}", events.cluster_mass.size(), events.time.size());
     else if (events.time.size() > events.realizations)
         problem = fmt::format("{} collapses, more than the {} realizations", events.time.size(), events.realizations);
+    else if (const auto twice = repeated_realization(group, events.realizations))
+        problem = *twice;
     else if (!std::all_of(events.time.begin(), events.time.end(), [](double t) { return t > 0.0 && std::isfinite(t); }))
         problem = "time holds a value that is not positive and finite";
     else if (!std::all_of(events.cluster_mass.begin(), events.cluster_mass.end(),
@@ -55,6 +79,9 @@ CollapseSummary summarize_collapse(const CollapseEvents& events) {
                                            "which collisions are elastic or sticky, so inelastic collapse cannot "
                                            "happen; collapse needs runs with delta = 0 (shockgas-sim -d 0)",
                                            events.velocity_threshold));
+    if (events.realizations < 2)
+        throw InsufficientData(which + "the run has one realization; an error bar needs 2 or more collapses "
+                                       "(shockgas-sim -R 2 or more)");
     if (events.time.size() < 2)
         throw InsufficientData(which + std::to_string(events.time.size()) +
                                " realizations collapsed; an error bar needs 2 or more (more particles: collapse "

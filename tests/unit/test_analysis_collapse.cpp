@@ -8,10 +8,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "shockgas/analysis/collapse.hpp"
 #include "shockgas/analysis/fit.hpp"
+#include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
 
 namespace sa = shockgas::analysis;
@@ -32,7 +34,8 @@ constexpr double arithmetic_tolerance = 1e-12;
 // realizations of N particles at restitution r, of which those listed collapsed.
 std::string write_synthetic_run(const std::string& name, std::int64_t particles, double restitution,
                                 int realizations, const std::vector<double>& time,
-                                const std::vector<std::int64_t>& mass) {
+                                const std::vector<std::int64_t>& mass,
+                                const std::vector<std::int64_t>& realization_index = {}) {
     shockgas::SimulationParameters parameters;
     parameters.particles = particles;
     parameters.collision.restitution = restitution;
@@ -51,7 +54,7 @@ std::string write_synthetic_run(const std::string& name, std::int64_t particles,
     result.engine = "event";
     for (std::size_t k = 0; k < time.size(); ++k) {
         shockgas::CollapseRecord record;
-        record.realization = static_cast<std::int64_t>(k);
+        record.realization = realization_index.empty() ? static_cast<std::int64_t>(k) : realization_index[k];
         record.report.time = time[k];
         record.report.cluster_mass = mass[k];
         record.report.criterion = "relative_speed";
@@ -122,6 +125,33 @@ TEST(AnalysisCollapse, PartlyCollapsedEnsembleIsRefused) {
     // Two of three collapsed: the mean of the two would be biased early.
     const auto path = write_synthetic_run("partial", 5000, 0.9, 3, {10.0, 12.0}, {50, 52});
     EXPECT_THROW(sa::summarize_collapse(sa::read_collapse_events(path)), sa::InsufficientData);
+    std::filesystem::remove(path);
+}
+
+TEST(AnalysisCollapse, ARealizationListedTwiceIsRefused) {
+    // Four of four "collapsed", but realization 2 twice and 3 never: one collapse counted twice.
+    const auto twice = write_synthetic_run("twice", 5000, 0.9, 4, {10.0, 12.0, 14.0, 16.0}, {50, 52, 48, 50},
+                                           {0, 1, 2, 2});
+    try {
+        sa::read_collapse_events(twice);
+        ADD_FAILURE() << "a realization listed twice must be refused";
+    } catch (const shockgas::h5::Error& error) {
+        EXPECT_NE(std::string(error.what()).find("realization 2 collapses twice"), std::string::npos) << error.what();
+    }
+    std::filesystem::remove(twice);
+    const auto outside = write_synthetic_run("outside", 5000, 0.9, 2, {10.0, 12.0}, {50, 52}, {0, 5});
+    EXPECT_THROW(sa::read_collapse_events(outside), shockgas::h5::Error);
+    std::filesystem::remove(outside);
+}
+
+TEST(AnalysisCollapse, OneRealizationAsksForMoreRealizations) {
+    const auto path = write_synthetic_run("single", 5000, 0.9, 1, {10.0}, {50});
+    try {
+        sa::summarize_collapse(sa::read_collapse_events(path));
+        ADD_FAILURE() << "one collapse has no error bar";
+    } catch (const sa::InsufficientData& error) {
+        EXPECT_NE(std::string(error.what()).find("-R 2 or more"), std::string::npos) << error.what();
+    }
     std::filesystem::remove(path);
 }
 
