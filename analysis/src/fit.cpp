@@ -191,6 +191,11 @@ Estimate bounded_jackknife(std::size_t samples,
                            const std::function<SearchMinimum(std::optional<std::size_t>)>& estimator) {
     const SearchMinimum full = estimator(std::nullopt);
     if (full.at_bound) return Estimate::missing(full.bound_note());
+    // One realization (or chain): the minimum is measured, its jackknife sigma is not; the whole
+    // command used to stop here with exit status 2, where decay and the kurtosis report n/a.
+    if (samples < 2)
+        return {full.argmin, std::numeric_limits<double>::quiet_NaN(),
+                "one sample (realization or chain): the jackknife has nothing to leave out; run -R 2 or more"};
     std::optional<std::string> replica_at_bound;
     Estimate result = jackknife(samples, [&](std::optional<std::size_t> left_out) {
         if (!left_out) return full.argmin;

@@ -376,6 +376,20 @@ TEST(AnalysisScaling, CollapseExponentAndCoverage) {
     EXPECT_NEAR(static_cast<double>(inside) / trials, one_sigma_coverage, coverage_tolerance(trials));
 }
 
+// One realization: beta is measured, its jackknife sigma is n/a with the reason (the command stopped
+// with exit status 2 until 2026-11-27, where decay and the kurtosis report n/a).
+TEST(AnalysisScaling, OneRealizationHasBetaWithoutSigma) {
+    std::mt19937_64 random(99);
+    const std::vector<sa::VelocityHistogram> histograms{synthetic_histogram(random, 100.0, 1.0 / 3.0, 2.0, 1, 40000),
+                                                        synthetic_histogram(random, 1e4, 1.0 / 3.0, 2.0, 1, 40000)};
+    ASSERT_EQ(histograms.front().realizations, 1u);
+    const auto collapse = sa::fit_scaling_collapse(histograms);
+    // 40000 samples per histogram: beta within a few 0.01 of 1/3 (the R = 20 x 2000 case above has sigma < 0.01).
+    EXPECT_NEAR(collapse.beta.value, 1.0 / 3.0, 0.03);
+    EXPECT_TRUE(std::isnan(collapse.beta.sigma));
+    EXPECT_NE(collapse.beta.note.find("nothing to leave out"), std::string::npos) << collapse.beta.note;
+}
+
 TEST(AnalysisScaling, KurtosisOfGaussianIsThree) {
     std::mt19937_64 random(5);
     const auto h = synthetic_histogram(random, 1000.0, 1.0 / 3.0, 2.0, 20, 20000);

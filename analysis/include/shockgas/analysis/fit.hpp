@@ -201,7 +201,8 @@ SearchMinimum minimise(Function f, double lo, double hi, std::size_t grid = 60) 
 // The jackknife of an estimate found by a bounded search (minimise). value is
 // missing, with the bound named, when the search over every sample ends at a
 // bound; sigma is missing when a leave-one-out search does (the spread of
-// values clipped to the range is not an error bar). Otherwise as jackknife.
+// values clipped to the range is not an error bar) or when there is one sample
+// only (nothing to leave out). Otherwise as jackknife.
 Estimate bounded_jackknife(std::size_t samples,
                            const std::function<SearchMinimum(std::optional<std::size_t>)>& estimator);
 
