@@ -19,7 +19,7 @@ namespace {
 // What is wrong with /collapse/realization, if anything: each realization collapses at most once and
 // is one of the run's R. A realization listed twice (a damaged or hand-made file) would count one
 // collapse twice and pass the all-collapsed check with one missing (an independent audit, 2026-11-27).
-std::optional<std::string> repeated_realization(const h5::Group& group, std::size_t realizations) {
+std::optional<std::string> realization_index_problem(const h5::Group& group, std::size_t realizations) {
     if (!group.has("realization")) return std::nullopt;  // files without it: nothing to check
     std::vector<std::int64_t> index = group.read_integers("realization");
     for (const std::int64_t r : index)
@@ -53,8 +53,8 @@ CollapseEvents read_collapse_events(const std::string& path) {
         problem = fmt::format("cluster_mass holds {} values but time {}", events.cluster_mass.size(), events.time.size());
     else if (events.time.size() > events.realizations)
         problem = fmt::format("{} collapses, more than the {} realizations", events.time.size(), events.realizations);
-    else if (const auto twice = repeated_realization(group, events.realizations))
-        problem = *twice;
+    else if (const auto index_problem = realization_index_problem(group, events.realizations))
+        problem = *index_problem;
     else if (!std::all_of(events.time.begin(), events.time.end(), [](double t) { return t > 0.0 && std::isfinite(t); }))
         problem = "time holds a value that is not positive and finite";
     else if (!std::all_of(events.cluster_mass.begin(), events.cluster_mass.end(),

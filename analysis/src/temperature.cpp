@@ -365,13 +365,21 @@ Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRul
     std::iota(every_sample.begin(), every_sample.end(), std::size_t{0});
     // Identical realizations: equal relative weights, 10^-3 of <T>.
     constexpr double equal_weights = 1e-3;
+    // The full sample (entry 0) and each replica without realization i (entry i + 1), computed once
+    // for the four quantities' jackknifes. Each replica recomputes the Haff fit's weights from its own
+    // realizations, as the decay fit's do.
+    std::vector<CrossoverValues> replicas;
+    replicas.reserve(history.realizations + 1);
+    auto values_without = [&](std::optional<std::size_t> left_out) {
+        return crossovers_of(history, history.fit_sigmas(every_sample, left_out, equal_weights), left_out, rule);
+    };
+    replicas.push_back(values_without(std::nullopt));
+    for (std::size_t i = 0; i < history.realizations; ++i) replicas.push_back(values_without(i));
     Crossovers result;
     result.initial_temperature = uniform_initial_temperature;
-    // Each replica recomputes the Haff fit's weights from its own realizations, as the decay fit's do.
     auto component = [&](double CrossoverValues::*member) {
         return jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
-            return crossovers_of(history, history.fit_sigmas(every_sample, left_out, equal_weights), left_out, rule).*
-                   member;
+            return replicas[left_out ? *left_out + 1 : 0].*member;
         });
     };
     result.t_dissip = component(&CrossoverValues::t_dissip);
