@@ -10,6 +10,7 @@
 #include <memory>
 #include <thread>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -31,6 +32,24 @@ namespace {
 std::atomic<bool> interrupt_requested{false};
 
 extern "C" void on_interrupt(int) { interrupt_requested.store(true); }
+
+// Which of stdout and stderr were terminals when the run began (isatty is not
+// safe inside a signal handler).
+bool stdout_terminal = false;
+bool stderr_terminal = false;
+
+// A hung-up terminal fails every later write (EIO), which would end the run
+// with an error before its checkpoint: its streams go to /dev/null (open and
+// dup2 are async-signal-safe), and the run stops as on SIGINT.
+extern "C" void on_hangup(int) {
+    const int null = open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+        if (stdout_terminal) dup2(null, STDOUT_FILENO);
+        if (stderr_terminal) dup2(null, STDERR_FILENO);
+        close(null);
+    }
+    interrupt_requested.store(true);
+}
 
 
 void print_table(const shockgas::EnsembleResult& result) {
@@ -294,10 +313,18 @@ int main(int argc, char** argv) {
             for (const auto& stale : shockgas::h5::remove_stale_temporaries(target))
                 checkpoint.note(fmt::format("removed '{}', left by a run that no longer exists", stale));
 
+        // SIGHUP too (on_hangup): a closed terminal or a dropped ssh session
+        // stops the run as Ctrl-C does, with its checkpoint and interrupted
+        // output, instead of killing it with up to a checkpoint interval lost.
+        stdout_terminal = isatty(STDOUT_FILENO) != 0;
+        stderr_terminal = terminal;
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
+        std::signal(SIGHUP, on_hangup);
         shockgas::ProgressCallback progress;
-        if (terminal && !quiet && session.is_root())
+        // On a terminal the progress line shows with --quiet too, which
+        // silences only the T(t) table (docs/cli-and-output.md).
+        if (terminal && session.is_root())
             progress = [](const shockgas::Progress& status) {
                 fmt::print(stderr, "\r{:<110}", shockgas::format_progress(status));
                 std::fflush(stderr);

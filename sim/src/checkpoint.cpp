@@ -1,6 +1,7 @@
 #include "shockgas/checkpoint.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <limits>
 #include <cerrno>
@@ -41,6 +42,21 @@ bool may_be_checkpoint(const h5::Probe& found) {
            (found.kind == Kind::hdf5 && found.holds("checkpoint"));
 }
 
+// The same for one generation `file`, knowing the other one: an empty file
+// holds nothing to lose, and a file that lost the HDF5 signature beside an
+// intact shockgas checkpoint of the other generation is a damaged generation
+// of that run (another file that merely has the name would not have one
+// beside it), which --resume passes over like any damaged checkpoint.
+bool may_be_generation(const std::string& file, const std::string& other_generation) {
+    const h5::Probe found = h5::probe(file);
+    if (may_be_checkpoint(found)) return true;
+    if (found.kind != h5::Probe::Kind::not_hdf5) return false;
+    std::error_code error;
+    if (std::filesystem::file_size(file, error) == 0 && !error) return true;
+    const h5::Probe other = h5::probe(other_generation);
+    return other.kind == h5::Probe::Kind::hdf5 && other.holds("checkpoint");
+}
+
 // A lock file holds the process id of its holder, or nothing.
 bool may_be_lock(const std::string& path) {
     namespace fs = std::filesystem;
@@ -78,10 +94,10 @@ bool same_file(const std::string& a, const std::string& b) {
 
 std::vector<std::string> remove_checkpoints(const std::string& path) {
     std::vector<std::string> kept;
-    for (const std::string& file : {path, previous_checkpoint_path(path)}) {
-        const h5::Probe found = h5::probe(file);
-        if (found.kind == h5::Probe::Kind::absent) continue;
-        if (may_be_checkpoint(found))
+    const std::string previous = previous_checkpoint_path(path);
+    for (const auto& [file, other] : {std::pair{path, previous}, std::pair{previous, path}}) {
+        if (h5::probe(file).kind == h5::Probe::Kind::absent) continue;
+        if (may_be_generation(file, other))
             std::remove(file.c_str());
         else
             kept.push_back(file);
@@ -106,9 +122,9 @@ void check_checkpoint_path(const std::string& path, const std::vector<std::pair<
             throw InputError(fmt::format("checkpoint '{}' {} the {} '{}': give --checkpoint another path", path, how,
                                          role, other));
     }
-    for (const std::string& file : {path, previous}) {
+    for (const auto& [file, other] : {std::pair{path, previous}, std::pair{previous, path}}) {
+        if (may_be_generation(file, other)) continue;
         const h5::Probe found = h5::probe(file);
-        if (may_be_checkpoint(found)) continue;
         const char* what = found.kind == h5::Probe::Kind::not_regular ? "not a regular file"
                            : found.kind == h5::Probe::Kind::not_hdf5  ? "not an HDF5 file"
                                                                       : "an HDF5 file without /checkpoint";
@@ -300,6 +316,34 @@ void check_resume_checkpoints(const std::vector<std::string>& files, const Simul
         }
 }
 
+namespace {
+
+// Both generations of the checkpoint at `path`, renamed to
+// '<path>.from-<version>' (and its '.previous'), with a number added if that
+// name is taken; returns the new names of those that existed.
+std::vector<std::string> keep_aside(const std::string& path, const std::string& version) {
+    std::string tag;
+    for (char c : version) tag += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+    std::string base = path + ".from-" + tag;
+    for (int k = 2; std::filesystem::exists(base) || std::filesystem::exists(previous_checkpoint_path(base)); ++k)
+        base = fmt::format("{}.from-{}.{}", path, tag, k);
+    std::vector<std::string> kept;
+    for (const auto& [from, to] : {std::pair{path, base}, std::pair{previous_checkpoint_path(path),
+                                                                    previous_checkpoint_path(base)}}) {
+        std::error_code error;
+        if (!std::filesystem::exists(from, error)) continue;
+        std::filesystem::rename(from, to, error);
+        if (error)
+            throw InputError(fmt::format("cannot move the other build's checkpoint '{}' aside to '{}': {}; move or "
+                                         "remove it, then run again",
+                                         from, to, error.message()));
+        kept.push_back(to);
+    }
+    return kept;
+}
+
+}  // namespace
+
 std::optional<Checkpoint> load_checkpoint(const std::string& path, const SimulationParameters& parameters,
                                           const std::vector<double>& sample_times, const Note& note,
                                           const SimulationParameters* whole_run, bool* another_block) {
@@ -329,8 +373,15 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
             return std::nullopt;
         }
         if (checkpoint.version != build_info().version) {
-            say(fmt::format("ignoring checkpoint '{}': written by shockgas {}, this is {}; starting from t = 0",
-                            candidate, checkpoint.version, build_info().version));
+            // Another build continues nothing bit for bit, so the run starts
+            // anew; but the hours in the old checkpoint are moved aside, not
+            // overwritten by this run's first checkpoint, so that the build
+            // that wrote them can still finish them.
+            const std::vector<std::string> kept = keep_aside(path, checkpoint.version);
+            say(fmt::format("checkpoint '{}' was written by shockgas {}, this is {}: starting from t = 0; kept it as "
+                            "'{}'{} (that build can continue it there with --checkpoint; remove it when done)",
+                            candidate, checkpoint.version, build_info().version, kept.front(),
+                            kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
             return std::nullopt;
         }
         if (const std::string problem = layout_problem(checkpoint, parameters, sample_times); !problem.empty()) {

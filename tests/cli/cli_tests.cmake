@@ -284,14 +284,15 @@ if(SHOCKGAS_PYTHON)
   set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 300)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock resume_other_parameters
-                      rerun_without_resume memory_fewer_at_once)
+                      rerun_without_resume memory_fewer_at_once hangup resume_other_build)
   add_test(NAME cli.faults.${_case}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/faults_test.sh ${_case} ${_sim} "${_cli_dir}/faults"
                    "${SHOCKGAS_PYTHON}" ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py)
   set_tests_properties(cli.faults.${_case} PROPERTIES LABELS cli TIMEOUT 120)
 endforeach()
-if(NOT SHOCKGAS_PYTHON)  # file_size_checkpoint compares outputs with Python
-  set_tests_properties(cli.faults.file_size_checkpoint PROPERTIES DISABLED TRUE)
+if(NOT SHOCKGAS_PYTHON)  # these compare outputs (and resume_other_build edits a checkpoint) with Python
+  set_tests_properties(cli.faults.file_size_checkpoint cli.faults.hangup cli.faults.resume_other_build
+                       PROPERTIES DISABLED TRUE)
 endif()
 # A budget below one realization (100000 particles: about 41 MiB with checkpoints) is refused.
 shockgas_cli_error(faults_memory_refused

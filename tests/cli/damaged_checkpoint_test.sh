@@ -76,6 +76,20 @@ resume_case truncated
 grep -q "resuming from the previous checkpoint" truncated.err ||
   { echo "FAIL [truncated]: did not fall back to the previous checkpoint"; failures=$((failures + 1)); }
 
+# Emptied, and its HDF5 signature overwritten: a damaged generation beside an intact previous one,
+# not another file that merely has the checkpoint's name (until 2026-11-27 these ended the run).
+for how in empty signature; do
+  cp pristine.current run.h5.checkpoint
+  cp pristine.previous run.h5.checkpoint.previous
+  case $how in
+    empty) : >run.h5.checkpoint ;;
+    signature) printf 'XXXXXXXX' | dd of=run.h5.checkpoint bs=1 seek=0 conv=notrunc status=none ;;
+  esac
+  resume_case "$how"
+  grep -q "resuming from the previous checkpoint" "$how.err" ||
+    { echo "FAIL [$how]: did not fall back to the previous checkpoint"; failures=$((failures + 1)); }
+done
+
 # Both generations damaged: the run starts over, with a warning.
 cp pristine.current run.h5.checkpoint
 cp pristine.previous run.h5.checkpoint.previous
@@ -93,10 +107,10 @@ grep -q "warning" intact.err && { echo "FAIL [intact]: warned about a good check
 grep -q "resuming from 'run.h5.checkpoint': .* 2 continue" intact.err ||
   { echo "FAIL [intact]: did not resume both realizations mid-way (the stopped run's last checkpoint lost them)"; failures=$((failures + 1)); }
 
-echo "damage detected in $((detected - 2)) of $damaged_cases overwritten copies; $cases resumed runs"
+echo "damage detected in $((detected - 4)) of $damaged_cases overwritten copies; $cases resumed runs"
 # Overwritten bytes land in checksummed data or metadata except for the
 # file's few unused bytes: at least 11 of the 14 copies must be detected.
-[ $((detected - 2)) -ge 11 ] || { echo "FAIL: too little damage detected"; failures=$((failures + 1)); }
+[ $((detected - 4)) -ge 11 ] || { echo "FAIL: too little damage detected"; failures=$((failures + 1)); }
 [ ! -e run.h5.checkpoint ] && [ ! -e run.h5.checkpoint.previous ] ||
   { echo "FAIL: checkpoints left behind after a complete run"; failures=$((failures + 1)); }
 [ "$failures" -eq 0 ] || { echo "FAIL: $failures problems"; exit 1; }

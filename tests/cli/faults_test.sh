@@ -135,6 +135,42 @@ resume_other_parameters)
   "$sim" "${args[@]}" -t 1000 --checkpoint-interval 0 --resume -o ck3.h5 2>resumed.err || fail "the right --resume failed"
   grep -q "resuming from 'ck3.h5.checkpoint'" resumed.err || fail "the right --resume did not use the checkpoint"
   ;;
+hangup)
+  # SIGHUP (a closed terminal, a dropped ssh session) stops a run as SIGINT does: exit 130, the
+  # interrupted output and a checkpoint, from which --resume gives the uninterrupted result.
+  args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99 -t 1000)
+  "$sim" "${args[@]}" --checkpoint-interval 0 -o reference.h5 2>reference.err || fail "the reference run failed"
+  run_until_checkpoints 2 HUP first.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o hup.h5
+  status=$?
+  [ "$status" -eq 130 ] || fail "SIGHUP did not stop the run as an interruption (exit $status)"
+  grep -q "^shockgas-sim: interrupted" first.err || fail "no interrupted output after SIGHUP"
+  [ -e hup.h5.checkpoint ] || fail "no checkpoint after SIGHUP"
+  "$sim" "${args[@]}" --checkpoint-interval 0 --resume -o hup.h5 2>resumed.err || fail "the --resume after SIGHUP failed"
+  "$python" "$same" reference.h5 hup.h5 >same.out 2>&1 || { cat same.out; fail "the resumed run differs from the uninterrupted one"; }
+  ;;
+resume_other_build)
+  # A checkpoint written by another build: the run starts anew (no other build continues a run bit
+  # for bit), and both generations are moved aside, untouched, for the build that wrote them.
+  args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99 -t 1000)
+  "$sim" "${args[@]}" --checkpoint-interval 0 -o reference.h5 2>reference.err || fail "the reference run failed"
+  run_until_checkpoints 2 INT first.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o ob.h5
+  [ -e ob.h5.checkpoint ] && [ -e ob.h5.checkpoint.previous ] || fail "the interrupted run left no two generations"
+  "$python" -c "
+import sys, h5py
+for name in sys.argv[1:]:
+    with h5py.File(name, 'r+') as f:
+        f.attrs['version'] = 'oldbuild/1'
+" ob.h5.checkpoint ob.h5.checkpoint.previous || fail "could not mark the checkpoints as another build's"
+  cp ob.h5.checkpoint kept.checkpoint
+  cp ob.h5.checkpoint.previous kept.previous
+  "$sim" "${args[@]}" --checkpoint-interval 0.1 --resume -o ob.h5 2>resumed.err || fail "the --resume failed"
+  grep -q "checkpoint 'ob.h5.checkpoint' was written by shockgas oldbuild/1, .*: starting from t = 0; kept it as 'ob.h5.checkpoint.from-oldbuild_1' and 'ob.h5.checkpoint.from-oldbuild_1.previous'" resumed.err ||
+    fail "the run did not say where it kept the other build's checkpoint"
+  cmp -s kept.checkpoint ob.h5.checkpoint.from-oldbuild_1 && cmp -s kept.previous ob.h5.checkpoint.from-oldbuild_1.previous ||
+    fail "the other build's checkpoint was not kept unchanged"
+  [ ! -e ob.h5.checkpoint ] || fail "the finished run left its own checkpoint"
+  "$python" "$same" reference.h5 ob.h5 >same.out 2>&1 || { cat same.out; fail "the run started anew differs from the uninterrupted one"; }
+  ;;
 rerun_without_resume)
   args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99 -t 1000)
   run_until_checkpoints 2 INT first.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o rr.h5
