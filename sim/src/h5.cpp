@@ -618,8 +618,15 @@ void check_writable(const std::string& path) {
         throw Error(fmt::format("cannot write output '{}': it exists and is not a regular file (a device or a FIFO "
                                 "would be replaced)",
                                 path));
-    if (::access(directory.c_str(), W_OK) != 0)
-        throw Error(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+    // Create (and remove) the very temporary the output is written through
+    // (AtomicFile): access(W_OK) answers yes where the write then fails (root
+    // on a read-only or pseudo file system, root-squashed NFS, ACLs), and a
+    // run without checkpoints would learn it only at its end, its results lost.
+    const std::string temporary = path + ".tmp." + std::to_string(::getpid());
+    const int probe = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (probe < 0) throw Error(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
+    ::close(probe);
+    ::unlink(temporary.c_str());
 }
 
 bool Probe::holds(const std::string& name) const {

@@ -17,6 +17,9 @@
 #                                (written through, still devices; a `>> log` kept whole, /dev/fd/3 under
 #                                `3>>` appended to), and reports a full disk on -o and on
 #                                standard output (> /dev/full) as an error instead of exit 0
+#   output_not_creatable         -o in a directory where no file can be created (/sys, where even root
+#                                cannot): refused before any work; for root, access(W_OK) said yes and a
+#                                run without checkpoints found out only at its end, its results lost
 set -u
 case_name=$1 dir=$2 sim=$3 merge=$4 dump=$5 python=${6:-}
 source "$(dirname "$0")/checkpoint_helpers.sh"
@@ -47,6 +50,11 @@ with h5py.File(sys.argv[1], "w") as f:
 run=(-N 100 -t 10 -q)
 
 case $case_name in
+output_not_creatable)
+  [ -d /sys ] || { echo "ok [$case_name]: skipped (no /sys)"; exit 0; }
+  refused "^shockgas-sim: error: cannot write output '/sys/shockgas-test\.h5': " \
+    "$sim" -N 20000 -r 0.8 -d 0.005 -t 1000 -R 2 -q --checkpoint-interval 0 -o /sys/shockgas-test.h5
+  ;;
 checkpoint_not_a_checkpoint)
   "$sim" "${run[@]}" -o a.h5 2>a.err || fail "the first run"
   cp a.h5 keep.h5
