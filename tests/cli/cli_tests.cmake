@@ -50,7 +50,11 @@ foreach(_case IN ITEMS "time_nan;^shockgas-burgers: error: --time must be positi
                       "viscosity_negative;--viscosity must be positive and finite;-N;100;-t;10;--viscosity;0.1,-1"
                       "one_particle;give --run, --init or --particles \\(at least 2\\);-N;1;-t;10"
                       "seed_beyond_64_bits;--seed: must be an integer from 0 to 2\\^63 - 1;-N;100;-t;1;-s;18446744073709551616"
-                      "study_full_disk;^shockgas-burgers: error: cannot write '/dev/full': No space left on device$;-N;100;-t;1;--study;/dev/full")
+                      "study_full_disk;^shockgas-burgers: error: cannot write '/dev/full': No space left on device$;-N;100;-t;1;--study;/dev/full"
+                      # Found by the CLI audit of 2026-11-27: the first ran out of memory after 20 s (std::bad_alloc),
+                      # the second printed the summary, then lost the profile under it.
+                      "memory;^shockgas-burgers: error: not enough memory: N = 2000000000 needs about .* GiB, but .* may be used;-N;2000000000;-t;1"
+                      "summary_is_output;^shockgas-burgers: error: -o and --summary name the same file;-N;100;-t;1;--summary;${_cli_dir}/burgers_summary_is_output.out.h5")
   shockgas_error_case(burgers "${_case}" $<TARGET_FILE:shockgas-burgers>)
 endforeach()
 # shockgas-burgers --run rebuilds the run's own start (its velocity law, and the
