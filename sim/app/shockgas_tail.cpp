@@ -48,7 +48,9 @@ int main(int argc, char** argv) {
     app.add_flag("--prior-start", prior_start, "start every replica from the prior, not from the instanton");
     app.add_option("--z-reach", z_reach, "deepest z of the default bias ladder")->capture_default_str();
     app.add_option("--z-step", z_step, "spacing in z of the default bias ladder")->capture_default_str();
-    app.add_option("--biases", biases, "explicit bias ladder beta_k (first 0), instead of --z-reach/--z-step");
+    app.add_option("--biases", biases,
+                   "explicit bias ladder beta_k (first 0), comma separated, instead of --z-reach/--z-step")
+        ->delimiter(',');
     app.add_option("--steps-per-bias", p.steps_per_bias, "recorded Metropolis steps per chain and bias")
         ->capture_default_str();
     app.add_option("--burn-in", p.burn_in_steps, "unrecorded steps before each bias")->capture_default_str();
@@ -62,6 +64,7 @@ int main(int argc, char** argv) {
     app.add_option("--progress-interval", progress_interval,
                    "when stderr is not a terminal (a batch job's log), write a progress line every this many "
                    "wall seconds")
+        ->check(shockgas::cli::finite_non_negative)
         ->capture_default_str();
     app.add_option("--velocity-law", law, "initial velocities: gaussian or uniform (variance 1/3)")
         ->capture_default_str();

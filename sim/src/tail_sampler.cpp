@@ -355,7 +355,8 @@ TailEstimate sample_far_tail(const TailSamplerParameters& p, const ObservableFac
     if (p.threads < 0) throw InputError(fmt::format("tail sampler: threads must be >= 0, got {}", p.threads));
     if (p.sites < 1 || p.focus_begin < 0 || p.focus_end > p.sites || p.focus_end <= p.focus_begin)
         throw InputError("tail sampler: the focus range must lie inside the window");
-    if (p.steps_per_bias < 1 || p.burn_in_steps < 0) throw InputError("tail sampler: need >= 1 step per bias");
+    if (p.steps_per_bias < 1) throw InputError("tail sampler: need >= 1 step per bias (--steps-per-bias)");
+    if (p.burn_in_steps < 0) throw InputError("tail sampler: --burn-in must be >= 0");
     if (!p.start_mean.empty() && p.start_mean.size() != p.biases.size() * static_cast<std::size_t>(p.sites))
         throw InputError("tail sampler: start_mean must hold one window per bias");
     if (p.block_probability > 0.0 && p.block_max < 1) throw InputError("tail sampler: block shifts need block_max >= 1");

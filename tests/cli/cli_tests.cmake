@@ -35,10 +35,14 @@ foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;
                       "bias_infinite;biases must be finite;--biases;0;inf"
                       "focus_negative;--focus must be;--focus=-1"
                       "bin_width_off_grid;multiple of the;--bin-width;0.0215"
-                      "seed_negative;--seed: must be an integer from 0 to 2\\^63 - 1;--seed;-1")
+                      "seed_negative;--seed: must be an integer from 0 to 2\\^63 - 1;--seed;-1"
+                      "progress_interval_nan;--progress-interval: must be a finite number >= 0, not 'nan';--progress-interval;nan")
   shockgas_error_case(tail "${_case}" $<TARGET_FILE:shockgas-tail> -t 10 --half-window 20 --steps-per-bias 10
                       --burn-in 0)
 endforeach()
+# Named by its own option (it said "need >= 1 step per bias"; the CLI audit of 2026-11-27).
+shockgas_error_case(tail "burn_in_negative;--burn-in must be >= 0;--burn-in=-3" $<TARGET_FILE:shockgas-tail> -t 10
+                    --half-window 20 --steps-per-bias 10)
 add_test(NAME cli.error.tail_half_window_huge
          COMMAND ${_expect} "half window must hold at most 1000000 particles" "${_cli_dir}/tail_half_window_huge.h5" --
                  $<TARGET_FILE:shockgas-tail> -t 10 --half-window 100000000 -o "${_cli_dir}/tail_half_window_huge.h5"
