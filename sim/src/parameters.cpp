@@ -66,6 +66,11 @@ void validate(const SimulationParameters& p) {
         throw InputError(fmt::format("realizations must be at least 1, got {}", p.realizations));
     if (p.first_realization < 0)
         throw InputError(fmt::format("first realization must be >= 0, got {}", p.first_realization));
+    // Realization F + k seeds its own stream (and is stored as a signed 64-bit
+    // number): the last one, F + R - 1, must not pass 2^63 - 1.
+    if (p.first_realization > std::numeric_limits<std::int64_t>::max() - (p.realizations - 1))
+        throw InputError(fmt::format("first realization {} with {} realizations runs past 2^63 - 1", p.first_realization,
+                                     p.realizations));
     // Stored as a signed 64-bit attribute (output.cpp): larger seeds would
     // read back negative everywhere but in shockgas's own reader.
     if (p.seed > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))

@@ -87,6 +87,9 @@ shockgas_cli_error(sample_beyond_t_max "beyond t_max" -N 10 -t 10 --snapshot-tim
 shockgas_cli_error(bad_positions "positions must be 'lattice' or 'uniform'" -N 10 --positions random)
 shockgas_cli_error(bad_velocity_law "velocity distribution must be" -N 10 --velocity-distribution normal)
 shockgas_cli_error(init_missing_file "does not exist" --init "${_cli_dir}/no_such_file.h5")
+# Realization F + k past 2^63 - 1 (accepted until the CLI audit of 2026-11-27).
+shockgas_cli_error(first_realization_overflow "first realization 9223372036854775807 with 3 realizations runs past"
+                   -N 10 -t 1 -R 3 --first-realization 9223372036854775807)
 add_test(NAME cli.error.unwritable_output
          COMMAND ${_expect} "directory .* does not exist" "${_cli_dir}/absent_dir/out.h5" --
                  ${_sim} -N 10 -o "${_cli_dir}/absent_dir/out.h5")
