@@ -227,6 +227,23 @@ int main(int argc, char** argv) {
         if (session.is_root()) {
             shockgas::h5::check_writable(output);
             shockgas::h5::check_not_an_input(output, {init_given});
+            // An existing output is replaced (a rerun), but only if it is one:
+            // a text file or another program's HDF5 file under that name was
+            // silently replaced (CLI audit, 2026-11-27). An empty file, or an
+            // HDF5 file too damaged to list (a killed write), may go.
+            {
+                const shockgas::h5::Probe found = shockgas::h5::probe(output);
+                std::error_code size_error;
+                const bool empty = found.kind == shockgas::h5::Probe::Kind::not_hdf5 &&
+                                   std::filesystem::file_size(output, size_error) == 0 && !size_error;
+                if ((found.kind == shockgas::h5::Probe::Kind::not_hdf5 && !empty) ||
+                    (found.kind == shockgas::h5::Probe::Kind::hdf5 && !found.holds("timeseries")))
+                    throw shockgas::InputError(fmt::format(
+                        "'{}' exists and is not a shockgas-sim output ({}): it would be replaced; give -o another "
+                        "path, or remove it",
+                        output, found.kind == shockgas::h5::Probe::Kind::hdf5 ? "an HDF5 file without /timeseries"
+                                                                              : "not an HDF5 file"));
+            }
             // Without --resume, a checkpoint that --resume would continue (this
             // path's, or any rank's or gathered file of it) is an interrupted
             // run's work: refused before any work, whatever the interval (with

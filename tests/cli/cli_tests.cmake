@@ -366,7 +366,8 @@ set_tests_properties(cli.error.dump_realization_beyond cli.error.dump_realizatio
 set_tests_properties(cli.error.dump_no_snapshots PROPERTIES FIXTURES_REQUIRED analyze_inputs)
 # Refusals that must also leave the file at stake unchanged, and dump's outputs.
 foreach(_case IN ITEMS checkpoint_not_a_checkpoint checkpoint_is_init output_is_init checkpoint_removed
-                      merge_output_is_part merge_checkpoint dump_output_is_input dump_outputs output_not_creatable)
+                      merge_output_is_part merge_checkpoint dump_output_is_input dump_outputs output_not_creatable
+                      output_not_an_output)
   add_test(NAME cli.io_safety.${_case}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/io_safety_test.sh ${_case} "${_cli_dir}/io_safety" ${_sim} ${_merge}
                    ${_dump} "${SHOCKGAS_PYTHON}")

@@ -17,6 +17,9 @@
 #                                (written through, still devices; a `>> log` kept whole, /dev/fd/3 under
 #                                `3>>` appended to), and reports a full disk on -o and on
 #                                standard output (> /dev/full) as an error instead of exit 0
+#   output_not_an_output         -o naming an existing text file or another program's HDF5 file: refused,
+#                                the file kept (it was silently replaced); an empty file, and an earlier
+#                                output of a run, are still replaced
 #   output_not_creatable         -o in a directory where no file can be created (/sys, where even root
 #                                cannot): refused before any work; for root, access(W_OK) said yes and a
 #                                run without checkpoints found out only at its end, its results lost
@@ -50,6 +53,23 @@ with h5py.File(sys.argv[1], "w") as f:
 run=(-N 100 -t 10 -q)
 
 case $case_name in
+output_not_an_output)
+  echo "my notes" >notes.txt
+  cp notes.txt notes.kept
+  refused "^shockgas-sim: error: 'notes.txt' exists and is not a shockgas-sim output \(not an HDF5 file\): it would be replaced" \
+    "$sim" "${run[@]}" -o notes.txt
+  kept notes.txt notes.kept
+  if [ -n "$python" ]; then
+    "$python" -c 'import sys, h5py; h5py.File(sys.argv[1], "w")["data"] = [1.0]' other.h5 || fail "cannot write an HDF5 file"
+    cp other.h5 other.kept
+    refused "^shockgas-sim: error: 'other.h5' exists and is not a shockgas-sim output \(an HDF5 file without /timeseries\)" \
+      "$sim" "${run[@]}" -o other.h5
+    kept other.h5 other.kept
+  fi
+  : >empty.h5
+  "$sim" "${run[@]}" -o empty.h5 2>empty.err || fail "an empty file was not replaced by the output"
+  "$sim" "${run[@]}" -o empty.h5 2>again.err || fail "a run's earlier output was not replaced"
+  ;;
 output_not_creatable)
   [ -d /sys ] || { echo "ok [$case_name]: skipped (no /sys)"; exit 0; }
   refused "^shockgas-sim: error: cannot write output '/sys/shockgas-test\.h5': " \
