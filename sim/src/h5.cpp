@@ -618,15 +618,17 @@ void check_writable(const std::string& path) {
         throw Error(fmt::format("cannot write output '{}': it exists and is not a regular file (a device or a FIFO "
                                 "would be replaced)",
                                 path));
-    // Create (and remove) the very temporary the output is written through
-    // (AtomicFile): access(W_OK) answers yes where the write then fails (root
-    // on a read-only or pseudo file system, root-squashed NFS, ACLs), and a
-    // run without checkpoints would learn it only at its end, its results lost.
-    const std::string temporary = path + ".tmp." + std::to_string(::getpid());
-    const int probe = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+    // Create (and remove at once) a file beside the output, as its temporary
+    // will be (AtomicFile): access(W_OK) answers yes where the write then
+    // fails (root on a read-only or pseudo file system, root-squashed NFS,
+    // ACLs), and a run without checkpoints would learn it only at its end, its
+    // results lost. A name of its own (mkstemp), so that nothing already at
+    // the temporary's name is touched.
+    std::string probe_name = path + ".probe.XXXXXX";
+    const int probe = ::mkstemp(probe_name.data());
     if (probe < 0) throw Error(fmt::format("cannot write output '{}': {}", path, std::strerror(errno)));
     ::close(probe);
-    ::unlink(temporary.c_str());
+    ::unlink(probe_name.c_str());
 }
 
 bool Probe::holds(const std::string& name) const {
