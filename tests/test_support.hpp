@@ -2,6 +2,8 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -17,6 +19,20 @@
 #include "shockgas/state.hpp"
 
 namespace shockgas::testing {
+
+// One-sigma coverage of a jackknife sigma from R samples over `trials` independent trials: at best
+// (estimate - truth) / sigma follows Student's t with R - 1 degrees of freedom, so the coverage must
+// not fall below P(|t_(R-1)| < 1) = student_coverage (a sigma too small), nor rise above the Gaussian
+// 0.6827 (a sigma too large), each by more than 3 binomial standard errors (a 0.3% false alarm).
+inline void expect_jackknife_coverage(int inside, int trials, double student_coverage, const std::string& what) {
+    constexpr double gaussian_coverage = 0.6827;
+    const double binomial = 3.0 * std::sqrt(student_coverage * (1.0 - student_coverage) / trials);
+    const double coverage = static_cast<double>(inside) / trials;
+    std::printf("%s: one-sigma coverage %.3f over %d trials (Student %.3f - %.3f ... Gaussian %.3f + %.3f)\n",
+                what.c_str(), coverage, trials, student_coverage, binomial, gaussian_coverage, binomial);
+    EXPECT_GT(coverage, student_coverage - binomial) << what;
+    EXPECT_LT(coverage, gaussian_coverage + binomial) << what;
+}
 
 // A hand-made ring: the given positions and velocities, unit masses.
 inline InitialCondition unit_masses(double ring_length, std::vector<double> position, std::vector<double> velocity) {

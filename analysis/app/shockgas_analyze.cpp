@@ -3,8 +3,10 @@
 // gnuplot data files; no analysis happens here.
 #include <algorithm>
 #include <cmath>
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -66,6 +68,49 @@ void require_distinct(const std::vector<double>& values, const std::vector<std::
                                  name, values.front(), fmt::join(inputs, "', '"), purpose, name));
 }
 
+// An argument as a POSIX shell reads it back: bare when it holds only
+// characters no shell treats specially, else in single quotes.
+std::string shell_quoted(const std::string& word) {
+    const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](unsigned char c) {
+        return std::isalnum(c) || std::strchr("_-+=.,/:@%^", c) != nullptr;
+    });
+    if (plain) return word;
+    std::string quoted = "'";
+    for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+// What the results file records of this run (AnalysisInvocation): the
+// command line, and every named option of the subcommand that ran with the
+// value it ran with, so that the file says how it was made (--jump-fraction 2
+// and the default gave 104 and 416 shocks in files that did not say which).
+AnalysisInvocation invocation_of(const CLI::App& subcommand, int argc, char** argv) {
+    AnalysisInvocation invocation;
+    invocation.program = "shockgas-analyze " + subcommand.get_name();
+    std::vector<std::string> words;
+    for (int i = 0; i < argc; ++i) words.push_back(shell_quoted(argv[i]));
+    invocation.command_line = fmt::format("{}", fmt::join(words, " "));
+    for (const CLI::Option* option : subcommand.get_options()) {
+        if (option->get_lnames().empty() || option->get_lnames().front() == "help") continue;
+        std::string name = option->get_lnames().front();
+        std::replace(name.begin(), name.end(), '-', '_');
+        const bool flag = option->get_expected_max() == 0;  // a flag takes no value
+        std::string value;
+        if (flag)
+            value = option->count() > 0 ? "true" : "false";
+        else if (option->count() > 0)
+            value = fmt::format("{}", fmt::join(option->results(), ","));
+        else
+            value = option->get_default_str();
+        if (value.empty()) continue;  // not given and no default (--t-lo, --data)
+        const std::string type = option->get_type_name();
+        const bool number = !flag && (type.rfind("FLOAT", 0) == 0 || type.rfind("INT", 0) == 0 ||
+                                      type.rfind("UINT", 0) == 0);
+        invocation.options.push_back({name, value, number});
+    }
+    return invocation;
+}
+
 struct RunParameters {
     double restitution, velocity_threshold, particles, t_max;
 };
@@ -100,8 +145,8 @@ struct DecayOptions {
     bool data_only = false;
 };
 
-void run_decay(const std::string& input, const std::string& output, const std::string& data, const std::string& scan,
-               const DecayOptions& options) {
+void run_decay(const AnalysisInvocation& invocation, const std::string& input, const std::string& output,
+               const std::string& data, const std::string& scan, const DecayOptions& options) {
     const TemperatureRun temperature = on_input(input, [&] { return read_temperature_run(input); });
     const TimeSeries& series = temperature.series;
     const TemperatureHistory& history = temperature.history;
@@ -131,7 +176,7 @@ void run_decay(const std::string& input, const std::string& output, const std::s
                         : "";
     if (windows.empty() && options.scan_required) throw InputError(fmt::format("{}, in '{}'", no_scan, input));
     const Measured systematic = window_systematic(history, fit.t_lo, fit.t_hi);
-    ResultsFile results(output, "shockgas-analyze decay", {input});
+    ResultsFile results(output, invocation, {input});
     auto group = results.section("decay");
     group.set_attribute("exponent", fit.exponent);
     set_measured(group, "exponent_sigma", {fit.exponent_sigma, fit.exponent_sigma_note});
@@ -179,13 +224,14 @@ void run_decay(const std::string& input, const std::string& output, const std::s
                fit.t_lo, fit.t_hi, fit.points);
 }
 
-void run_crossover(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
-                   const CrossoverRule& fit_rule, bool derived_haff_constant) {
+void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,
+                   const std::string& output, const std::string& data, const CrossoverRule& fit_rule,
+                   bool derived_haff_constant) {
     std::vector<double> inelasticity;
     for (const auto& input : inputs) inelasticity.push_back((1.0 - run_parameters(input).restitution) / 2.0);
     require_distinct(inelasticity, inputs, "eps", "fitting the crossovers");
     std::vector<Estimate> t_dissip, t_stick, temperature, reference_stick;
-    ResultsFile results(output, "shockgas-analyze crossover", inputs);
+    ResultsFile results(output, invocation, inputs);
     results.root().set_attribute("haff_constant", std::string(derived_haff_constant ? "derived" : "fit"));
     std::unique_ptr<DataFile> file;
     if (!data.empty())
@@ -265,17 +311,55 @@ void run_crossover(const std::vector<std::string>& inputs, const std::string& ou
     commit_outputs(&results, {file.get()});
 }
 
-void run_scaling(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
-                 const TailRule& tail_rule) {
+// Why a run's realizations may not all reach a histogram time, for the notes
+// of run_scaling: a complete run's all do.
+std::string stopped_early(const std::string& run_status) {
+    if (run_status == "interrupted")
+        return "the run was interrupted: shockgas-sim --resume with the same options continues it";
+    if (run_status == "collapsed") return "a realization stops at its inelastic collapse (delta = 0)";
+    return "the run's status is " + run_status;
+}
+
+// "2 of 4 realizations reached it; the estimates at this time use only these (why)".
+std::string realizations_note(const VelocityHistogram& histogram, const std::string& why) {
+    return fmt::format("{} of {} realizations reached it; the estimates at this time use only these ({})",
+                       histogram.realizations, histogram.recorded_realizations, why);
+}
+
+void run_scaling(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,
+                 const std::string& output, const std::string& data, const TailRule& tail_rule) {
     std::vector<VelocityHistogram> histograms;
+    // Histogram times that only some realizations reached (an interrupted
+    // run) use those; times none reached are left out. Both are said on
+    // stderr and stored, so that no number silently rests on fewer realizations.
+    std::vector<std::string> left_out;
+    std::vector<std::string> notes;  // per histogram: empty, or why it has fewer realizations than its run
     for (const auto& input : inputs) {
-        const auto these = on_input(input, [&] {
+        const RunHistograms run = on_input(input, [&] {
             return read_histograms(input, restitution_label(run_parameters(input).restitution));
         });
-        histograms.insert(histograms.end(), these.begin(), these.end());
+        const std::string why = stopped_early(run.status);
+        for (const double time : run.unreached_times) {
+            left_out.push_back(fmt::format("'{}' t = {:g}: no realization of {} reached it ({})", input, time,
+                                           run.realizations, why));
+            fmt::print(stderr, "shockgas-analyze: note: {}; its histogram is left out\n", left_out.back());
+        }
+        for (const auto& histogram : run.histograms) {
+            const bool fewer = histogram.realizations < histogram.recorded_realizations;
+            notes.push_back(fewer ? realizations_note(histogram, why) : "");
+            if (fewer)
+                fmt::print(stderr, "shockgas-analyze: note: t = {:g} in '{}': {}\n", histogram.time, input,
+                           notes.back());
+        }
+        histograms.insert(histograms.end(), run.histograms.begin(), run.histograms.end());
     }
+    if (histograms.empty() && !left_out.empty())
+        throw InsufficientData(fmt::format("no histogram time was reached by any realization ({})",
+                                           fmt::join(left_out, "; ")));
     if (histograms.empty()) throw InsufficientData("no /histograms in the inputs (run with --histogram-times)");
-    ResultsFile results(output, "shockgas-analyze scaling", inputs);
+    ResultsFile results(output, invocation, inputs);
+    if (!left_out.empty())
+        results.root().set_attribute("histograms_left_out", fmt::format("{}", fmt::join(left_out, "; ")));
     std::unique_ptr<DataFile> file;
     if (!data.empty())
         file = std::make_unique<DataFile>(data, "Phi(z) = t^(-1/3) P(v,t), z = v t^(1/3); one block per histogram",
@@ -285,6 +369,9 @@ void run_scaling(const std::vector<std::string>& inputs, const std::string& outp
         auto group = results.section("histogram" + std::to_string(h));
         group.set_attribute("label", histogram.label);
         group.set_attribute("time", histogram.time);
+        group.set_attribute("realizations", static_cast<std::int64_t>(histogram.realizations));
+        group.set_attribute("recorded_realizations", static_cast<std::int64_t>(histogram.recorded_realizations));
+        if (!notes[h].empty()) group.set_attribute("realizations_note", notes[h]);
         const auto kurtosis = velocity_kurtosis(histogram);
         set_estimate(group, "kurtosis", kurtosis);
         try {
@@ -326,11 +413,11 @@ void run_scaling(const std::vector<std::string>& inputs, const std::string& outp
     commit_outputs(&results, {file.get()});
 }
 
-void run_shocks(const std::string& input, const std::string& output, const std::string& data,
-                const ShockRule& rule) {
+void run_shocks(const AnalysisInvocation& invocation, const std::string& input, const std::string& output,
+                const std::string& data, const ShockRule& rule) {
     const auto snapshots = on_input(input, [&] { return read_snapshots(input); });
     if (snapshots.empty()) throw InsufficientData("no /snapshots (run with --snapshot-times)");
-    ResultsFile results(output, "shockgas-analyze shocks", {input});
+    ResultsFile results(output, invocation, {input});
     // Group snapshots by time.
     std::vector<double> times;
     for (const auto& s : snapshots)
@@ -410,8 +497,9 @@ void set_collapse_forms(ResultsFile& results, const std::string& section, const 
 
 // Collapse time and cluster mass per input; with --vs eps the competing forms
 // against eps, with --vs N the first-collapse statistics across N.
-void run_collapse(const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
-                  const std::string& versus, const std::string& hazard_data) {
+void run_collapse(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,
+                  const std::string& output, const std::string& data, const std::string& versus,
+                  const std::string& hazard_data) {
     std::vector<CollapseEvents> runs;
     std::vector<double> inelasticity, particles;
     for (const auto& input : inputs) {
@@ -421,7 +509,7 @@ void run_collapse(const std::vector<std::string>& inputs, const std::string& out
     }
     if (versus == "eps") require_distinct(inelasticity, inputs, "eps", "fitting the collapse forms (--vs eps)");
     if (versus == "N") require_distinct(particles, inputs, "N", "fitting the first-collapse statistics (--vs N)");
-    ResultsFile results(output, "shockgas-analyze collapse", inputs);
+    ResultsFile results(output, invocation, inputs);
     std::vector<Estimate> time, mass;
     std::unique_ptr<DataFile> file, curves;
     if (!data.empty())
@@ -517,12 +605,20 @@ void run_collapse(const std::vector<std::string>& inputs, const std::string& out
 }
 
 // The speed/accuracy trade: each input against the reference run (P5).
-void run_compare(const std::string& reference_path, const std::vector<std::string>& inputs, const std::string& output,
-                 const std::string& data, const std::string& curves) {
+void run_compare(const AnalysisInvocation& invocation, const std::string& reference_path,
+                 const std::vector<std::string>& inputs, const std::string& output, const std::string& data,
+                 const std::string& curves) {
+    // A deviation from a reference of another N, r or start measures that
+    // difference, not the threshold's cost: refused before any work.
+    for (const auto& input : inputs)
+        if (const std::string differences = comparison_differences(reference_path, input); !differences.empty())
+            throw InputError(fmt::format("'{}' is not comparable with the reference '{}': {} (compare takes runs that "
+                                         "differ only in delta, the sub-threshold rule, t_max, the samples and R)",
+                                         input, reference_path, differences));
     const auto reference = on_input(reference_path, [&] { return read_temperature_run(reference_path); }).history;
     std::vector<std::string> all{reference_path};
     all.insert(all.end(), inputs.begin(), inputs.end());
-    ResultsFile results(output, "shockgas-analyze compare", all);
+    ResultsFile results(output, invocation, all);
     std::unique_ptr<DataFile> table, deviation_curves;
     if (!data.empty())
         table = std::make_unique<DataFile>(
@@ -590,15 +686,15 @@ void run_compare(const std::string& reference_path, const std::vector<std::strin
 }
 
 // gamma of the far tail (Eq. (6)) from shockgas-tail output, and ln Phi for gnuplot.
-void run_far_tail(const std::string& input, const std::string& output, const std::string& data, double z_lo,
-                  double z_hi, double window_shift, bool free_linear) {
+void run_far_tail(const AnalysisInvocation& invocation, const std::string& input, const std::string& output,
+                  const std::string& data, double z_lo, double z_hi, double window_shift, bool free_linear) {
     const FarTail tail = read_far_tail(input);
     const std::optional<double> linear_coefficient =
         free_linear ? std::nullopt : std::optional<double>(exact_tail_linear_coefficient);
     const TailExponent gamma = on_input(input, [&] {
         return estimate_tail_exponent(tail, z_lo, z_hi, window_shift, linear_coefficient);
     });
-    ResultsFile results(output, "shockgas-analyze far-tail", {input});
+    ResultsFile results(output, invocation, {input});
     auto group = results.section("far_tail");
     set_estimate(group, "gamma", gamma.gamma);
     set_measured(group, "gamma_window_systematic", gamma.window_systematic);
@@ -761,9 +857,11 @@ int main(int argc, char** argv) {
         if (!input.empty()) all_inputs.insert(all_inputs.begin(), input);
         if (!reference.empty()) all_inputs.insert(all_inputs.begin(), reference);
         try {
-            // Option values, then every output path, before any work: a bad
-            // value or an unwritable path never costs a long analysis, and
-            // no output may replace an input or another output.
+            // An input that is a run in progress (a checkpoint), whatever the
+            // subcommand; then option values, then every output path, before
+            // any work: a bad value or an unwritable path never costs a long
+            // analysis, and no output may replace an input or another output.
+            check_inputs(all_inputs);
             if (*decay) {
                 if (t_lo_option->count() > 0) {
                     require_positive("--t-lo", t_lo);
@@ -794,7 +892,7 @@ int main(int argc, char** argv) {
                                {"--data", data, true},
                                {"--scan", scan, true}},
                               all_inputs);
-                run_decay(input, output, data, scan, decay_options);
+                run_decay(invocation_of(*decay, argc, argv), input, output, data, scan, decay_options);
             }
             if (*crossover) {
                 require_positive("--haff-floor", crossover_rule.haff_floor, " (a fraction of T0)");
@@ -807,13 +905,14 @@ int main(int argc, char** argv) {
                                                  "and rises), not {}",
                                                  crossover_rule.stick_ratio));
                 check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
-                run_crossover(inputs, output, data, crossover_rule, haff_constant == "derived");
+                run_crossover(invocation_of(*crossover, argc, argv), inputs, output, data, crossover_rule,
+                              haff_constant == "derived");
             }
             if (*scaling) {
                 require_positive("--tail-start", tail_rule.tail_start, " (in units of the rms of z)");
                 require_positive("--tail-max-error", tail_rule.max_relative_error);
                 check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
-                run_scaling(inputs, output, data, tail_rule);
+                run_scaling(invocation_of(*scaling, argc, argv), inputs, output, data, tail_rule);
             }
             if (*shocks) {
                 require_positive("--jump-fraction", shock_rule.jump_fraction, " (a multiple of v_rms)");
@@ -822,7 +921,7 @@ int main(int argc, char** argv) {
                     throw InputError(fmt::format("--merge-gap must be a whole number at least 0, not {}", merge_gap));
                 shock_rule.merge_gap_points = static_cast<std::size_t>(merge_gap);
                 check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
-                run_shocks(input, output, data, shock_rule);
+                run_shocks(invocation_of(*shocks, argc, argv), input, output, data, shock_rule);
             }
             if (*collapse) {
                 if (!hazard.empty() && versus != "N")
@@ -830,19 +929,20 @@ int main(int argc, char** argv) {
                                      "one eps");
                 check_outputs({{"-o", output, false}, {"--data", data, true}, {"--hazard", hazard, true}},
                               all_inputs);
-                run_collapse(inputs, output, data, versus, hazard);
+                run_collapse(invocation_of(*collapse, argc, argv), inputs, output, data, versus, hazard);
             }
             if (*compare) {
                 check_outputs({{"-o", output, false}, {"--data", data, true}, {"--curves", curves, true}},
                               all_inputs);
-                run_compare(reference, inputs, output, data, curves);
+                run_compare(invocation_of(*compare, argc, argv), reference, inputs, output, data, curves);
             }
             if (*far_tail) {
                 if (!(z_hi > z_lo) || !std::isfinite(z_hi))
                     throw InputError(fmt::format("--z-hi must be finite and larger than --z-lo ({:g}), not {}", z_lo,
                                                  z_hi));
                 check_outputs({{"-o", output, false}, {"--data", data, true}}, all_inputs);
-                run_far_tail(input, output, data, z_lo, z_hi, window_shift, free_linear);
+                run_far_tail(invocation_of(*far_tail, argc, argv), input, output, data, z_lo, z_hi, window_shift,
+                             free_linear);
             }
         } catch (const InsufficientData& error) {
             // Estimator messages say what is missing. Work on one input names

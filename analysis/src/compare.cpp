@@ -3,6 +3,13 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "shockgas/h5.hpp"
 
 namespace shockgas::analysis {
 
@@ -47,6 +54,47 @@ TemperatureComparison compare_temperatures(const TemperatureHistory& run, const 
         out.departure_time = out.time[k];
     }
     return out;
+}
+
+namespace {
+
+enum class Stored { integer, number, text };
+
+// A root attribute as text in its stored type (HDF5 would convert a double
+// read as an integer, 0.9 to 0); numbers in the shortest form that reads back
+// exactly, so that 0.9 and 0.9000000001 differ.
+std::string attribute_text(const h5::Group& root, const std::string& name, Stored stored) {
+    switch (stored) {
+        case Stored::integer: return fmt::format("{}", root.attribute_integer(name));
+        case Stored::number: return fmt::format("{}", root.attribute_double(name));
+        case Stored::text: break;
+    }
+    return root.attribute_string(name);
+}
+
+}  // namespace
+
+std::string comparison_differences(const std::string& reference_path, const std::string& run_path) {
+    // The parameters that make two runs one ensemble up to delta and the
+    // sub-threshold rule (compare.hpp), as write_parameter_attributes stores them.
+    static const std::pair<const char*, Stored> shared[] = {
+        {"particles", Stored::integer},       {"ring_length", Stored::number},
+        {"restitution", Stored::number},      {"seed", Stored::integer},
+        {"first_realization", Stored::integer}, {"positions", Stored::text},
+        {"velocity_distribution", Stored::text}, {"init_file_sha256", Stored::text}};
+    const auto reference_file = h5::File::open_read(reference_path);
+    const auto run_file = h5::File::open_read(run_path);
+    const auto reference = reference_file.root();
+    const auto run = run_file.root();
+    std::vector<std::string> differences;
+    for (const auto& [name, stored] : shared) {
+        if (!reference.has_attribute(name) || !run.has_attribute(name)) continue;
+        const std::string ours = attribute_text(run, name, stored), theirs = attribute_text(reference, name, stored);
+        if (ours != theirs)
+            differences.push_back(fmt::format("{} {} vs {}", name, ours.empty() ? "(none)" : ours,
+                                              theirs.empty() ? "(none)" : theirs));
+    }
+    return fmt::format("{}", fmt::join(differences, ", "));
 }
 
 }  // namespace shockgas::analysis

@@ -1,6 +1,7 @@
 #include "shockgas/analysis/results.hpp"
 
 #include <cmath>
+#include <string>
 #include <filesystem>
 #include <system_error>
 
@@ -11,10 +12,21 @@
 
 namespace shockgas::analysis {
 
-ResultsFile::ResultsFile(const std::string& path, const std::string& program, const std::vector<std::string>& inputs)
+ResultsFile::ResultsFile(const std::string& path, const AnalysisInvocation& invocation,
+                         const std::vector<std::string>& inputs)
     : file_(path) {
     auto root = file_.root();
-    write_provenance(root, program);
+    write_provenance(root, invocation.program);
+    root.set_attribute("command_line", invocation.command_line);
+    auto options = root.create_group("options");
+    for (const auto& option : invocation.options) {
+        // A numeric option as a number (read back as one, e.g. by python),
+        // whatever its spelling ("2", "2.0", "2e0"; the parser accepted it).
+        if (option.number)
+            options.set_attribute(option.name, std::stod(option.value));
+        else
+            options.set_attribute(option.name, option.value);
+    }
     for (std::size_t k = 0; k < inputs.size(); ++k) {
         const std::string prefix = inputs.size() == 1 ? "input_" : "input" + std::to_string(k) + "_";
         const auto input = h5::File::open_read(inputs[k]);
@@ -119,6 +131,17 @@ void DataFile::row(const std::vector<double>& values) {
 
 void DataFile::comment(const std::string& text) { file_.write("# " + text + '\n'); }
 void DataFile::blank_line() { file_.write("\n\n"); }
+
+void check_inputs(const std::vector<std::string>& inputs) {
+    for (const auto& input : inputs) {
+        const h5::Probe found = h5::probe(input);
+        // The same words as shockgas::read_output's, which the histogram and snapshot readers pass through.
+        if (found.kind == h5::Probe::Kind::hdf5 && found.holds("checkpoint"))
+            throw InputError(fmt::format("'{}' is a shockgas-sim checkpoint (a run in progress), not an output: "
+                                         "continue the run with shockgas-sim --resume and the same options",
+                                         input));
+    }
+}
 
 void commit_outputs(ResultsFile* results, std::initializer_list<DataFile*> data_files) {
     for (DataFile* file : data_files)

@@ -107,8 +107,15 @@ TemperatureRun read_temperature_run(const std::string& path) {
                                         name, table->size(), rows, series.time.size(), path));
     if (series.realizations <= 0) throw InsufficientData("the file holds no realization (/timeseries has 0 rows)");
     run.history = TemperatureHistory::from(series);
+    // An interrupted run whose realizations stopped at different times (the
+    // last ones perhaps before their first sample) is not finished, not
+    // empty: say how to finish it.
     if (run.history.time.empty())
-        throw InsufficientData("no sample time t > 0 was reached with T > 0 by every realization");
+        throw InsufficientData(fmt::format(
+            "no sample time t > 0 was reached with T > 0 by every realization{}",
+            series.status == "interrupted"
+                ? ": the run was interrupted; continue it with shockgas-sim --resume and the same options"
+                : ""));
     return run;
 }
 

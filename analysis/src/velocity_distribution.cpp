@@ -81,62 +81,96 @@ std::vector<std::vector<double>> rescaled_cdfs(const std::vector<VelocityHistogr
 
 }  // namespace
 
-std::vector<VelocityHistogram> histograms_from(const EnsembleResult& result, const std::string& label_prefix) {
-    std::vector<VelocityHistogram> out;
-    for (const auto& record : result.histograms) {
-        VelocityHistogram h;
-        h.label = time_label(label_prefix, record.time);
-        h.time = record.time;
-        h.edges = record.edges;
-        h.realizations = static_cast<std::size_t>(result.realizations);
-        h.counts = record.counts;
-        out.push_back(std::move(h));
-    }
-    return out;
+namespace {
+
+// What makes a stored histogram unusable as a whole (empty: nothing), before
+// its rows are looked at: a damaged or hand-made one would give numbers that
+// look measured.
+std::string histogram_shape_problem(const HistogramRecord& record, std::size_t realizations) {
+    const auto& edges = record.edges;
+    if (edges.size() < 2) return fmt::format("edges holds {} values; a histogram needs at least 2", edges.size());
+    if (record.counts.size() != realizations * (edges.size() + 1))
+        return fmt::format("counts holds {} values, not realizations x (bins + 2) = {} x {}", record.counts.size(),
+                           realizations, edges.size() + 1);
+    if (!std::all_of(edges.begin(), edges.end(), [](double e) { return std::isfinite(e); }) ||
+        std::adjacent_find(edges.begin(), edges.end(), std::greater_equal<>()) != edges.end())
+        return "edges are not finite and increasing";
+    if (!std::all_of(record.counts.begin(), record.counts.end(), [](double c) { return c >= 0.0 && std::isfinite(c); }))
+        return "counts holds a value that is negative or not finite";
+    if (!(record.time > 0.0) || !std::isfinite(record.time))
+        return fmt::format("its time {} is not positive and finite (z = v t^(1/3) needs t > 0)", record.time);
+    return "";
 }
 
-std::vector<VelocityHistogram> read_histograms(const std::string& path, const std::string& label_prefix) {
-    // The schema is read in one place (shockgas::read_output).
-    const OutputFile file = read_output(path);
-    const auto realizations = static_cast<std::size_t>(file.result.realizations);
-    std::vector<VelocityHistogram> out;
-    for (std::size_t index = 0; index < file.result.histograms.size(); ++index) {
-        const auto& record = file.result.histograms[index];
-        // A damaged or hand-made histogram would give numbers that look
-        // measured (all counts 0: a "scaling exponent" of the grid's edge):
-        // refused, with the group and the file named.
-        std::string problem;
-        const auto& edges = record.edges;
-        if (edges.size() < 2)
-            problem = fmt::format("edges holds {} values; a histogram needs at least 2", edges.size());
-        else if (record.counts.size() != realizations * (edges.size() + 1))
-            problem = fmt::format("counts holds {} values, not realizations x (bins + 2) = {} x {}",
-                                  record.counts.size(), realizations, edges.size() + 1);
-        else if (!std::all_of(edges.begin(), edges.end(), [](double e) { return std::isfinite(e); }) ||
-                 std::adjacent_find(edges.begin(), edges.end(), std::greater_equal<>()) != edges.end())
-            problem = "edges are not finite and increasing";
-        else if (!std::all_of(record.counts.begin(), record.counts.end(),
-                              [](double c) { return c >= 0.0 && std::isfinite(c); }))
-            problem = "counts holds a value that is negative or not finite";
-        else if (!std::any_of(record.counts.begin(), record.counts.end(), [](double c) { return c > 0.0; }))
-            problem = "every count is 0: no mass to form P(v,t) from";
-        else if (!(record.time > 0.0) || !std::isfinite(record.time))
-            problem = fmt::format("its time {} is not positive and finite (z = v t^(1/3) needs t > 0)", record.time);
-        if (!problem.empty()) {
-            // The group's name as stored (schemas 1-2 unpadded, 3 on zero-padded).
+}  // namespace
+
+RunHistograms histograms_of_run(const EnsembleResult& result, const std::string& label_prefix,
+                                const std::string& path) {
+    RunHistograms run;
+    run.realizations = static_cast<std::size_t>(std::max<std::int64_t>(result.realizations, 0));
+    run.status = result.status;
+    const std::size_t rows = run.realizations;
+    const std::size_t samples = result.times.size();
+    const bool series_complete = result.temperature.size() == rows * samples;
+    auto refuse = [&](std::size_t index, const std::string& problem) {
+        // The group's name as stored (schemas 1-2 unpadded, 3 on zero-padded).
+        std::string name = std::to_string(index);
+        if (!path.empty()) {
             const auto names = h5::File::open_read(path).root().open_group("histograms").numbered_children();
-            throw h5::Error(fmt::format("/histograms/{}: {} in '{}'",
-                                        index < names.size() ? names[index] : std::to_string(index), problem, path));
+            if (index < names.size()) name = names[index];
         }
+        throw h5::Error(fmt::format("/histograms/{}: {}{}", name, problem, path.empty() ? "" : " in '" + path + "'"));
+    };
+    for (std::size_t index = 0; index < result.histograms.size(); ++index) {
+        const auto& record = result.histograms[index];
+        if (const std::string problem = histogram_shape_problem(record, rows); !problem.empty()) refuse(index, problem);
+        const std::size_t width = record.edges.size() + 1;
+        std::vector<double> mass(rows, 0.0);
+        for (std::size_t r = 0; r < rows; ++r)
+            for (std::size_t b = 0; b < width; ++b) mass[r] += record.counts[r * width + b];
+        // Reached: T(t) recorded (finite) at the histogram's time; a time the
+        // series does not hold (a hand-made file) falls back to a row with mass.
+        const auto sample = std::find(result.times.begin(), result.times.end(), record.time);
+        const bool in_series = series_complete && sample != result.times.end();
+        const auto k = static_cast<std::size_t>(sample - result.times.begin());
+        std::vector<bool> reached(rows);
+        for (std::size_t r = 0; r < rows; ++r)
+            reached[r] = in_series ? std::isfinite(result.temperature[r * samples + k]) : mass[r] > 0.0;
+        const bool any_mass = std::any_of(mass.begin(), mass.end(), [](double m) { return m > 0.0; });
+        if (std::none_of(reached.begin(), reached.end(), [](bool b) { return b; }) && !any_mass && in_series) {
+            run.unreached_times.push_back(record.time);
+            continue;
+        }
+        // A histogram of zeros gave a "scaling exponent" of the grid's edge.
+        if (!any_mass) refuse(index, "every count is 0: no mass to form P(v,t) from");
         VelocityHistogram h;
         h.time = record.time;
         h.label = time_label(label_prefix, h.time);
         h.edges = record.edges;
-        h.counts = record.counts;
-        h.realizations = realizations;
-        out.push_back(std::move(h));
+        h.recorded_realizations = rows;
+        for (std::size_t r = 0; r < rows; ++r) {
+            if (reached[r] != (mass[r] > 0.0))
+                refuse(index, fmt::format("realization {} {} t = {:g} (/timeseries/temperature) but its row of counts "
+                                          "holds {}",
+                                          r, reached[r] ? "reached" : "did not reach", record.time,
+                                          reached[r] ? "no mass" : "mass"));
+            if (!reached[r]) continue;
+            const auto row = record.counts.begin() + static_cast<std::ptrdiff_t>(r * width);
+            h.counts.insert(h.counts.end(), row, row + static_cast<std::ptrdiff_t>(width));
+            ++h.realizations;
+        }
+        run.histograms.push_back(std::move(h));
     }
-    return out;
+    return run;
+}
+
+std::vector<VelocityHistogram> histograms_from(const EnsembleResult& result, const std::string& label_prefix) {
+    return histograms_of_run(result, label_prefix).histograms;
+}
+
+RunHistograms read_histograms(const std::string& path, const std::string& label_prefix) {
+    // The schema is read in one place (shockgas::read_output).
+    return histograms_of_run(read_output(path).result, label_prefix, path);
 }
 
 double collapse_distance(const std::vector<VelocityHistogram>& histograms, double beta,

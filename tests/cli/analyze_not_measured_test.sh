@@ -7,15 +7,10 @@
 # t = 10 and 1000), e10_one.h5 (one realization), hist.h5 (histograms at t = 10
 # and 100), short_tail.h5 (a far tail reaching z ~ 3.3).
 set -u
+source "$(dirname "$0")/results_helpers.sh"
 analyze=$1 dump=$2 work=$3
 cd "$work" || exit 1
 fail() { echo "FAIL: $*"; exit 1; }
-# has FILE GROUP LINE-REGEX: the group's attributes include a line matching.
-has() {
-  "$dump" gnuplot-vars "$1" "$2" --prefix v | grep -Eq -- "$3" || fail "$1 $2 has no line /$3/:
-$("$dump" gnuplot-vars "$1" "$2" --prefix v)"
-  echo "ok: $1 $2: /$3/"
-}
 # One realization, and no sparse segment at t = 10: neither the slope nor
 # the count's error is 0.
 "$analyze" shocks snap1.h5 -o not_measured_shocks.h5 >/dev/null || fail "shocks failed"

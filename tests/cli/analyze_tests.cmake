@@ -226,4 +226,71 @@ if(GNUPLOT_EXECUTABLE)
                    ${PROJECT_SOURCE_DIR}/tools/shockgas-look "${_analyze_dir}/col.h5" -o "${_analyze_dir}/look_refused.png"
                    --t-lo 50 --t-hi 100)
   set_tests_properties(cli.analyze.look_window_refused PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+  # Before any work, one line each (the CLI audit of 2026-11-27: a missing output directory gave
+  # gnuplot's error after the analysis, a file that is not a run two contradictory lines).
+  foreach(_case IN ITEMS
+          "output_directory_missing|^shockgas-look: error: cannot write '.*/no_such_directory/look\\.png': directory '.*/no_such_directory' does not exist$|${_analyze_dir}/col.h5|${_analyze_dir}/no_such_directory/look.png"
+          "not_a_run|^shockgas-look: error: .*typo\\.toml' is not a readable HDF5 file|${CMAKE_CURRENT_SOURCE_DIR}/cli/typo.toml|${_analyze_dir}/look_not_a_run.png")
+    string(REPLACE "|" ";" _case "${_case}")
+    list(GET _case 0 _name)
+    list(GET _case 1 _regex)
+    list(GET _case 2 _input)
+    list(GET _case 3 _png)
+    add_test(NAME cli.analyze.look_${_name}
+             COMMAND ${_analyze_expect} "${_regex}" "${_png}" --
+                     ${CMAKE_COMMAND} -E env SHOCKGAS_BUILD=${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR}/tools/shockgas-look
+                     "${_input}" -o "${_png}")
+    set_tests_properties(cli.analyze.look_${_name} PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+  endforeach()
 endif()
+
+# 16. An interrupted run (Ctrl-C after 2 s: realization 0 of 3 reached the histogram times 1 and 10, 1 and
+# 2 never started) and the checkpoint it leaves. scaling counted the rows of zeros of the realizations that
+# never reached a histogram time as realizations (means, errors, the tail fit all wrong); now each time uses
+# the realizations that reached it, and says so.
+add_test(NAME cli.analyze.setup.interrupted
+         COMMAND bash -c "rm -f interrupted.h5 interrupted.h5.checkpoint interrupted.h5.checkpoint.previous; timeout -s INT 2 \"$0\" -N 100 -r 0.5 -d 0.01 -t 1e300 -R 3 -q -j 1 --histogram-times 1,10 -o interrupted.h5 2>/dev/null; test -e interrupted.h5 && test -e interrupted.h5.checkpoint"
+                 $<TARGET_FILE:shockgas-sim>
+         WORKING_DIRECTORY "${_analyze_dir}")
+set_tests_properties(cli.analyze.setup.interrupted PROPERTIES FIXTURES_SETUP analyze_cases LABELS cli TIMEOUT 120)
+shockgas_analyze_reports(scaling_interrupted_uses_reached
+                         "note: t = 1 in 'interrupted.h5': 1 of 3 realizations reached it; the estimates at this time use only these \\(the run was interrupted: shockgas-sim --resume"
+                         "nan|error" scaling interrupted.h5 -o "${_analyze_dir}/interrupted_scaling.h5")
+shockgas_analyze_error(decay_interrupted_names_resume
+                       "no sample time t > 0 was reached with T > 0 by every realization: the run was interrupted; continue it with shockgas-sim --resume and the same options, in 'interrupted.h5'$"
+                       decay interrupted.h5)
+# 17. Every subcommand refuses a checkpoint (decay and compare printed results from one), in one check.
+foreach(_case IN ITEMS "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"
+                      "far_tail|far-tail" "compare|compare;a.h5")
+  string(REPLACE "|" ";" _parts "${_case}")
+  list(GET _parts 0 _name)
+  list(SUBLIST _parts 1 -1 _arguments)
+  shockgas_analyze_error(checkpoint_refused_${_name}
+                         "^shockgas-analyze: error: 'interrupted\\.h5\\.checkpoint' is a shockgas-sim checkpoint \\(a run in progress\\), not an output: continue the run with shockgas-sim --resume and the same options$"
+                         ${_arguments} interrupted.h5.checkpoint)
+endforeach()
+# 18. compare takes runs that differ in delta and the sub-threshold rule only: another N, r or seed is refused,
+# naming each difference (the run's value first); a run of another delta is compared.
+shockgas_analyze_error(compare_other_restitution
+                       "^shockgas-analyze: error: 'e10\\.h5' is not comparable with the reference 'e05\\.h5': restitution 0\\.8 vs 0\\.9 \\(compare takes"
+                       compare e05.h5 e10.h5)
+shockgas_analyze_error(compare_other_particles
+                       "^shockgas-analyze: error: 'e05\\.h5' is not comparable with the reference 'a\\.h5': particles 1000 vs 200, ring_length 1000 vs 200, restitution 0\\.9 vs 0\\.5 \\("
+                       compare a.h5 e05.h5)
+add_test(NAME cli.analyze.setup.a_seed
+         COMMAND $<TARGET_FILE:shockgas-sim> -N 200 -r 0.5 -d 0.01 -t 100 -R 2 -s 7 -j 1 -q -o "${_analyze_dir}/a_seed.h5")
+add_test(NAME cli.analyze.setup.a_sticky
+         COMMAND $<TARGET_FILE:shockgas-sim> -N 200 -r 0.5 -d 0.02 --subthreshold sticky -t 100 -R 2 -j 1 -q
+                 -o "${_analyze_dir}/a_sticky.h5")
+set_tests_properties(cli.analyze.setup.a_seed cli.analyze.setup.a_sticky PROPERTIES FIXTURES_SETUP analyze_cases
+                     LABELS cli TIMEOUT 120)
+shockgas_analyze_error(compare_other_seed
+                       "^shockgas-analyze: error: 'a_seed\\.h5' is not comparable with the reference 'a\\.h5': seed 7 vs [0-9]+ \\("
+                       compare a.h5 a_seed.h5)
+shockgas_analyze_reports(compare_other_threshold "a_sticky\\.h5 +delta 0\\.02 +sticky" "error"
+                         compare a.h5 a_sticky.h5 -o "${_analyze_dir}/other_threshold_compare.h5")
+# 19. The results file records how it was made: the command line and every option of the subcommand.
+add_test(NAME cli.analyze.options_recorded
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/analyze_options_recorded_test.sh ${_analyze_program}
+                 $<TARGET_FILE:shockgas-dump> "${_analyze_dir}")
+set_tests_properties(cli.analyze.options_recorded PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)

@@ -1,11 +1,16 @@
 // compare_temperatures: the deviation of one T(t) from a reference, and the
 // time from which on it stays outside the noise.
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "shockgas/analysis/compare.hpp"
+#include "shockgas/output.hpp"
+#include "shockgas/parameters.hpp"
 
 namespace {
 
@@ -64,6 +69,55 @@ TEST(Compare, OneRealizationHasNoSigmaNotAZeroOne) {
     EXPECT_TRUE(std::isinf(comparison.departure_time));
     EXPECT_NEAR(comparison.max_abs_deviation, 0.01, 1e-3);
     EXPECT_EQ(comparison.time_of_max, 1.0);
+}
+
+// A run of one realization and three sample times with these parameters, as shockgas-sim writes it.
+std::string write_compared_run(const std::string& name, const shockgas::SimulationParameters& parameters) {
+    shockgas::EnsembleResult result;
+    result.realizations = 1;
+    result.times = {1.0, 10.0, 100.0};
+    result.temperature = {0.3, 0.1, 0.05};
+    result.collisions_per_particle = {1.0, 2.0, 3.0};
+    result.clusters = {8.0, 6.0, 4.0};
+    result.kinetic_energy = {0.15, 0.05, 0.025};
+    result.realization_status = {0};
+    result.status = "complete";
+    result.engine = "event";
+    const auto path = (std::filesystem::temp_directory_path() / ("shockgas_compare_" + name + ".h5")).string();
+    shockgas::write_output(path, parameters, result);
+    return path;
+}
+
+TEST(Compare, RunsOfAnotherEnsembleAreNamedByTheirDifferences) {
+    // A reference at r = 0.9, N = 2000 against runs with N = 1000 or r = 0.8
+    // gave a deviation table with exit status 0: it measured N or r, not delta.
+    shockgas::SimulationParameters reference;
+    reference.particles = 2000;
+    reference.collision.restitution = 0.9;
+    reference.collision.velocity_threshold = 1e-4;
+    reference.seed = 8090;
+    reference.t_max = 100.0;
+    const auto reference_path = write_compared_run("reference", reference);
+    // What compare is for (fig_tradeoff): another delta, the other sub-threshold rule, another t_max and R.
+    auto cheaper = reference;
+    cheaper.collision.velocity_threshold = 1e-2;
+    cheaper.collision.subthreshold = shockgas::Subthreshold::sticky;
+    cheaper.t_max = 50.0;
+    cheaper.realizations = 4;
+    const auto cheaper_path = write_compared_run("cheaper", cheaper);
+    EXPECT_EQ(shockgas::analysis::comparison_differences(reference_path, cheaper_path), "");
+    auto other = reference;
+    other.particles = 1000;
+    other.collision.restitution = 0.8;
+    other.seed = 7;
+    const auto other_path = write_compared_run("other", other);
+    EXPECT_EQ(shockgas::analysis::comparison_differences(reference_path, other_path),
+              "particles 1000 vs 2000, ring_length 1000 vs 2000, restitution 0.8 vs 0.9, seed 7 vs 8090");
+    auto shifted = reference;
+    shifted.first_realization = 4;  // other initial states: realization k starts as the reference's k + 4
+    const auto shifted_path = write_compared_run("shifted", shifted);
+    EXPECT_EQ(shockgas::analysis::comparison_differences(reference_path, shifted_path), "first_realization 4 vs 0");
+    for (const auto& path : {reference_path, cheaper_path, other_path, shifted_path}) std::filesystem::remove(path);
 }
 
 }  // namespace

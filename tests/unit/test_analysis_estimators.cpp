@@ -27,6 +27,8 @@
 #include "shockgas/parameters.hpp"
 #include "shockgas/text_file.hpp"
 
+#include "../test_support.hpp"
+
 namespace sa = shockgas::analysis;
 
 namespace {
@@ -165,22 +167,15 @@ TEST(AnalysisDecay, JackknifeCoverageWithThreeRealizations) {
     constexpr double alpha = 2.0 / 3.0;
     constexpr int trials = 600;
     constexpr std::size_t realizations = 3;
-    // The jackknife ratio of R = 3 follows Student's t with 2 dof at best: its one-sigma coverage is
-    // 1/sqrt(3) = 0.577 (P(|t_2| < 1)); a sigma that is too small falls below that by more than 3
-    // binomial standard errors. Above, the Gaussian 0.683 bounds it (a sigma that is too large).
+    // P(|t_2| < 1) = 1/sqrt(3) = 0.577: Student's t of R - 1 = 2 dof (expect_jackknife_coverage).
     const double student_coverage = 1.0 / std::sqrt(3.0);
-    const double binomial = 3.0 * std::sqrt(student_coverage * (1.0 - student_coverage) / trials);
     int inside = 0;
     for (int trial = 0; trial < trials; ++trial) {
         const auto history = correlated_history(random, alpha, realizations);
         const auto fit = sa::fit_temperature_decay(history, 10.0, 1e4);
         if (std::abs(fit.exponent - alpha) <= fit.exponent_sigma) ++inside;
     }
-    const double coverage = static_cast<double>(inside) / trials;
-    std::printf("R = 3: one-sigma coverage %.3f over %d trials (Student %.3f - %.3f ... Gaussian %.3f + %.3f)\n",
-                coverage, trials, student_coverage, binomial, one_sigma_coverage, binomial);
-    EXPECT_GT(coverage, student_coverage - binomial);
-    EXPECT_LT(coverage, one_sigma_coverage + binomial);
+    shockgas::testing::expect_jackknife_coverage(inside, trials, student_coverage, "decay, R = 3");
 }
 
 TEST(AnalysisDecay, WindowRuleAndScan) {
@@ -426,22 +421,14 @@ TEST(AnalysisTail, JackknifeCoverageWithFourRealizations) {
     constexpr double gamma_true = 3.0;  // Eq. (6)
     constexpr int trials = 200;
     constexpr std::size_t realizations = 4;
-    // The jackknife ratio of R = 4 follows Student's t with 3 dof at best: one-sigma coverage
-    // P(|t_3| < 1) = 0.609; a sigma that is too small falls below that by more than 3 binomial
-    // standard errors. Above, the Gaussian 0.683 bounds it (a sigma that is too large).
-    constexpr double student_coverage = 0.6090;
-    const double binomial = 3.0 * std::sqrt(student_coverage * (1.0 - student_coverage) / trials);
+    constexpr double student_coverage = 0.6090;  // P(|t_3| < 1): R - 1 = 3 dof (expect_jackknife_coverage)
     int inside = 0;
     for (int trial = 0; trial < trials; ++trial) {
         const auto h = synthetic_histogram(random, 1000.0, 1.0 / 3.0, gamma_true, realizations, 25000);
         const auto tail = sa::fit_tail(h);
         if (std::abs(tail.gamma.value - gamma_true) <= tail.gamma.sigma) ++inside;
     }
-    const double coverage = static_cast<double>(inside) / trials;
-    std::printf("R = 4: one-sigma coverage %.3f over %d trials (Student %.3f - %.3f ... Gaussian %.3f + %.3f)\n",
-                coverage, trials, student_coverage, binomial, one_sigma_coverage, binomial);
-    EXPECT_GT(coverage, student_coverage - binomial);
-    EXPECT_LT(coverage, one_sigma_coverage + binomial);
+    shockgas::testing::expect_jackknife_coverage(inside, trials, student_coverage, "tail gamma, R = 4");
 }
 
 // Two realizations: each replica keeps one, which has no scatter to weigh by; gamma is
@@ -723,6 +710,159 @@ TEST(AnalysisReaders, TemperatureRunNeedsRealizationsAndCommonTimes) {
     const auto never = write_run("no_time", {}, {}, 1, {std::nan(""), std::nan(""), std::nan("")});
     EXPECT_THROW(sa::read_temperature_run(never), sa::InsufficientData);
     for (const auto& file : {path, empty, never}) std::filesystem::remove(file);
+}
+
+namespace {
+
+// A run of three realizations stopped by Ctrl-C: all reached t = 10, the
+// first two t = 100 (the third's T is NaN there and its histogram row zeros),
+// none t = 1000. Rows: realization r has mass 10 spread as given.
+shockgas::EnsembleResult interrupted_run() {
+    shockgas::EnsembleResult result;
+    result.realizations = 3;
+    result.times = {10.0, 100.0, 1000.0};
+    const double nan = std::nan("");
+    result.temperature = {0.1, 0.05, nan, 0.1, 0.05, nan, 0.1, nan, nan};
+    result.collisions_per_particle = {1.0, 2.0, nan, 1.0, 2.0, nan, 1.0, nan, nan};
+    result.clusters = {8.0, 6.0, nan, 8.0, 6.0, nan, 8.0, nan, nan};
+    result.kinetic_energy = {0.05, 0.025, nan, 0.05, 0.025, nan, 0.05, nan, nan};
+    result.realization_status = {2, 2, 2};
+    result.status = "interrupted";
+    result.engine = "event";
+    const std::vector<double> edges{-1.0, -0.5, 0.0, 0.5, 1.0};
+    const std::vector<double> rows[] = {{0, 1, 4, 4, 1, 0}, {0, 2, 3, 3, 2, 0}, {0, 1, 3, 5, 1, 0}};
+    for (const double time : {10.0, 100.0, 1000.0}) {
+        shockgas::HistogramRecord record{time, edges, {}};
+        for (std::size_t r = 0; r < 3; ++r) {
+            const bool reached = time == 10.0 || (time == 100.0 && r < 2);
+            for (const double count : rows[r]) record.counts.push_back(reached ? count : 0.0);
+        }
+        result.histograms.push_back(record);
+    }
+    return result;
+}
+
+}  // namespace
+
+TEST(AnalysisReaders, HistogramsOfAnInterruptedRunUseTheRealizationsThatReachedThem) {
+    // The zero rows of realizations that never reached a histogram time were
+    // counted as realizations: kurtosis sigma 0.206 instead of 0.168, and no
+    // usable tail bin instead of 12, on an audit's interrupted run.
+    const auto result = interrupted_run();
+    const sa::RunHistograms run = sa::histograms_of_run(result);
+    ASSERT_EQ(run.histograms.size(), 2u);
+    EXPECT_EQ(run.realizations, 3u);
+    EXPECT_EQ(run.status, "interrupted");
+    ASSERT_EQ(run.unreached_times.size(), 1u);
+    EXPECT_EQ(run.unreached_times.front(), 1000.0);
+    EXPECT_EQ(run.histograms[0].realizations, 3u);
+    const auto& late = run.histograms[1];
+    EXPECT_EQ(late.time, 100.0);
+    EXPECT_EQ(late.realizations, 2u);
+    EXPECT_EQ(late.recorded_realizations, 3u);
+    ASSERT_EQ(late.counts.size(), 12u);
+    // The same numbers as a complete run of those two realizations.
+    sa::VelocityHistogram two = late;
+    two.counts = {0, 1, 4, 4, 1, 0, 0, 2, 3, 3, 2, 0};
+    EXPECT_EQ(late.counts, two.counts);
+    const auto kurtosis = sa::velocity_kurtosis(late);
+    EXPECT_EQ(kurtosis.value, sa::velocity_kurtosis(two).value);
+    EXPECT_EQ(kurtosis.sigma, sa::velocity_kurtosis(two).sigma);
+    // Through the file, as shockgas-analyze scaling reads it.
+    shockgas::SimulationParameters parameters;
+    parameters.particles = 10;
+    parameters.realizations = 3;
+    parameters.t_max = 1000.0;
+    const auto path =
+        (std::filesystem::temp_directory_path() / "shockgas_estimators_interrupted_histograms.h5").string();
+    shockgas::write_output(path, parameters, result);
+    const sa::RunHistograms read = sa::read_histograms(path);
+    ASSERT_EQ(read.histograms.size(), 2u);
+    EXPECT_EQ(read.histograms[1].realizations, 2u);
+    EXPECT_EQ(read.histograms[1].counts, two.counts);
+    // decay: with a realization that never started, no time every realization
+    // reached; the message says how to finish the run.
+    auto unstarted = result;
+    for (std::size_t k = 0; k < 3; ++k) unstarted.temperature[6 + k] = std::nan("");
+    unstarted.histograms.clear();
+    shockgas::write_output(path, parameters, unstarted);
+    try {
+        sa::read_temperature_run(path);
+        ADD_FAILURE() << "an interrupted run without a common sample time was read";
+    } catch (const sa::InsufficientData& error) {
+        EXPECT_NE(std::string(error.what()).find("the run was interrupted; continue it with shockgas-sim --resume"),
+                  std::string::npos)
+            << error.what();
+    }
+    std::filesystem::remove(path);
+}
+
+TEST(AnalysisReaders, HistogramRowsThatDisagreeWithTheTimeSeriesAreRefused) {
+    // A realization recorded as reaching t = 100 (T is a number there) whose
+    // row holds no mass, or one with mass that did not reach it: damaged.
+    auto massless = interrupted_run();
+    std::fill(massless.histograms[1].counts.begin(), massless.histograms[1].counts.begin() + 6, 0.0);
+    try {
+        sa::histograms_of_run(massless);
+        ADD_FAILURE() << "a reached realization without mass was accepted";
+    } catch (const shockgas::h5::Error& error) {
+        EXPECT_NE(std::string(error.what()).find("/histograms/1: realization 0 reached t = 100"), std::string::npos)
+            << error.what();
+    }
+    auto ghost = interrupted_run();
+    ghost.histograms[1].counts[14] = 5.0;  // realization 2, which stopped before t = 100
+    EXPECT_THROW(sa::histograms_of_run(ghost), shockgas::h5::Error);
+}
+
+TEST(AnalysisResults, EveryInputIsCheckedForACheckpoint) {
+    // decay and compare printed results from a checkpoint (a run in
+    // progress); scaling and shocks refused it. One check for every subcommand.
+    const auto directory = std::filesystem::temp_directory_path() / "shockgas_results_checkpoint";
+    std::filesystem::create_directories(directory);
+    const auto checkpoint = (directory / "run.h5.checkpoint").string();
+    {
+        shockgas::h5::AtomicFile file(checkpoint);
+        file.root().create_group("checkpoint");
+        file.commit();
+    }
+    const auto output = write_run("not_a_checkpoint", {}, {});
+    EXPECT_NO_THROW(sa::check_inputs({output}));
+    try {
+        sa::check_inputs({output, checkpoint});
+        ADD_FAILURE() << "a checkpoint passed as an input";
+    } catch (const shockgas::InputError& error) {
+        EXPECT_EQ(std::string(error.what()),
+                  "'" + checkpoint +
+                      "' is a shockgas-sim checkpoint (a run in progress), not an output: continue the run with "
+                      "shockgas-sim --resume and the same options");
+    }
+    std::filesystem::remove_all(directory);
+    std::filesystem::remove(output);
+}
+
+TEST(AnalysisResults, ResultsFileRecordsTheCommandLineAndEveryOption) {
+    // shocks with --jump-fraction 2 and with the default (104 and 416 shocks)
+    // wrote files whose attributes did not say which.
+    const auto input = write_run("options_input", {}, {});
+    const auto path = (std::filesystem::temp_directory_path() / "shockgas_results_options.h5").string();
+    sa::AnalysisInvocation invocation{"shockgas-analyze shocks",
+                                      "shockgas-analyze shocks run.h5 --jump-fraction 2",
+                                      {{"jump_fraction", "2", true}, {"merge_gap", "0", true},
+                                       {"output", "x.h5", false}}};
+    {
+        sa::ResultsFile results(path, invocation, {input});
+        results.commit();
+    }
+    const auto file = shockgas::h5::File::open_read(path);
+    const auto root = file.root();
+    EXPECT_EQ(root.attribute_string("program"), "shockgas-analyze shocks");
+    EXPECT_EQ(root.attribute_string("command_line"), "shockgas-analyze shocks run.h5 --jump-fraction 2");
+    const auto options = root.open_group("options");
+    EXPECT_EQ(options.attribute_double("jump_fraction"), 2.0);
+    EXPECT_EQ(options.attribute_double("merge_gap"), 0.0);
+    EXPECT_EQ(options.attribute_string("output"), "x.h5");
+    std::filesystem::remove(path);
+    std::filesystem::remove(input);
 }
 
 // --- data files: atomic, checked, and never written over an input ---

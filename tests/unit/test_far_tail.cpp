@@ -1,7 +1,6 @@
 // The tail-exponent estimator (shockgas/analysis/far_tail.hpp) on synthetic
 // tails of known gamma with chain-by-chain noise, as the sampler delivers them.
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -11,6 +10,7 @@
 
 #include "shockgas/analysis/far_tail.hpp"
 #include "shockgas/h5.hpp"
+#include "../test_support.hpp"
 
 namespace {
 
@@ -85,12 +85,7 @@ void take_sampler_sigma(FarTail& tail) {
 // scatter of 0.0149). Pooled sigmas and the replicas' own weights give 0.60.
 TEST(TailExponent, JackknifeCoverageWithFourChains) {
     constexpr int trials = 300;
-    // The jackknife ratio of 4 chains follows Student's t with 3 dof at best: one-sigma coverage
-    // P(|t_3| < 1) = 0.609; below it by more than 3 binomial standard errors, sigma is too small.
-    // Above, the Gaussian 0.683 bounds it (a sigma that is too large).
-    constexpr double student_coverage = 0.6090;
-    constexpr double gaussian_coverage = 0.6827;
-    const double binomial = 3.0 * std::sqrt(student_coverage * (1.0 - student_coverage) / trials);
+    constexpr double student_coverage = 0.6090;  // P(|t_3| < 1): 4 chains, 3 dof (expect_jackknife_coverage)
     int inside = 0;
     for (int trial = 0; trial < trials; ++trial) {
         FarTail tail = synthetic_tail(3.0, 0.5, 2.676, 4, 0.5, 1000 + static_cast<std::uint64_t>(trial));
@@ -98,11 +93,7 @@ TEST(TailExponent, JackknifeCoverageWithFourChains) {
         const auto gamma = shockgas::analysis::estimate_tail_exponent(tail, 2.0, 5.8, 0.25, 2.676).gamma;
         if (std::abs(gamma.value - 3.0) <= gamma.sigma) ++inside;
     }
-    const double coverage = static_cast<double>(inside) / trials;
-    std::printf("4 chains: one-sigma coverage %.3f over %d trials (Student %.3f - %.3f ... Gaussian %.3f + %.3f)\n",
-                coverage, trials, student_coverage, binomial, gaussian_coverage, binomial);
-    EXPECT_GT(coverage, student_coverage - binomial);
-    EXPECT_LT(coverage, gaussian_coverage + binomial);
+    shockgas::testing::expect_jackknife_coverage(inside, trials, student_coverage, "far-tail gamma, 4 chains");
 }
 
 // Two chains: a replica keeps one, with no spread to weigh by; gamma stands, its sigma is n/a.

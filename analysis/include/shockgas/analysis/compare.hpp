@@ -32,4 +32,17 @@ struct TemperatureComparison {
 TemperatureComparison compare_temperatures(const TemperatureHistory& run, const TemperatureHistory& reference,
                                            double k_sigma = 3.0, double floor = 0.02);
 
+// compare measures what the threshold delta and the sub-threshold rule cost
+// in accuracy: a run and its reference must be the same ensemble otherwise,
+// or the deviation measures something else (another N, r or start). They
+// must share the root attributes particles, ring_length, restitution (the
+// physics), seed, first_realization, positions, velocity_distribution and
+// init_file_sha256 (the initial states: realization k starts alike in both).
+// They may differ in velocity_threshold, subthreshold, t_max, the sample
+// grid, the realization count (the common ones start alike) and the engine.
+// An attribute that only one of the files has (an older schema) is not compared.
+// Returns the differences as "particles 1000 vs 2000, restitution 0.8 vs 0.9"
+// (the run's value first), empty when the runs are comparable.
+std::string comparison_differences(const std::string& reference_path, const std::string& run_path);
+
 }  // namespace shockgas::analysis

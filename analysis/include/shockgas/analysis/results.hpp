@@ -15,14 +15,34 @@
 
 namespace shockgas::analysis {
 
+// How an analysis was asked for: enough to run it again. program names the
+// subcommand ("shockgas-analyze shocks"), command_line is the command as
+// given (each argument shell-quoted where needed), and options holds every
+// option of the subcommand with the value it ran with, defaults included (an
+// option with no default that was not given, e.g. --t-lo, is left out).
+struct RecordedOption {
+    std::string name;    // the long option without its dashes, '-' as '_' (--jump-fraction: jump_fraction)
+    std::string value;   // as given or defaulted; a flag: true or false
+    bool number = false; // stored as a number (a numeric option), else as text (paths, choices, flags)
+};
+struct AnalysisInvocation {
+    std::string program;
+    std::string command_line;
+    std::vector<RecordedOption> options;
+};
+
 // Results file, written atomically. Root attributes: the analysis program's
-// provenance (shockgas::write_provenance), and every root attribute of each
-// input copied with prefix "input_" (one input) or "input<k>_" (several),
-// plus input_path / input<k>_path. Fitted numbers go into named groups as
-// attributes: <name> and <name>_sigma for each Estimate.
+// provenance (shockgas::write_provenance), command_line, and every root
+// attribute of each input copied with prefix "input_" (one input) or
+// "input<k>_" (several), plus input_path / input<k>_path. The group /options
+// holds one attribute per option of the invocation (a number for a numeric
+// option, else text): two results files with different options, e.g.
+// --jump-fraction 2 and 1, differed only in their numbers before. Fitted
+// numbers go into named groups as attributes: <name> and <name>_sigma for
+// each Estimate.
 class ResultsFile {
 public:
-    ResultsFile(const std::string& path, const std::string& program, const std::vector<std::string>& inputs);
+    ResultsFile(const std::string& path, const AnalysisInvocation& invocation, const std::vector<std::string>& inputs);
     h5::Group root() const { return file_.root(); }
     h5::Group section(const std::string& name);
     void commit() { file_.commit(); }
@@ -87,6 +107,13 @@ struct OutputPath {
 // (h5::check_not_an_input: writing it would destroy the input), and no two
 // name the same file (one would overwrite the other; two devices may).
 void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
+
+// Checks every input of one run before any work: none is a shockgas-sim
+// checkpoint (PATH.checkpoint, a run in progress). It holds the output
+// schema, so read as an output it would pass for a result of the run's first
+// samples (status "checkpoint"); every subcommand refuses it here, with the
+// words of shockgas::read_output.
+void check_inputs(const std::vector<std::string>& inputs);
 
 // Commits a run's outputs together: the data files are closed first (where a
 // full disk shows), then the results file is committed, then the data files

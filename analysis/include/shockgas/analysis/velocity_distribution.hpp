@@ -13,13 +13,15 @@
 
 namespace shockgas::analysis {
 
-// One /histograms/<h> entry: mass-weighted counts of v - V per realization.
+// One /histograms/<h> entry: mass-weighted counts of v - V per realization,
+// of the realizations that reached its time (reached_histogram_rows).
 struct VelocityHistogram {
     std::string label;          // e.g. "r=0.9 t=1000", for data files
     double time = 0.0;
     std::vector<double> edges;  // bins + 1, velocity units (v - V)
-    std::size_t realizations = 0;
-    std::vector<double> counts; // R x (bins + 2): underflow, bins, overflow
+    std::size_t realizations = 0;           // rows of counts: the realizations that reached time
+    std::size_t recorded_realizations = 0;  // R of the run; more than realizations when some stopped before time
+    std::vector<double> counts; // realizations x (bins + 2): underflow, bins, overflow
 
     std::size_t bins() const { return edges.size() - 1; }
     // Counts summed over realizations (bins + 2 entries); realizations r with
@@ -28,8 +30,31 @@ struct VelocityHistogram {
                                std::size_t groups = 1) const;
 };
 
+// The histograms of a run, each over the realizations that reached its time.
+// A realization stopped before a histogram time (an interrupted run: Ctrl-C,
+// or a realization that never started) left a row of zeros there, which
+// counted as a realization would bias every mean, standard error, jackknife
+// and tail fit (an audit: kurtosis sigma 0.206 instead of 0.168, no usable
+// tail bin instead of 12). Which realizations reached time t is what the run
+// recorded: T(t) in /timeseries/temperature is a number exactly for them
+// (NaN otherwise); for a time the series does not hold, a row with mass.
+// Their rows are kept in realization order, so with the usual interruption
+// (the last realizations unfinished) the jackknife groups r % G stay the same
+// realizations at every time. A row recorded as reached but without mass, or
+// with mass but not reached, is refused as damaged (h5::Error naming it).
+struct RunHistograms {
+    std::vector<VelocityHistogram> histograms;  // the times at least one realization reached, in time order
+    std::vector<double> unreached_times;        // histogram times no realization reached (left out)
+    std::size_t realizations = 0;               // R of the run
+    std::string status;                         // the run's: complete | collapsed | interrupted
+};
+RunHistograms histograms_of_run(const EnsembleResult& result, const std::string& label_prefix = "",
+                                const std::string& path = "");
+// histograms_of_run(...).histograms: runs made in memory (run_ensemble) have every time.
 std::vector<VelocityHistogram> histograms_from(const EnsembleResult& result, const std::string& label_prefix = "");
-std::vector<VelocityHistogram> read_histograms(const std::string& path, const std::string& label_prefix = "");
+// A shockgas-sim output's histograms; damaged ones refused (h5::Error naming
+// the file and the group).
+RunHistograms read_histograms(const std::string& path, const std::string& label_prefix = "");
 
 // Jackknife groups used for histogram estimators: min(R, max_groups) over all
 // inputs; each group is every realization r with r % groups == g.
