@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "shockgas/output.hpp"
 #include "shockgas/parameters.hpp"
 #include "shockgas/provenance.hpp"
 
@@ -135,11 +136,8 @@ void DataFile::blank_line() { file_.write("\n\n"); }
 void check_inputs(const std::vector<std::string>& inputs) {
     for (const auto& input : inputs) {
         const h5::Probe found = h5::probe(input);
-        // The same words as shockgas::read_output's, which the histogram and snapshot readers pass through.
         if (found.kind == h5::Probe::Kind::hdf5 && found.holds("checkpoint"))
-            throw InputError(fmt::format("'{}' is a shockgas-sim checkpoint (a run in progress), not an output: "
-                                         "continue the run with shockgas-sim --resume and the same options",
-                                         input));
+            throw checkpoint_given_as_output(input);
     }
 }
 

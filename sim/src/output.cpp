@@ -351,15 +351,18 @@ OutputFile read_result(const h5::Group& root, const std::string& file) {
 
 }  // namespace
 
+InputError checkpoint_given_as_output(const std::string& path) {
+    return InputError(fmt::format("'{}' is a shockgas-sim checkpoint (a run in progress), not an output: "
+                                  "continue the run with shockgas-sim --resume and the same options",
+                                  path));
+}
+
 OutputFile read_output(const std::string& path) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
     // A checkpoint holds the output schema too, but of a run in progress
     // (realization_status 4): read as an output it would pass for a result.
-    if (root.has("checkpoint"))
-        throw InputError(fmt::format("'{}' is a shockgas-sim checkpoint (a run in progress), not an output: "
-                                     "continue the run with shockgas-sim --resume and the same options",
-                                     path));
+    if (root.has("checkpoint")) throw checkpoint_given_as_output(path);
     OutputFile out = read_result(root, path);
     const std::string& status = out.result.status;
     if (status != "complete" && status != "collapsed" && status != "interrupted")

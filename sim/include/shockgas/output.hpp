@@ -51,6 +51,9 @@ struct OutputFile {
 // the dataset) a file whose datasets disagree in shape or whose statuses are
 // not an output's.
 OutputFile read_output(const std::string& path);
+// The one refusal of a checkpoint (a run in progress) given where an output
+// is read: read_output's, and shockgas-analyze's check of every input.
+InputError checkpoint_given_as_output(const std::string& path);
 
 // One stored ring state (a snapshot or a collapse state: time, position,
 // velocity, mass, first_particle) from its group; throws h5::Error naming
