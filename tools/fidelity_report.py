@@ -141,6 +141,13 @@ def attrs(path, group):
     return shockgas.read_results(path)[group].attrs
 
 
+def why_missing(attributes, name, fallback):
+    """The reason shockgas-analyze stored for a number it could not measure (the attribute `name`: a
+    `<number>_note`, `<number>_sigma_note` or `tail_error`), or `fallback` for a file that has none."""
+    reason = attributes.get(name)
+    return reason if isinstance(reason, str) and reason else fallback
+
+
 def window(decay):
     """The window systematic, or n/a where the analysis could not measure it (stored as NaN with a
     note: fewer than two one-decade windows inside the fit window)."""
@@ -332,22 +339,27 @@ if os.path.exists(path):
     for g in sorted(k for k in results.sections if k.startswith("histogram")):
         a = results[g].attrs
         line = f"| Fig. 4 {a['label']}: kurtosis"
-        value = f"{a['kurtosis']:.3f} ± {a['kurtosis_sigma']:.3f}"
+        value = (f"{a['kurtosis']:.3f} ± {a['kurtosis_sigma']:.3f}" if not math.isnan(a["kurtosis_sigma"])
+                 else f"{a['kurtosis']:.3f} ± n/a ({why_missing(a, 'kurtosis_sigma_note', 'one realization')})")
         # A short run's tail often has too few bins, or a fit or jackknife replica at the search
-        # bound (analysis/README.md, Tail): say so rather than print NaN.
+        # bound, or too few realizations to weigh the bins by (analysis/README.md, Tail): the reason is
+        # the one shockgas-analyze scaling stored beside the NaN (tail_gamma_note, tail_gamma_sigma_note,
+        # tail_error); files written before it stored them get the old words (why_missing).
         if "tail_gamma" in a:
             line += ", tail γ"
             if math.isnan(a["tail_gamma"]):
-                value += "; γ n/a (at the search bound)"
+                value += f"; γ n/a ({why_missing(a, 'tail_gamma_note', 'at the search bound')})"
             elif math.isnan(a["tail_gamma_sigma"]):
-                # The jackknife's σ is n/a; the fit's own Δχ² = 1 width still bounds γ.
-                value += (f"; γ = {a['tail_gamma']:.2f} ± {a['tail_gamma_fit_sigma']:.2f} (Δχ² = 1; jackknife n/a: "
-                          "a replica at the search bound)")
+                # The jackknife's σ is n/a; the fit's own Δχ² = 1 width, where measured, still bounds γ.
+                reason = why_missing(a, "tail_gamma_sigma_note", "a replica at the search bound")
+                fit_sigma = a.get("tail_gamma_fit_sigma", math.nan)
+                value += (f"; γ = {a['tail_gamma']:.2f} ± {fit_sigma:.2f} (Δχ² = 1; jackknife n/a: {reason})"
+                          if not math.isnan(fit_sigma) else f"; γ = {a['tail_gamma']:.2f} ± n/a ({reason})")
             else:
                 value += f"; γ = {a['tail_gamma']:.2f} ± {a['tail_gamma_sigma']:.2f}"
         elif "tail_error" in a:
             line += ", tail γ"
-            value += "; γ n/a (too few tail bins)"
+            value += f"; γ n/a ({why_missing(a, 'tail_error', 'too few tail bins')})"
         print(f"{line} | {value} | 3.041 (exact Φ); γ = 3 asymptotically |")
 path = os.path.join(base, "fig5", "shocks.h5")
 if os.path.exists(path):

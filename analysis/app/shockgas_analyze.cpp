@@ -240,6 +240,9 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
                                                                    "t_stick_sigma", "T_stick", "T_stick_sigma",
                                                                    "haff_rate", "haff_rate_sigma",
                                                                    "t_stick_reference"});
+    // The first input whose crossovers have no sigma (one realization): the fits over eps, weighted
+    // by those sigmas, are then n/a with this reason rather than stopping the command.
+    std::string no_sigma;
     for (std::size_t k = 0; k < inputs.size(); ++k) {
         const double eps = inelasticity[k];
         CrossoverRule rule = fit_rule;
@@ -247,6 +250,10 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
         const auto crossovers = on_input(inputs[k], [&] {
             return find_crossovers(read_temperature_run(inputs[k]).history, rule);
         });
+        if (no_sigma.empty() && std::isnan(crossovers.t_stick.sigma)) {
+            no_sigma = fmt::format("'{}' has no error bar ({})", inputs[k], crossovers.t_stick.note);
+            if (file) file->comment("*_sigma nan in " + no_sigma);
+        }
         t_dissip.push_back(crossovers.t_dissip);
         t_stick.push_back(crossovers.t_stick);
         temperature.push_back(crossovers.temperature_at_stick);
@@ -272,7 +279,13 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
                    format_estimate(crossovers.t_stick, "{:.4g}", "{:.2g}"),
                    format_estimate(crossovers.temperature_at_stick, "{:.4g}", "{:.2g}"));
     }
-    if (inputs.size() >= 2) {
+    if (inputs.size() >= 2 && !no_sigma.empty()) {
+        // The powers of eps are weighted fits: without an input's sigma there is no weight for it.
+        auto group = results.section("scaling_in_eps");
+        const std::string why = "the fits over eps are weighted by each input's sigma: " + no_sigma;
+        group.set_attribute("note", why);
+        fmt::print("t_dissip, t_stick, T(t_stick) against eps: n/a ({})\n", why);
+    } else if (inputs.size() >= 2) {
         auto group = results.section("scaling_in_eps");
         const auto dissip_fit = fit_against_inelasticity(inelasticity, t_dissip);
         const auto stick_fit = fit_against_inelasticity(inelasticity, t_stick);

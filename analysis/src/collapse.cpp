@@ -213,6 +213,11 @@ FirstCollapseScaling fit_first_collapse_scaling(const std::vector<CollapseEvents
         mass.push_back(summary.cluster_mass.value);
         mass_sigma.push_back(summary.cluster_mass.sigma);
         const auto curve = cumulative_hazard_per_particle(run);
+        // The weights need no floor (unlike the cluster mass's SE, which can be 0): every term of
+        // var H is positive, and by Cauchy-Schwarz (sum_{j<=i} a_j)^2 <= i sum_{j<=i} a_j^2, so the i-th
+        // point's relative error sqrt(var H)/H lies in [1/sqrt(i), 1] (exactly 1 at the first collapse).
+        // Its weight is at most i times the first point's: the largest share of one curve's weight
+        // that one point holds is 0.64, 0.46, 0.19, 0.03 for R = 2, 3, 8, 64, never an infinite weight.
         for (std::size_t i = 0; i < curve.time.size(); ++i) {
             log_time.push_back(std::log(curve.time[i]));
             log_hazard.push_back(std::log(curve.per_particle[i]));

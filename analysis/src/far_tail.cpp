@@ -231,14 +231,18 @@ TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_h
     const std::vector<double> sigma = pooled_sigma(tail.log_phi_sigma);
     result.fit = fit_tail_exponent(tail.z, tail.log_phi, sigma, z_lo, z_hi, linear_coefficient);
     const std::size_t chains = tail.log_phi_leave_one_chain_out.size();
-    if (chains < 2) throw InsufficientData("tail exponent: the jackknife needs >= 2 chains");
     result.window_note = clipped_window_note(tail.z, z_lo, z_hi, result.fit);
     if (chains < 3) {
+        // gamma is the fit's; its jackknife sigma is n/a, as the histogram tail's with R <= 2. Fewer
+        // than 2 chains (shockgas-tail refuses them; a hand-made file) used to stop the command
+        // after the fit had been made.
+        const char* const why =
+            chains == 2 ? "two chains: each jackknife replica keeps one, which has no spread to weigh the bins by; "
+                          "run 3 or more chains"
+            : chains == 1 ? "one chain: the jackknife has nothing to leave out; run 3 or more chains"
+                          : "no leave-one-chain-out table: no jackknife; run 3 or more chains";
         result.gamma = {result.fit.gamma, std::numeric_limits<double>::quiet_NaN(),
-                        !result.fit.gamma_note.empty()
-                            ? result.fit.gamma_note
-                            : "two chains: each jackknife replica keeps one, which has no spread to weigh the bins "
-                              "by; run 3 or more chains"};
+                        !result.fit.gamma_note.empty() ? result.fit.gamma_note : why};
     } else {
         // Each leave-one-chain-out fit weighs the bins by its own chains' spread
         // (replica_sigma), as the decay and histogram-tail replicas do: with the

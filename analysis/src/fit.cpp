@@ -162,10 +162,16 @@ LinearFit fit_power_law(std::span<const double> x, std::span<const double> y, st
 }
 
 Estimate jackknife(std::size_t samples, const std::function<double(std::optional<std::size_t>)>& estimator) {
-    if (samples < 2)
-        throw InsufficientData("the jackknife error needs at least 2 realizations, got " + std::to_string(samples));
+    if (samples == 0) throw InsufficientData("the jackknife needs at least 1 realization, got none");
     Estimate result;
     result.value = estimator(std::nullopt);
+    // One realization: the estimate is measured, its error is not. Until 2026-11-27 this threw, and
+    // crossover on a one-realization run stopped with exit status 2 where decay, the kurtosis and
+    // beta report the value with sigma n/a (each of them had its own check before calling here).
+    if (samples < 2) {
+        result.note = "one realization: the jackknife has nothing to leave out; run -R 2 or more";
+        return result;
+    }
     std::vector<double> left_out(samples);
     double mean = 0.0;
     for (std::size_t i = 0; i < samples; ++i) {
@@ -191,11 +197,7 @@ Estimate bounded_jackknife(std::size_t samples,
                            const std::function<SearchMinimum(std::optional<std::size_t>)>& estimator) {
     const SearchMinimum full = estimator(std::nullopt);
     if (full.at_bound) return Estimate::missing(full.bound_note());
-    // One realization (or chain): the minimum is measured, its jackknife sigma is not; the whole
-    // command used to stop here with exit status 2, where decay and the kurtosis report n/a.
-    if (samples < 2)
-        return {full.argmin, std::numeric_limits<double>::quiet_NaN(),
-                "one sample (realization or chain): the jackknife has nothing to leave out; run -R 2 or more"};
+    // One realization: the minimum is measured, its sigma is n/a (jackknife's note).
     std::optional<std::string> replica_at_bound;
     Estimate result = jackknife(samples, [&](std::optional<std::size_t> left_out) {
         if (!left_out) return full.argmin;

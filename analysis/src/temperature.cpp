@@ -49,21 +49,29 @@ double TemperatureHistory::standard_error(std::size_t k, std::optional<std::size
     return mean_and_standard_error(column).sigma;
 }
 
-std::vector<double> TemperatureHistory::fit_sigmas(const std::vector<std::size_t>& indices,
-                                                   std::optional<std::size_t> left_out,
-                                                   double fallback_fraction) const {
+TemperatureHistory::FitPoints TemperatureHistory::fit_points(const std::vector<std::size_t>& indices,
+                                                             std::optional<std::size_t> left_out,
+                                                             double fallback_fraction) const {
     // A standard error this small relative to <T> is rounding in the mean of identical values, not
     // scatter: weighing by it made chi2/dof 41 and a slope width of 1e-17 (an independent audit,
     // 2026-11-27).
     constexpr double rounding_level = 1e-12;
-    std::vector<double> sigmas;
-    sigmas.reserve(indices.size());
+    FitPoints points;
+    points.mean.reserve(indices.size());
+    points.sigma.reserve(indices.size());
+    std::vector<double> column;
+    column.reserve(realizations);
     for (std::size_t k : indices) {
-        const double value = mean(k, left_out);
-        const double error = standard_error(k, left_out);
-        sigmas.push_back(error > rounding_level * value ? error : fallback_fraction * value);
+        column.clear();
+        for (std::size_t r = 0; r < realizations; ++r)
+            if (!left_out || *left_out != r) column.push_back(at(r, k));
+        // The same sum in the same order as mean(k, left_out), divided by the same count.
+        const Estimate estimate = mean_and_standard_error(column);
+        points.mean.push_back(estimate.value);
+        points.sigma.push_back(estimate.sigma > rounding_level * estimate.value ? estimate.sigma
+                                                                                : fallback_fraction * estimate.value);
     }
-    return sigmas;
+    return points;
 }
 
 TemperatureHistory TemperatureHistory::from(const std::vector<double>& time, std::int64_t realizations,
@@ -195,14 +203,11 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
                                            t_lo, t_hi, inside.size()));
     // One realization (or identical ones): no scatter to weigh by; equal weights (sigma of ln T = 1).
     constexpr double equal_weights = 1.0;
-    std::vector<double> time, mean_temperature;
-    for (std::size_t k : inside) {
-        time.push_back(history.time[k]);
-        mean_temperature.push_back(history.mean(k));
-    }
+    std::vector<double> time;
+    for (std::size_t k : inside) time.push_back(history.time[k]);
     // ln <T> = ln C - alpha ln t: the exponent is minus the log-log slope.
-    const LinearFit full =
-        fit_power_law(time, mean_temperature, history.fit_sigmas(inside, std::nullopt, equal_weights));
+    const auto points = history.fit_points(inside, std::nullopt, equal_weights);
+    const LinearFit full = fit_power_law(time, points.mean, points.sigma);
     DecayFit result;
     result.t_lo = t_lo;
     result.t_hi = t_hi;
@@ -220,21 +225,18 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
         result.chi2_per_dof = std::numeric_limits<double>::quiet_NaN();
         result.fit_note = "one realization: no standard error of <T> to weigh the fit by; run -R 2 or more";
     }
-    if (history.realizations >= 2) {
-        // Each replica is the whole estimator on R - 1 realizations, its weights included: with the full
-        // sample's weights frozen the jackknife came out 35-40% small at R = 3 ... 6 (coverage of alpha
-        // +- sigma 0.42-0.55 where Student's t gives 0.58-0.64, against 0.64-0.67 with the weights
-        // recomputed; an independent audit's 200-400 synthetic ensembles per R, 2026-11-27).
-        const Estimate jack = jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
-            std::vector<double> mean_without(inside.size());
-            for (std::size_t j = 0; j < inside.size(); ++j) mean_without[j] = history.mean(inside[j], left_out);
-            return -fit_power_law(time, mean_without, history.fit_sigmas(inside, left_out, equal_weights)).slope;
-        });
-        result.exponent_sigma = jack.sigma;
-    } else {
-        result.exponent_sigma = std::numeric_limits<double>::quiet_NaN();
-        result.exponent_sigma_note = "one realization: the jackknife has nothing to leave out; run -R 2 or more";
-    }
+    // Each replica is the whole estimator on R - 1 realizations, its weights included: with the full
+    // sample's weights frozen the jackknife came out 35-40% small at R = 3 ... 6 (coverage of alpha
+    // +- sigma 0.42-0.55 where Student's t gives 0.58-0.64, against 0.64-0.67 with the weights
+    // recomputed; an independent audit's 200-400 synthetic ensembles per R, 2026-11-27). One
+    // realization: sigma n/a with jackknife's note.
+    const Estimate jack = jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
+        if (!left_out) return -full.slope;  // the full sample's fit, made above
+        const auto replica = history.fit_points(inside, left_out, equal_weights);
+        return -fit_power_law(time, replica.mean, replica.sigma).slope;
+    });
+    result.exponent_sigma = jack.sigma;
+    result.exponent_sigma_note = jack.note;
     return result;
 }
 
@@ -330,12 +332,13 @@ struct CrossoverValues {
     double t_dissip, haff_rate, t_stick, temperature_at_stick;
 };
 
-CrossoverValues crossovers_of(const TemperatureHistory& history, const std::vector<double>& weights_sigma,
-                              std::optional<std::size_t> left_out, const CrossoverRule& rule) {
+// points: <T> and its fit sigmas at every sample, from the realizations the estimate uses.
+CrossoverValues crossovers_of(const TemperatureHistory& history, const TemperatureHistory::FitPoints& points,
+                              const CrossoverRule& rule) {
     const double initial = uniform_initial_temperature;
     const std::size_t samples = history.time.size();
-    std::vector<double> mean(samples);
-    for (std::size_t k = 0; k < samples; ++k) mean[k] = history.mean(k, left_out);
+    const std::vector<double>& mean = points.mean;
+    const std::vector<double>& weights_sigma = points.sigma;
     const auto dissip = first_crossing(history.time, mean, initial / 2.0, 0, false);
     if (!dissip)
         throw InsufficientData("<T> never crosses T0/2 between the first and last sample; "
@@ -366,8 +369,6 @@ CrossoverValues crossovers_of(const TemperatureHistory& history, const std::vect
 }  // namespace
 
 Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRule& rule) {
-    if (history.realizations < 2)
-        throw InsufficientData("crossover error bars need at least 2 realizations");
     std::vector<std::size_t> every_sample(history.time.size());
     std::iota(every_sample.begin(), every_sample.end(), std::size_t{0});
     // Identical realizations: equal relative weights, 10^-3 of <T>.
@@ -378,10 +379,13 @@ Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRul
     std::vector<CrossoverValues> replicas;
     replicas.reserve(history.realizations + 1);
     auto values_without = [&](std::optional<std::size_t> left_out) {
-        return crossovers_of(history, history.fit_sigmas(every_sample, left_out, equal_weights), left_out, rule);
+        return crossovers_of(history, history.fit_points(every_sample, left_out, equal_weights), rule);
     };
     replicas.push_back(values_without(std::nullopt));
-    for (std::size_t i = 0; i < history.realizations; ++i) replicas.push_back(values_without(i));
+    // One realization has no replica (nothing to leave out): the values stand, their sigmas are n/a
+    // (jackknife's note). Until 2026-11-27 crossover refused such a run outright.
+    if (history.realizations >= 2)
+        for (std::size_t i = 0; i < history.realizations; ++i) replicas.push_back(values_without(i));
     Crossovers result;
     result.initial_temperature = uniform_initial_temperature;
     auto component = [&](double CrossoverValues::*member) {

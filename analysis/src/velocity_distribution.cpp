@@ -260,10 +260,7 @@ Estimate velocity_kurtosis(const VelocityHistogram& histogram) {
         fourth /= mass;
         return fourth / (second * second);  // 3 for a Gaussian
     };
-    if (groups < 2)
-        return {kurtosis(std::nullopt), std::numeric_limits<double>::quiet_NaN(),
-                "one realization: the group jackknife has nothing to leave out"};
-    return jackknife(groups, kurtosis);
+    return jackknife(groups, kurtosis);  // one realization: sigma n/a, with jackknife's note
 }
 
 namespace {

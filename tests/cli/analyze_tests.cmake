@@ -88,8 +88,8 @@ shockgas_analyze_error(compare_no_common_time "no sample time in common with the
                        compare a.h5 short.h5)
 
 # 4. Data files: atomic, checked before any work, a full disk reported as bad input.
-shockgas_analyze_error_all(data_not_left_on_failure "need at least 2 realizations, in 'e10_one.h5'$"
-                           "${_analyze_dir}/c.txt" crossover e05.h5 e10_one.h5 --data c.txt)
+shockgas_analyze_error_all(data_not_left_on_failure "never crosses T0/2 .*, in 'short.h5'$"
+                           "${_analyze_dir}/c.txt" crossover e05.h5 short.h5 --data c.txt)
 shockgas_analyze_error(data_directory_missing "^shockgas-analyze: error: cannot write output '/nonexistent/x.txt'"
                        decay a.h5 ${_window} --data /nonexistent/x.txt)
 # Small table: the flush fails; large (a profile of ~700 clusters): a write fails.
@@ -168,10 +168,21 @@ foreach(_case IN ITEMS "merge_gap_negative|--merge-gap must be a whole number at
   shockgas_analyze_error(${_name} "^shockgas-analyze: error: ${_regex}$" ${_arguments})
 endforeach()
 
+# 9b. A misspelt subcommand names the nearest one and all of them (CLI11 said "A subcommand is
+# required"), through the shared shockgas::cli::parse; -o and its value (added by the helper) are not it.
+set(_subcommands "the subcommands are decay, crossover, scaling, shocks, collapse, compare, far-tail")
+shockgas_analyze_error(subcommand_misspelt
+                       "^shockgas-analyze: error: unknown subcommand 'scalng' \\(did you mean scaling\\?; ${_subcommands}\\)$"
+                       scalng hist.h5)
+shockgas_analyze_error(subcommand_unknown
+                       "^shockgas-analyze: error: unknown subcommand 'frobnicate' \\(${_subcommands}\\)$"
+                       frobnicate hist.h5)
+shockgas_analyze_error(subcommand_missing "^shockgas-analyze: error: a subcommand is required \\(${_subcommands}\\)$")
+
 # 10. Messages: the failing input alone; what --data-only needs; the floor actually used.
 shockgas_analyze_error(names_the_failing_input
-                       "^shockgas-analyze: error: crossover error bars need at least 2 realizations, in 'e10_one.h5'$"
-                       crossover e05.h5 e10_one.h5)
+                       "^shockgas-analyze: error: <T> never crosses T0/2 .*, in 'short.h5'$"
+                       crossover e05.h5 short.h5)
 shockgas_analyze_error(data_only_needs_data "^shockgas-analyze: error: --data-only needs --data FILE"
                        decay a.h5 --data-only)
 shockgas_analyze_error(haff_floor_named "fewer than 3 samples with T >= 0.9 T0 \\(--haff-floor\\).*, in 'e05.h5'$"
@@ -196,6 +207,15 @@ shockgas_analyze_error(decay_end_factor_named
 shockgas_analyze_reports(decay_one_realization_chi2
                          "chi2/dof n/a \\(one realization: no standard error of <T>"
                          "chi2/dof 0\\.00|nan" decay e10_one.h5 --t-lo 10 --t-hi 1000 -o "${_analyze_dir}/one_decay.h5")
+
+# 13b. One realization, crossover: the times with sigma n/a, and the powers of eps, weighted by the
+# inputs' sigmas, n/a naming the input (the command refused the run, exit status 2, until 2026-11-27).
+shockgas_analyze_reports(crossover_one_realization
+                         "eps 0\\.1 +t_dissip [0-9.]+ \\+- n/a \\(one realization: the jackknife has nothing to leave out"
+                         "nan|shockgas-analyze: error" crossover e10_one.h5 -o "${_analyze_dir}/one_crossover.h5")
+shockgas_analyze_reports(crossover_one_realization_no_fit_over_eps
+                         "against eps: n/a \\(the fits over eps are weighted by each input's sigma: 'e10_one\\.h5' has no error bar \\(one realization"
+                         "nan|shockgas-analyze: error" crossover e05.h5 e10_one.h5 -o "${_analyze_dir}/one_crossover_eps.h5")
 
 # 14. far-tail: a window beyond the data says it was clipped, with the range fitted.
 shockgas_analyze_reports(far_tail_window_clipped

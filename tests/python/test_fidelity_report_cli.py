@@ -12,7 +12,10 @@ paper_targets/ only), also with --progress; a build whose paper_targets/quick/ h
 (FileNotFoundError); a build directory that does not exist; an unknown fidelity (exit 1 before).
 Fig. 4's tail rows (a scaling.h5 written here with each case shockgas-analyze stores) print n/a with
 the reason, or the fit's Δχ² = 1 width where only the jackknife failed, and never "nan" (they printed
-"γ = 0.75 ± nan" for a quick build's short runs, 2026-11-27).
+"γ = 0.75 ± nan" for a quick build's short runs, 2026-11-27). The reason is the one the analysis stored
+(tail_gamma_note, tail_gamma_sigma_note, tail_error); until 2026-11-27 the report printed its own words,
+"too few tail bins" for one realization and "a replica at the search bound" for two. Files without a
+stored reason keep those words.
 """
 import math
 import os
@@ -53,13 +56,21 @@ class Inputs(unittest.TestCase):
     def write_tail_cases(directory):
         """scaling.h5 as shockgas-analyze scaling writes it, one histogram per way the tail fit ends:
         a fit with its jackknife; a jackknife replica at the search bound (σ NaN); γ itself at the
-        bound (NaN); too few tail bins (tail_error, no tail_gamma)."""
+        bound (NaN); too few tail bins (tail_error, no tail_gamma); two realizations (σ NaN); one
+        realization (tail_error, and the kurtosis's σ NaN). Cases 1 and 2 lack the notes, as files
+        written before the notes."""
         os.makedirs(directory)
         nan = math.nan
         cases = [{"tail_gamma": 3.04, "tail_gamma_sigma": 1.24, "tail_gamma_fit_sigma": 1.5},
                  {"tail_gamma": 0.75, "tail_gamma_sigma": nan, "tail_gamma_fit_sigma": 0.73},
                  {"tail_gamma": nan, "tail_gamma_sigma": nan, "tail_gamma_fit_sigma": nan},
-                 {"tail_error": "only 3 tail bins have a relative error below the limit"}]
+                 {"tail_error": "only 3 tail bins have a relative error below the limit"},
+                 {"tail_gamma": 2.9, "tail_gamma_sigma": nan, "tail_gamma_fit_sigma": 0.4,
+                  "tail_gamma_sigma_note": "two realizations: each jackknife replica keeps one"},
+                 {"tail_error": "the tail fit weighs bins by realization scatter: needs R >= 2",
+                  "kurtosis_sigma": nan, "kurtosis_sigma_note": "one realization: the jackknife has nothing to leave out"},
+                 {"tail_gamma": nan, "tail_gamma_sigma": nan, "tail_gamma_fit_sigma": nan,
+                  "tail_gamma_note": "at the search bound 8 of [0.5, 8]: the minimum lies beyond the range"}]
         with h5py.File(os.path.join(directory, "scaling.h5"), "w") as f:
             f.attrs["program"] = "shockgas-analyze scaling"
             f.attrs["schema_version"] = max(shockgas.schema.SCHEMA_VERSIONS)
@@ -73,11 +84,16 @@ class Inputs(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         rows = {line.split(":")[0].split()[-1]: line for line in result.stdout.splitlines()
                 if line.startswith("| Fig. 4 case")}
-        self.assertEqual(len(rows), 4, result.stdout)
+        self.assertEqual(len(rows), 7, result.stdout)
         self.assertIn("γ = 3.04 ± 1.24 |", rows["case0"])
-        self.assertIn("γ = 0.75 ± 0.73 (Δχ² = 1; jackknife n/a", rows["case1"])
+        self.assertIn("γ = 0.75 ± 0.73 (Δχ² = 1; jackknife n/a: a replica at the search bound)", rows["case1"])
         self.assertIn("γ n/a (at the search bound)", rows["case2"])
-        self.assertIn("γ n/a (too few tail bins)", rows["case3"])
+        self.assertIn("γ n/a (only 3 tail bins have a relative error below the limit)", rows["case3"])
+        self.assertIn("γ = 2.90 ± 0.40 (Δχ² = 1; jackknife n/a: two realizations: each jackknife replica keeps "
+                      "one)", rows["case4"])
+        self.assertIn("3.000 ± n/a (one realization: the jackknife has nothing to leave out); γ n/a (the tail fit "
+                      "weighs bins by realization scatter: needs R >= 2)", rows["case5"])
+        self.assertIn("γ n/a (at the search bound 8 of [0.5, 8]: the minimum lies beyond the range)", rows["case6"])
         self.assertNotIn("nan", result.stdout.lower())
 
     def test_the_quick_build_is_reported(self):

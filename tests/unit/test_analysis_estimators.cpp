@@ -101,6 +101,19 @@ TEST(AnalysisFit, JackknifeOfMeanIsStandardError) {
     EXPECT_NEAR(jack.sigma, reference.sigma, 1e-14);
 }
 
+// One sample: the estimate is measured, its sigma is n/a with the reason. Until 2026-11-27 the
+// jackknife threw, and crossover on a one-realization run stopped with exit status 2.
+TEST(AnalysisFit, JackknifeOfOneSampleHasValueWithoutSigma) {
+    const auto jack = sa::jackknife(1, [](std::optional<std::size_t> left_out) {
+        EXPECT_FALSE(left_out.has_value()) << "one sample has nothing to leave out";
+        return 2.5;
+    });
+    EXPECT_EQ(jack.value, 2.5);
+    EXPECT_TRUE(std::isnan(jack.sigma)) << jack.sigma;
+    EXPECT_NE(jack.note.find("nothing to leave out"), std::string::npos) << jack.note;
+    EXPECT_THROW(sa::jackknife(0, [](std::optional<std::size_t>) { return 0.0; }), sa::InsufficientData);
+}
+
 namespace {
 
 // Synthetic T(t): every realization is C t^-alpha times (1 + a_r + b_r ln(t/10)
@@ -232,6 +245,23 @@ TEST(AnalysisCrossover, HaffCurveGivesItsTimes) {
     // t_stick lies after the asymptotes' intersection T0/(a t)^2 = B t^-2/3 (~ 1e2 here).
     EXPECT_GT(crossovers.t_stick.value, crossovers.t_dissip.value);
     EXPECT_LT(crossovers.t_stick.value, 1e3);
+}
+
+// One realization: the crossovers are measured (the Haff fit with equal relative weights), their
+// sigmas n/a with the reason; crossover refused such a run until 2026-11-27.
+TEST(AnalysisCrossover, OneRealizationHasTimesWithoutSigma) {
+    constexpr double rate = 0.05, sticky = 0.2;
+    const auto crossovers = sa::find_crossovers(haff_then_sticky(rate, sticky, 1, 1e-3, 3));
+    EXPECT_NEAR(crossovers.t_dissip.value, (std::sqrt(2.0) - 1.0) / rate, 0.15 * (std::sqrt(2.0) - 1.0) / rate);
+    EXPECT_NEAR(crossovers.haff_rate.value, rate, 0.2 * rate);
+    EXPECT_GT(crossovers.t_stick.value, crossovers.t_dissip.value);
+    EXPECT_LT(crossovers.t_stick.value, 1e3);
+    for (const sa::Estimate* e : {&crossovers.t_dissip, &crossovers.haff_rate, &crossovers.t_stick,
+                                  &crossovers.temperature_at_stick}) {
+        EXPECT_TRUE(std::isfinite(e->value)) << e->value;
+        EXPECT_TRUE(std::isnan(e->sigma)) << e->sigma;
+        EXPECT_NE(e->note.find("one realization"), std::string::npos) << e->note;
+    }
 }
 
 // reference_stick_time: the t_stick the rule reads on Haff's law (Eq. (2))
@@ -1046,6 +1076,31 @@ TEST(AnalysisBounds, FarTailExponentAtTheSearchBoundIsMissing) {
     EXPECT_NE(gamma.gamma.note.find("at the search bound 6 of [1, 6]"), std::string::npos) << gamma.gamma.note;
     EXPECT_FALSE(gamma.window_systematic.known()) << gamma.window_systematic.value;
     EXPECT_TRUE(std::isnan(gamma.fit.gamma_fit_sigma)) << gamma.fit.gamma_fit_sigma;
+}
+
+// One chain (shockgas-tail refuses fewer than 2; a hand-made file): gamma is the fit's, its jackknife
+// sigma n/a with the reason, as with two chains. The command stopped with exit status 2 until
+// 2026-11-27, after the fit had been made. Eq. (6)'s form with gamma = 3, sigma(ln Phi) = 0.01.
+TEST(AnalysisTail, FarTailOfOneChainHasGammaWithoutSigma) {
+    std::mt19937_64 random(4);
+    std::normal_distribution<double> noise(0.0, 0.01);
+    sa::FarTail tail;
+    tail.time = 100.0;
+    auto exact = [](double z) { return -2.0 * std::log(z) - 0.2 * std::pow(z, 3.0) - 2.676 * z; };
+    std::vector<double> chain;
+    for (double z = 2.01; z < 5.5; z += 0.02) {
+        tail.z.push_back(z);
+        tail.log_phi.push_back(exact(z) + noise(random));
+        tail.log_phi_sigma.push_back(0.01);
+        chain.push_back(exact(z) + noise(random));
+    }
+    tail.log_phi_leave_one_chain_out.push_back(chain);
+    const auto gamma = sa::estimate_tail_exponent(tail, 2.0, 5.5);
+    // 175 bins of sigma 0.01 in ln Phi over a range of ~30 in ln Phi: gamma within 0.05 of 3.
+    constexpr double one_chain_tolerance = 0.05;
+    EXPECT_NEAR(gamma.gamma.value, 3.0, one_chain_tolerance);
+    EXPECT_TRUE(std::isnan(gamma.gamma.sigma)) << gamma.gamma.sigma;
+    EXPECT_NE(gamma.gamma.note.find("one chain"), std::string::npos) << gamma.gamma.note;
 }
 
 // With one realization the fit's weights (standard errors of <T> over

@@ -63,8 +63,10 @@ double local_tail_exponent(const std::vector<double>& z, const std::vector<doubl
 // jackknife (the chains are independent) and a window systematic: half the
 // spread (max - min)/2 of gamma when z_lo and z_hi move by +-window_shift.
 // gamma is missing when its search ends at a bound (the systematic too), its
-// sigma when a leave-one-chain-out search does; the systematic when a moved
-// window's does. window_note says when the data cut the window short.
+// sigma when a leave-one-chain-out search does, or when there are fewer than 3
+// chains (two: a replica keeps one, with no spread to weigh the bins by; one:
+// nothing to leave out); the systematic when a moved window's does.
+// window_note says when the data cut the window short.
 struct TailExponent {
     TailExponentFit fit;
     Estimate gamma;                 // value and jackknife sigma

@@ -119,7 +119,9 @@ struct Estimate {
 // Delete-one jackknife over `samples` independent samples (realizations):
 // value = theta(all), sigma^2 = (n - 1)/n sum_i (theta_(i) - mean_i theta_(i))^2,
 // where theta_(i) is the estimator with sample i left out (estimator(i)) and
-// estimator(nullopt) uses every sample. Needs n >= 2.
+// estimator(nullopt) uses every sample. With n = 1 the value is measured and
+// sigma is NaN with the reason in note (nothing to leave out); n = 0 throws
+// InsufficientData.
 Estimate jackknife(std::size_t samples, const std::function<double(std::optional<std::size_t>)>& estimator);
 
 // Weighted least squares for a model linear in its parameters,

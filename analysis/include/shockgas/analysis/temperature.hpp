@@ -29,12 +29,17 @@ struct TemperatureHistory {
     // Standard error of the mean at time k: sample std over realizations / sqrt(R), leaving out one
     // realization when asked (a jackknife replica's own weights). NaN with fewer than 2 values.
     double standard_error(std::size_t k, std::optional<std::size_t> left_out = std::nullopt) const;
-    // The standard errors of the mean at the samples `indices`, from the realizations an estimate uses
-    // (all, or all but left_out): a weighted fit's sigmas. Where one is not above rounding level
-    // relative to the mean (identical realizations, or one left), equal relative weights take its
-    // place: fallback_fraction x the mean.
-    std::vector<double> fit_sigmas(const std::vector<std::size_t>& indices, std::optional<std::size_t> left_out,
-                                   double fallback_fraction) const;
+    // The means and their standard errors at the samples `indices`, from the realizations an estimate
+    // uses (all, or all but left_out): a weighted fit's points and sigmas, from one pass over each
+    // sample's values (a jackknife replica computed its means twice, once for the points and once for
+    // the sigmas' fallback). mean[j] is mean(indices[j], left_out) bit for bit. Where a standard error
+    // is not above rounding level relative to the mean (identical realizations, or one left), equal
+    // relative weights take its place: fallback_fraction x the mean.
+    struct FitPoints {
+        std::vector<double> mean, sigma;
+    };
+    FitPoints fit_points(const std::vector<std::size_t>& indices, std::optional<std::size_t> left_out,
+                         double fallback_fraction) const;
 
     static TemperatureHistory from(const TimeSeries& series);
     static TemperatureHistory from(const EnsembleResult& result);
@@ -94,7 +99,7 @@ struct DecayFit {
 
 // Fits ln <T>(t_k) = ln C - alpha ln t_k over t_lo <= t_k <= t_hi, weights
 // 1/sigma_k^2 with sigma_k = SE(T_k)/<T_k>; alpha's sigma is the jackknife
-// over realizations (the same weights in every leave-one-out fit), NaN for
+// over realizations (each leave-one-out fit with its own weights), NaN for
 // R = 1 (nothing to leave out). With R = 1 the weights are undefined too: the
 // fit uses equal weights, and fit_sigma and chi2_per_dof are NaN (fit_note). Throws InsufficientData for fewer than 3
 // points in the window.
@@ -149,6 +154,9 @@ struct Crossovers {
     Estimate t_stick;
     Estimate temperature_at_stick;
 };
+// Sigmas by the jackknife over realizations, each replica with its own Haff-fit
+// weights; with one realization the values stand and the sigmas are NaN with
+// the reason (equal relative weights in the Haff fit).
 Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRule& rule = {});
 
 // The t_stick that `rule` reads on the noise-free reference T_ref(t): Haff's

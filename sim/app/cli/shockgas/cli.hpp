@@ -1,6 +1,6 @@
 // Argument parsing with the messages every shockgas program gives: one line
 // "<program>: error: <what>" and exit status 2 for any bad input, and for a
-// misspelt option or config-file key the nearest real one. Header-only, for
+// misspelt option, config-file key or subcommand the nearest real one. Header-only, for
 // the executables (the libraries do not depend on CLI11).
 #pragma once
 
@@ -15,6 +15,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "shockgas/h5.hpp"
 #include "shockgas/parameters.hpp"
@@ -56,6 +57,39 @@ inline std::string unknown_option_message(const CLI::App& app, int argc, const c
             return fmt::format("unknown option '{}' (see --help)", word);
     }
     return "";
+}
+
+// A program with subcommands (shockgas-analyze, shockgas-dump) given none that it
+// has: CLI11 says only "A subcommand is required", also for a misspelt one
+// ("shockgas-analyze scalng run.h5"). The first word that is neither an option
+// nor an option's value is the subcommand meant: "unknown subcommand 'scalng'
+// (did you mean scaling?; the subcommands are decay, ...)". "" when a
+// subcommand was parsed (the error is about its own arguments) or the program
+// has none.
+inline std::string unknown_subcommand_message(const CLI::App& app, int argc, const char* const* argv) {
+    if (!app.get_subcommands().empty()) return "";  // the subcommands parsed
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    if (names.empty()) return "";
+    const std::string listed = fmt::format("the subcommands are {}", fmt::join(names, ", "));
+    for (int i = 1; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (word == "--") break;
+        if (word.size() > 1 && word[0] == '-') {
+            // An option of the program or of a subcommand (shockgas-dump's -o FILE, or -o given before the
+            // subcommand's name): one that takes a value takes the next word too.
+            const std::string name = word.substr(0, word.find('='));
+            const CLI::Option* option = app.get_option_no_throw(name);
+            for (const CLI::App* sub : app.get_subcommands({}))
+                if (option == nullptr) option = sub->get_option_no_throw(name);
+            if (option != nullptr && option->get_expected_min() > 0 && word.find('=') == std::string::npos) ++i;
+            continue;
+        }
+        const std::string nearest = closest_name(word, names);
+        return nearest.empty() ? fmt::format("unknown subcommand '{}' ({})", word, listed)
+                               : fmt::format("unknown subcommand '{}' (did you mean {}?; {})", word, nearest, listed);
+    }
+    return fmt::format("a subcommand is required ({})", listed);
 }
 
 // CLI11's "INI was not able to parse KEY": an unknown key in the config file.
@@ -130,6 +164,11 @@ inline int parse(CLI::App& app, int argc, char** argv, const std::string& progra
             message = detail::unknown_option_message(app, argc, argv);
         else if (dynamic_cast<const CLI::ConfigError*>(&error) != nullptr)
             message = detail::unknown_key_message(app, error.what());
+        // A misspelt or missing subcommand: CLI11's RequiredError ("A subcommand is required"), or an
+        // ExtrasError whose words are all real options.
+        if (message.empty() && (dynamic_cast<const CLI::RequiredError*>(&error) != nullptr ||
+                                dynamic_cast<const CLI::ExtrasError*>(&error) != nullptr))
+            message = detail::unknown_subcommand_message(app, argc, argv);
         if (message.empty()) message = error.what();
         // CLI11's messages can span lines; the house form is one line.
         for (char& c : message)
