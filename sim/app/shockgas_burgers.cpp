@@ -6,7 +6,7 @@
 //                    [--viscosity nu1,nu2,...] [--points P] --output profile.dat
 //                    [--summary vars.gp] [--study study.dat]
 //   shockgas-burgers --particles N [--ring-length L] --seed S --time t ...   (the same initial
-//                    condition shockgas-sim draws) or --init FILE.h5
+//                    condition shockgas-sim draws) or --init FILE.h5 (not with --run: a run's start is its own)
 //
 // profile.dat: block 0 "x v_inviscid v_nu..." on P equally spaced points; block 1 the
 // inviscid shocks "position mass velocity jump/v_rms". With --run and a snapshot at t,
@@ -94,7 +94,9 @@ int main(int argc, char** argv) {
     std::vector<double> viscosities;
     app.add_option("--run", run_path, "shockgas-sim output: N, L, seed (or init_file) and the snapshot time")
         ->check(CLI::ExistingFile);
-    app.add_option("--init", init_path, "initial condition file (as shockgas-sim --init)")->check(CLI::ExistingFile);
+    app.add_option("--init", init_path,
+                   "initial condition file (as shockgas-sim --init); not with --run, which takes the run's own")
+        ->check(CLI::ExistingFile);
     app.add_option("-N,--particles", particles, "particles (with --seed: shockgas-sim's initial condition)");
     app.add_option("-L,--ring-length", ring_length, "ring length (default N)");
     app.add_option("-s,--seed", seed, "seed (as shockgas-sim)")->check(shockgas::cli::seed_in_range)->capture_default_str();
@@ -110,6 +112,15 @@ int main(int argc, char** argv) {
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-burgers"); status >= 0) return status;
 
     return shockgas::cli::run("shockgas-burgers", [&] {
+        // --run takes the start from the run itself (its seed and initial law,
+        // or its init file checked against the run's init_file_sha256): an
+        // --init beside it would replace that start unchecked, and the run's
+        // particles would be compared with the Burgers profile of another one.
+        if (!run_path.empty() && !init_path.empty())
+            throw shockgas::InputError(fmt::format(
+                "--run '{}' and --init '{}' exclude each other: --run takes the initial condition from the run (its "
+                "seed and law, or its init file); give one of them",
+                run_path, init_path));
         // Written as !(x > 0) so that NaN is refused too.
         if (cells_per_particle < 1) throw shockgas::InputError("--cells-per-particle must be at least 1");
         if (time != 0.0 && !(time > 0.0 && std::isfinite(time)))
@@ -176,7 +187,7 @@ int main(int argc, char** argv) {
             // A part of an ensemble (--first-realization F) numbers its realizations from 0
             // in the file, but drew realization k's start as realization F + k.
             first_realization = p.first_realization;
-            if (!p.init_file.empty() && init_path.empty()) {
+            if (!p.init_file.empty()) {
                 init_path = p.init_file;
                 init_sha256 = p.init_file_sha256;
             }

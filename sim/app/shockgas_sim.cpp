@@ -8,6 +8,7 @@
 #include <iostream>
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include <fcntl.h>
@@ -114,7 +115,9 @@ int main(int argc, char** argv) {
     app.add_option("--histogram-range", p.histogram_range,
                    "histogram covers |v - V| t^(1/3) <= range (V the mean velocity)")
         ->capture_default_str();
-    app.add_option("-R,--realizations", p.realizations, "independent realizations")->capture_default_str();
+    app.add_option("-R,--realizations", p.realizations, "independent realizations, 1 .. 2^31 - 1")
+        ->check(shockgas::cli::realizations_in_range)
+        ->capture_default_str();
     app.add_option("--first-realization", p.first_realization,
                    "index of the first realization (seed stream), to split an ensemble into parts")
         ->capture_default_str();
@@ -224,6 +227,7 @@ int main(int argc, char** argv) {
             else
                 fmt::print(stderr, "{}\n", line);
         };
+        bool already_written = false;  // rank 0's: --resume of a run whose output is already complete
         if (session.is_root()) {
             shockgas::h5::check_writable(output);
             shockgas::h5::check_not_an_input(output, {init_given});
@@ -233,10 +237,7 @@ int main(int argc, char** argv) {
             // HDF5 file too damaged to list (a killed write), may go.
             {
                 const shockgas::h5::Probe found = shockgas::h5::probe(output);
-                std::error_code size_error;
-                const bool empty = found.kind == shockgas::h5::Probe::Kind::not_hdf5 &&
-                                   std::filesystem::file_size(output, size_error) == 0 && !size_error;
-                if ((found.kind == shockgas::h5::Probe::Kind::not_hdf5 && !empty) ||
+                if (found.kind == shockgas::h5::Probe::Kind::not_hdf5 ||
                     (found.kind == shockgas::h5::Probe::Kind::hdf5 && !found.holds("timeseries")))
                     throw shockgas::InputError(fmt::format(
                         "'{}' exists and is not a shockgas-sim output ({}): it would be replaced; give -o another "
@@ -244,6 +245,13 @@ int main(int argc, char** argv) {
                         output, found.kind == shockgas::h5::Probe::Kind::hdf5 ? "an HDF5 file without /timeseries"
                                                                               : "not an HDF5 file"));
             }
+            // --resume of a run whose output is already its finished result,
+            // by this build, with no checkpoint left: nothing to continue, and
+            // recomputing it (hours, for a paper run) would only rewrite the
+            // same datasets. Without --resume a rerun replaces the output.
+            if (checkpoint.resume)
+                already_written = shockgas::is_finished_output_of_run(
+                    output, shockgas::job_checkpoints(base_checkpoint, session.ranks()), p);
             // Without --resume, a checkpoint that --resume would continue (this
             // path's, or any rank's or gathered file of it) is an interrupted
             // run's work: refused before any work, whatever the interval (with
@@ -261,7 +269,16 @@ int main(int argc, char** argv) {
             if (checkpoint.resume && session.ranks() > 1)
                 shockgas::check_resume_checkpoints(shockgas::job_checkpoints(base_checkpoint, session.ranks()), p);
         }
-        shockgas::SimulationParameters mine = session.share(p);
+        const std::optional<shockgas::SimulationParameters> shared = session.share(p, already_written);
+        if (!shared) {  // every rank leaves; rank 0 says why
+            if (session.is_root())
+                fmt::print(stderr,
+                           "shockgas-sim: '{}' is already a complete output of this run; nothing to do (remove it, or "
+                           "run without --resume, to recompute)\n",
+                           output);
+            return 0;
+        }
+        shockgas::SimulationParameters mine = *shared;
         checkpoint.run_first_realization = p.first_realization;
         checkpoint.run_realizations = p.realizations;
 
@@ -303,11 +320,7 @@ int main(int argc, char** argv) {
                 const bool checkpoints = !checkpoint.path.empty() && checkpoint.interval_seconds > 0.0;
                 const auto plan = shockgas::plan_memory(mine, threads, checkpoints, budget);
                 if (plan.realizations_at_once == 0)
-                    throw shockgas::InputError(fmt::format(
-                        "not enough memory: one realization of N = {} needs about {}, but {} may be used ({}); "
-                        "lower N, the snapshots or the histogram bins, or set --max-memory",
-                        mine.particles, shockgas::format_bytes(plan.need_bytes(1)), shockgas::format_bytes(budget),
-                        source));
+                    throw shockgas::InputError(shockgas::memory_refusal(mine, plan, budget, source));
                 if (plan.realizations_at_once < threads) {
                     checkpoint.note(fmt::format("running realizations {} at a time instead of {}: each needs about {} "
                                                 "and {} may be used in all ({})",

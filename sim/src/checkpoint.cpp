@@ -49,10 +49,8 @@ bool may_be_checkpoint(const h5::Probe& found) {
 // beside it), which --resume passes over like any damaged checkpoint.
 bool may_be_generation(const std::string& file, const std::string& other_generation) {
     const h5::Probe found = h5::probe(file);
-    if (may_be_checkpoint(found)) return true;
+    if (may_be_checkpoint(found) || found.kind == h5::Probe::Kind::empty) return true;
     if (found.kind != h5::Probe::Kind::not_hdf5) return false;
-    std::error_code error;
-    if (std::filesystem::file_size(file, error) == 0 && !error) return true;
     const h5::Probe other = h5::probe(other_generation);
     return other.kind == h5::Probe::Kind::hdf5 && other.holds("checkpoint");
 }
@@ -314,6 +312,22 @@ void check_resume_checkpoints(const std::vector<std::string>& files, const Simul
             if (checkpoint.version != build_info().version) continue;  // ignored with a note when loaded
             check_checkpoint_of_run(file, checkpoint, run);
         }
+}
+
+bool is_finished_output_of_run(const std::string& output, const std::vector<std::string>& checkpoints,
+                               const SimulationParameters& run) {
+    for (const std::string& name : checkpoints)
+        for (const std::string& file : {name, previous_checkpoint_path(name)})
+            if (h5::probe(file).kind != h5::Probe::Kind::absent) return false;  // --resume's to continue or refuse
+    const h5::Probe found = h5::probe(output);
+    if (found.kind != h5::Probe::Kind::hdf5 || !found.holds("timeseries")) return false;
+    try {
+        const OutputFile existing = read_output(output);
+        return existing.result.status != "interrupted" && existing.version == build_info().version &&
+               run_signature(existing.parameters) == run_signature(run);
+    } catch (const std::exception&) {
+        return false;  // damaged or not an output: replaced, as without --resume
+    }
 }
 
 namespace {

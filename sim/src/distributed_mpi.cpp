@@ -183,7 +183,7 @@ DistributedSession::~DistributedSession() {
     MPI_Finalize();
 }
 
-SimulationParameters DistributedSession::share(const SimulationParameters& whole) {
+std::optional<SimulationParameters> DistributedSession::share(const SimulationParameters& whole, bool nothing_to_do) {
     // Every rank reports ranks_ (ready) or its own index (failed, from the
     // destructor); the minimum names the first failing rank, if any.
     int ready = ranks_, lowest_failing = ranks_;
@@ -192,6 +192,14 @@ SimulationParameters DistributedSession::share(const SimulationParameters& whole
         phase_ = Phase::reduced;  // all ranks have agreed to stop: nothing left to wait for
         throw InputError(fmt::format("rank {} of {} failed before the run (see its own error message)",
                                      lowest_failing, ranks_));
+    }
+    // Every rank is here: rank 0's decision that there is nothing to run
+    // reaches them all, and all leave together.
+    int root_done = nothing_to_do ? 1 : 0;
+    if (launched_) MPI_Bcast(&root_done, 1, MPI_INT, root_rank, MPI_COMM_WORLD);
+    if (root_done != 0) {
+        phase_ = Phase::reduced;
+        return std::nullopt;
     }
     phase_ = Phase::running;
     SimulationParameters mine = whole;

@@ -9,7 +9,11 @@ DistributedSession::DistributedSession(int& /*argc*/, char**& /*argv*/) {}
 
 DistributedSession::~DistributedSession() = default;
 
-SimulationParameters DistributedSession::share(const SimulationParameters& whole) {
+std::optional<SimulationParameters> DistributedSession::share(const SimulationParameters& whole, bool nothing_to_do) {
+    if (nothing_to_do) {
+        phase_ = Phase::reduced;
+        return std::nullopt;
+    }
     phase_ = Phase::running;
     return whole;
 }

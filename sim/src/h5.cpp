@@ -645,6 +645,10 @@ Probe probe(const std::string& path) {
         result.kind = Probe::Kind::not_regular;
         return result;
     }
+    if (fs::file_size(path, error) == 0 && !error) {
+        result.kind = Probe::Kind::empty;
+        return result;
+    }
     const Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
     const Handle root(file.valid() ? H5Gopen2(file.id(), "/", H5P_DEFAULT) : H5I_INVALID_HID, H5Gclose);
     if (!root.valid()) {

@@ -126,12 +126,38 @@ MemoryPlan plan_memory(const SimulationParameters& p, int threads, bool checkpoi
     const double histogram_bins = static_cast<double>(p.histogram_times.size()) * (p.histogram_bins + 2.0);
     const double per_realization_kept = particles * state_bytes_per_particle * states + 4.0 * 8.0 * samples +
                                         histogram_bytes_per_bin_per_realization * histogram_bins;
+    plan.kept_bytes = per_realization_kept;
     plan.shared_bytes = program_bytes + histogram_bytes_per_bin_shared * histogram_bins +
                         realizations * per_realization_kept;
     const double room = budget_bytes - plan.shared_bytes;
     const double fit = room > 0.0 ? std::floor(room / plan.per_realization_bytes) : 0.0;
     plan.realizations_at_once = static_cast<int>(std::min<double>(std::max(threads, 1), fit));
     return plan;
+}
+
+std::string memory_refusal(const SimulationParameters& p, const MemoryPlan& plan, double budget_bytes,
+                           const std::string& source) {
+    // A run of one realization needs the program, its engine and its own
+    // records; each further realization adds only its records (time series,
+    // snapshots, histogram rows), kept until the output is written. Where one
+    // alone would fit, it is their number that does not: lowering N does not
+    // help a million realizations of N = 1000.
+    const double records = static_cast<double>(p.realizations) * plan.kept_bytes;
+    const double one_alone = plan.need_bytes(1) - records + plan.kept_bytes;
+    if (p.realizations > 1 && one_alone <= budget_bytes) {
+        const double most = std::floor((budget_bytes - one_alone) / plan.kept_bytes) + 1.0;
+        return fmt::format(
+            "not enough memory: {} realizations need about {}, {} of it for their records (time series, snapshots, "
+            "histograms), kept until the output is written, but {} may be used ({}); give each run at most {:.0f} "
+            "realizations: split the ensemble into parts with -R and --first-realization and join them with "
+            "shockgas-merge, or set --max-memory",
+            p.realizations, format_bytes(plan.need_bytes(1)), format_bytes(records), format_bytes(budget_bytes),
+            source, most);
+    }
+    return fmt::format(
+        "not enough memory: one realization of N = {} needs about {}, but {} may be used ({}); lower N, the snapshots "
+        "or the histogram bins, or set --max-memory",
+        p.particles, format_bytes(one_alone), format_bytes(budget_bytes), source);
 }
 
 }  // namespace shockgas

@@ -76,6 +76,15 @@ add_test(NAME cli.burgers_sticky_identity
                  --cells-per-particle 1 -o "${_cli_dir}/burgers_sticky.dat")
 set_tests_properties(cli.burgers_sticky_identity PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli
                      PASS_REGULAR_EXPRESSION "v_Burgers\\| / v_rms = (0|[0-9.]+e-(1[3-9]|[2-9][0-9]))\n")
+# --run takes the start from the run, so --init beside it is refused, naming both (the same file for
+# both named only a missing dataset /position until the CLI audit of 2026-11-27).
+add_test(NAME cli.error.burgers_run_and_init
+         COMMAND ${_expect}
+                 "^shockgas-burgers: error: --run '[^']*burgers_sticky\\.h5' and --init '[^']*burgers_sticky\\.h5' exclude each other: --run takes the initial condition from the run"
+                 "${_cli_dir}/burgers_run_and_init.dat" --
+                 $<TARGET_FILE:shockgas-burgers> --run "${_cli_dir}/burgers_sticky.h5" --init "${_cli_dir}/burgers_sticky.h5"
+                 -o "${_cli_dir}/burgers_run_and_init.dat")
+set_tests_properties(cli.error.burgers_run_and_init PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli)
 shockgas_cli_error(restitution_above_one "restitution" -N 10 -r 1.5)
 shockgas_cli_error(restitution_negative "restitution" -N 10 -r -0.1)
 shockgas_cli_error(threshold_negative "threshold" -N 10 -d -1e-3)
@@ -90,6 +99,10 @@ shockgas_cli_error(init_missing_file "does not exist" --init "${_cli_dir}/no_suc
 # Realization F + k past 2^63 - 1 (accepted until the CLI audit of 2026-11-27).
 shockgas_cli_error(first_realization_overflow "first realization 9223372036854775807 with 3 realizations runs past"
                    -N 10 -t 1 -R 3 --first-realization 9223372036854775807)
+# More realizations than an int holds: CLI11 said only "Could not convert" (CLI audit 2026-11-27).
+shockgas_cli_error(realizations_beyond_int
+                   "^shockgas-sim: error: --realizations: must be an integer from 1 to 2\\^31 - 1 = 2147483647, not '1e12' \\(a larger ensemble runs as parts: --first-realization, then shockgas-merge\\)$"
+                   -N 10 -t 1 -R 1e12)
 add_test(NAME cli.error.unwritable_output
          COMMAND ${_expect} "directory .* does not exist" "${_cli_dir}/absent_dir/out.h5" --
                  ${_sim} -N 10 -o "${_cli_dir}/absent_dir/out.h5")
@@ -295,20 +308,25 @@ if(SHOCKGAS_PYTHON)
   set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 300)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock resume_other_parameters
-                      rerun_without_resume memory_fewer_at_once hangup resume_other_build)
+                      rerun_without_resume memory_fewer_at_once hangup resume_other_build resume_complete_output)
   add_test(NAME cli.faults.${_case}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/faults_test.sh ${_case} ${_sim} "${_cli_dir}/faults"
                    "${SHOCKGAS_PYTHON}" ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py)
   set_tests_properties(cli.faults.${_case} PROPERTIES LABELS cli TIMEOUT 120)
 endforeach()
-if(NOT SHOCKGAS_PYTHON)  # these compare outputs (and resume_other_build edits a checkpoint) with Python
+if(NOT SHOCKGAS_PYTHON)  # these compare outputs (and resume_other_build and resume_complete_output edit files) with Python
   set_tests_properties(cli.faults.file_size_checkpoint cli.faults.hangup cli.faults.resume_other_build
-                       PROPERTIES DISABLED TRUE)
+                       cli.faults.resume_complete_output PROPERTIES DISABLED TRUE)
 endif()
 # A budget below one realization (100000 particles: about 41 MiB with checkpoints) is refused.
 shockgas_cli_error(faults_memory_refused
                    "not enough memory: one realization of N = 100000 needs about [0-9]+ MiB, but 1 MiB may be used \\(--max-memory\\)"
                    -N 100000 -R 2 -j 2 -t 10 --max-memory 1M)
+# Many realizations of a small N: what does not fit is their records, which lowering N would not
+# shrink (the refusal said "lower N" until the CLI audit of 2026-11-27).
+shockgas_cli_error(memory_many_realizations
+                   "^shockgas-sim: error: not enough memory: 100000000 realizations need about [0-9.]+ GiB, [0-9.]+ GiB of it for their records .* but 8.0 GiB may be used \\(--max-memory\\); give each run at most [0-9]+ realizations: split the ensemble into parts with -R and --first-realization and join them with shockgas-merge, or set --max-memory$"
+                   -N 1000 -R 100000000 -t 10 --max-memory 8G)
 shockgas_cli_error(max_memory_not_a_size "--max-memory '3X' is not a size" -N 100 --max-memory 3X)
 shockgas_cli_error(checkpoint_interval_negative "checkpoint-interval" -N 10 --checkpoint-interval -1)
 shockgas_cli_error(checkpoint_unwritable "directory .* does not exist" -N 10 --checkpoint "${_cli_dir}/absent_dir/c.h5")

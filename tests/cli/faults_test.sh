@@ -22,6 +22,10 @@
 #                         naming the older one; both damaged: one warning each, the run starts from t = 0
 #   memory_fewer_at_once  a --max-memory budget that fits one realization but not two: runs them one at
 #                         a time, says so, and completes
+#   resume_complete_output  --resume over this run's complete output (this build, no checkpoint): one
+#                         line, exit 0, the file untouched and nothing run; an interrupted output, one of
+#                         another build or with other parameters, or one beside a checkpoint is recomputed
+#                         (or continued) as before; without --resume a rerun replaces it
 set -u
 case_name=$1 sim=$2 dir=$3 python=${4:-} same=${5:-}
 source "$(dirname "$0")/checkpoint_helpers.sh"
@@ -217,6 +221,60 @@ memory_fewer_at_once)
   "$sim" -N 100000 -r 0.9 -d 0.01 -t 10 -R 2 -j 2 -q --max-memory 60M -o out.h5 2>run.err || fail "the run failed"
   grep -q "running realizations 1 at a time instead of 2" run.err || fail "no note that fewer realizations run at once"
   grep -q "complete" run.err || fail "the run did not complete"
+  ;;
+resume_complete_output)
+  args=(-N 2000 -r 0.8 -d 0.005 -R 2 -j 2 -s 99 -t 100)
+  nothing="^shockgas-sim: 'done\.h5' is already a complete output of this run; nothing to do \(remove it, or run without --resume, to recompute\)$"
+  "$sim" "${args[@]}" -q --checkpoint-interval 0 -o done.h5 2>first.err || fail "the first run failed"
+  cp done.h5 kept.h5
+  for interval in 0 0.1; do
+    "$sim" "${args[@]}" --checkpoint-interval $interval --resume -o done.h5 >again$interval.out 2>again$interval.err ||
+      fail "--resume over the complete output failed (--checkpoint-interval $interval)"
+    [ "$(wc -l <again$interval.err)" -eq 1 ] && grep -Eq "$nothing" again$interval.err ||
+      fail "--resume over the complete output did not say, in one line, that there is nothing to do"
+    [ ! -s again$interval.out ] || fail "--resume over the complete output printed a table: it ran"
+    cmp -s kept.h5 done.h5 || fail "--resume over the complete output rewrote it"
+    ls done.h5.checkpoint* >/dev/null 2>&1 && fail "--resume over the complete output left a checkpoint"
+  done
+  # Recomputed as before: each is marked so that a rewrite shows (its date attribute is the run's).
+  set_attribute() {
+    "$python" -c "
+import sys, h5py
+with h5py.File(sys.argv[1], 'r+') as f:
+    f.attrs[sys.argv[2]] = sys.argv[3]
+" done.h5 "$1" "$2" || fail "could not set $1 of done.h5"
+  }
+  recomputed() {  # recomputed WHY ARGS...: --resume ARGS over done.h5 runs and writes a complete output
+    "$sim" "${@:2}" -q --checkpoint-interval 0 --resume -o done.h5 2>"$1.err" || fail "--resume ($1) failed"
+    grep -q "nothing to do" "$1.err" && fail "--resume ($1) was taken for nothing to do"
+    grep -q "^shockgas-sim: complete" "$1.err" || fail "--resume ($1) did not run to a complete output"
+    "$python" -c "
+import sys, h5py
+with h5py.File(sys.argv[1], 'r') as f:
+    sys.exit(0 if f.attrs['date'] != 'marked' and f.attrs['status'] == 'complete' else 1)
+" done.h5 || fail "--resume ($1) did not replace the output"
+  }
+  set_attribute status interrupted; set_attribute date marked
+  recomputed interrupted "${args[@]}"
+  set_attribute version oldbuild/1; set_attribute date marked
+  recomputed other_build "${args[@]}"
+  set_attribute date marked
+  recomputed other_parameters -N 2000 -r 0.8 -d 0.005 -R 2 -j 2 -s 99 -t 50
+  "$sim" "${args[@]}" -q --checkpoint-interval 0 -o done.h5 2>restore.err || fail "a rerun without --resume failed"
+  # A checkpoint beside it (here one too damaged to read: --resume passes over it with a warning).
+  set_attribute date marked
+  : >done.h5.checkpoint
+  recomputed beside_checkpoint "${args[@]}"
+  grep -q "warning: .*done\.h5\.checkpoint" beside_checkpoint.err || fail "the damaged checkpoint was not looked at"
+  # Without --resume, a rerun replaces the complete output, as before.
+  set_attribute date marked
+  "$sim" "${args[@]}" -q --checkpoint-interval 0 -o done.h5 2>rerun.err || fail "a rerun without --resume failed"
+  grep -q "nothing to do" rerun.err && fail "a rerun without --resume was taken for nothing to do"
+  "$python" -c "
+import sys, h5py
+with h5py.File(sys.argv[1], 'r') as f:
+    sys.exit(0 if f.attrs['date'] != 'marked' else 1)
+" done.h5 || fail "a rerun without --resume did not replace the output"
   ;;
 *) echo "unknown case $case_name"; exit 1 ;;
 esac

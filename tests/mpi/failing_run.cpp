@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
     try {
         shockgas::SimulationParameters whole;
         whole.realizations = session.ranks();
-        const auto mine = session.share(whole);
+        const auto mine = *session.share(whole);
         if (session.rank() == 1) throw std::runtime_error("simulated failure during the run of rank 1");
         std::this_thread::sleep_for(rank0_run_time);
         session.reduce(mine, shockgas::EnsembleResult{});

@@ -15,6 +15,9 @@
 #                 realizations are gathered from the other blocks' checkpoints,
 #                 the file equals an uninterrupted run's bit for bit, and no
 #                 checkpoint is left behind
+#   complete_output  --resume on 2 ranks over the run's complete output: rank 0
+#                 finds nothing to do, every rank leaves, exit 0, one line, the
+#                 file untouched
 # MPIEXEC... is the launcher and its process-count flag, e.g. "mpiexec -n".
 set -u
 case_name=$1 sim=$2 failing_run=$3 python=$4 work=$5
@@ -146,6 +149,19 @@ other_ranks)
   "$python" "$compare" reference.h5 two_then_one.h5 || fail "$ranks ranks then one process differs"
   left=$(ls two_then_one.h5.checkpoint* 2>/dev/null)
   [ -z "$left" ] || fail "checkpoints left behind: $left"
+  ;;
+complete_output)
+  "${mpiexec[@]}" "$ranks" "$sim" "${physics[@]}" -R 3 -j 1 -o done.h5 || fail "mpirun -np $ranks run failed"
+  cp done.h5 kept.h5
+  start=$SECONDS
+  "${mpiexec[@]}" "$ranks" "$sim" "${physics[@]}" -R 3 -j 1 --resume -o done.h5 2>again.stderr ||
+    fail "mpirun -np $ranks --resume over the complete output failed: $(cat again.stderr)"
+  cat again.stderr
+  [ "$(grep -c . again.stderr)" -eq 1 ] &&
+    grep -q "^shockgas-sim: 'done.h5' is already a complete output of this run; nothing to do" again.stderr ||
+    fail "expected one line saying there is nothing to do"
+  cmp -s kept.h5 done.h5 || fail "--resume over the complete output rewrote it"
+  [ $((SECONDS - start)) -lt 60 ] || fail "the ranks did not leave together"
   ;;
 *)
   fail "unknown case '$case_name'"

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -187,6 +188,49 @@ TEST(Checkpoint, StoppedRunResumedFromItsFileEqualsUninterruptedRun) {
     const EnsembleResult resumed = shockgas::run_ensemble(p, nullptr, nullptr, {}, resume);
     EXPECT_NE(resumed_note, "") << "the checkpoint was not used";
     expect_same_result(reference, resumed);
+}
+
+// --resume over an output that is already the run's finished result does
+// nothing; anything else (no output, an interrupted one, another run's, one
+// beside a checkpoint of either generation, a file that is no output) is not
+// taken for one, and the run goes on as --resume always did.
+TEST(Checkpoint, OnlyAFinishedOutputOfThisRunWithNoCheckpointLeftIsTakenAsDone) {
+    namespace fs = std::filesystem;
+    SimulationParameters p = parameters(200, 0.9, 1e-2, Subthreshold::elastic);
+    p.t_max = 20.0;
+    p.realizations = 2;
+    p.threads = 1;
+    const std::string stem = (fs::temp_directory_path() / ("shockgas_test_" + std::to_string(::getpid()) + "_done")).string();
+    const std::string output = stem + ".h5", checkpoint = shockgas::checkpoint_path_for(output);
+    for (const std::string& file : {output, checkpoint, checkpoint + ".previous"}) fs::remove(file);
+    const std::vector<std::string> checkpoints{checkpoint};
+    EXPECT_FALSE(shockgas::is_finished_output_of_run(output, checkpoints, p)) << "no output";
+
+    EnsembleResult result = shockgas::run_ensemble(p, nullptr);
+    ASSERT_EQ(result.status, "complete");
+    shockgas::write_output(output, p, result);
+    EXPECT_TRUE(shockgas::is_finished_output_of_run(output, checkpoints, p));
+    for (const auto& [what, change] :
+         std::vector<std::pair<std::string, void (*)(SimulationParameters&)>>{
+             {"t_max", [](SimulationParameters& q) { q.t_max = 10.0; }},
+             {"seed", [](SimulationParameters& q) { q.seed = 2; }},
+             {"realizations", [](SimulationParameters& q) { q.realizations = 3; }},
+             {"first_realization", [](SimulationParameters& q) { q.first_realization = 1; }}}) {
+        SimulationParameters other = p;
+        change(other);
+        EXPECT_FALSE(shockgas::is_finished_output_of_run(output, checkpoints, other)) << "another " << what;
+    }
+    for (const std::string& generation : {checkpoint, checkpoint + ".previous"}) {
+        { std::ofstream touch(generation); }
+        EXPECT_FALSE(shockgas::is_finished_output_of_run(output, checkpoints, p)) << "beside " << generation;
+        fs::remove(generation);
+    }
+    result.status = "interrupted";
+    shockgas::write_output(output, p, result);
+    EXPECT_FALSE(shockgas::is_finished_output_of_run(output, checkpoints, p)) << "interrupted";
+    { std::ofstream text(output); text << "not an output\n"; }
+    EXPECT_FALSE(shockgas::is_finished_output_of_run(output, checkpoints, p)) << "not an output";
+    fs::remove(output);
 }
 
 // --resume with a checkpoint of another run (a mistyped option) is refused

@@ -248,6 +248,39 @@ TEST(MemoryPlan, FewerRealizationsAtOnceWhenAllDoNotFitAndNoneWhenOneDoesNot) {
         << "without checkpoints a realization needs only its engine";
 }
 
+// A refusal names what does not fit: many realizations of a small N keep
+// records (time series rows) that do not fit although one realization does,
+// and lowering N would not help; a single realization too large for the
+// budget is N's (and its snapshots' and bins') to lower.
+TEST(MemoryPlan, ARefusalNamesTheRealizationsRecordsWhenOneRealizationAloneFits) {
+    SimulationParameters p = small_run();
+    p.particles = 1000;
+    p.realizations = 100000000;
+    const double budget = 8.0 * (1 << 30);
+    const auto many = shockgas::plan_memory(p, 1, false, budget);
+    ASSERT_EQ(many.realizations_at_once, 0);
+    const std::string records = shockgas::memory_refusal(p, many, budget, "--max-memory");
+    EXPECT_NE(records.find("100000000 realizations need about"), std::string::npos) << records;
+    EXPECT_NE(records.find("--first-realization"), std::string::npos) << records;
+    EXPECT_NE(records.find("shockgas-merge"), std::string::npos) << records;
+    EXPECT_EQ(records.find("lower N"), std::string::npos) << records;
+    // The most it says to give each run fits, and one more does not.
+    const auto most_start = records.find("at most ") + 8;
+    const int most = std::stoi(records.substr(most_start));
+    p.realizations = most;
+    EXPECT_EQ(shockgas::plan_memory(p, 1, false, budget).realizations_at_once, 1);
+    p.realizations = most + 1;
+    EXPECT_EQ(shockgas::plan_memory(p, 1, false, budget).realizations_at_once, 0);
+
+    p.particles = 1000000000;
+    p.realizations = 2;
+    const auto large = shockgas::plan_memory(p, 1, false, budget);
+    ASSERT_EQ(large.realizations_at_once, 0);
+    const std::string one = shockgas::memory_refusal(p, large, budget, "--max-memory");
+    EXPECT_NE(one.find("one realization of N = 1000000000 needs about"), std::string::npos) << one;
+    EXPECT_NE(one.find("lower N"), std::string::npos) << one;
+}
+
 // Histograms: 16 bytes per bin for each realization (its row and the output's
 // copy) and 16 once (edges, the writer's buffer), as measured (memory.cpp).
 TEST(MemoryPlan, CountsTheHistogramsRowsAndTheirCopies) {

@@ -1,6 +1,7 @@
 // The HDF5 layer, init files and the output schema.
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -56,6 +57,27 @@ TEST(H5, UncommittedAtomicFileLeavesNothing) {
     EXPECT_FALSE(fs::exists(path));
     for (const auto& entry : fs::directory_iterator(testing::TempDir()))
         EXPECT_EQ(entry.path().filename().string().find("never.h5.tmp"), std::string::npos);
+}
+
+// What may be replaced or removed as an output or a checkpoint generation is
+// decided from one probe (shockgas-sim -o, may_be_generation): an empty file
+// holds nothing to lose, a file with any other bytes is not HDF5.
+TEST(H5, ProbeTellsAnEmptyFileFromOneThatIsNotHdf5) {
+    using Kind = shockgas::h5::Probe::Kind;
+    const auto path = temp_path("probe.txt");
+    fs::remove(path);
+    EXPECT_EQ(shockgas::h5::probe(path).kind, Kind::absent);
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(file, nullptr);
+    std::fclose(file);
+    EXPECT_EQ(shockgas::h5::probe(path).kind, Kind::empty);
+    file = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(file, nullptr);
+    std::fputs("x", file);
+    std::fclose(file);
+    EXPECT_EQ(shockgas::h5::probe(path).kind, Kind::not_hdf5);
+    fs::remove(path);
+    EXPECT_EQ(shockgas::h5::probe(testing::TempDir()).kind, Kind::not_regular);
 }
 
 TEST(InitFile, RoundTripAndValidation) {

@@ -60,6 +60,17 @@ void check_resume_checkpoints(const std::vector<std::string>& files, const Simul
 std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>& files,
                                                   const SimulationParameters& run);
 
+// --resume, before any work: whether `output` already holds the finished
+// result of the run `run`, so that there is nothing to continue and nothing to
+// recompute: an output whose status is not interrupted (complete or
+// collapsed), written by this code version, of the same run as --resume asks
+// of a checkpoint (run_signature: physics, sampling, seed and realizations),
+// while no generation of `checkpoints` (job_checkpoints: what the run would
+// continue or gather from) exists. An output that cannot be read (damaged,
+// not an output) is none: the run replaces it, as without --resume.
+bool is_finished_output_of_run(const std::string& output, const std::vector<std::string>& checkpoints,
+                               const SimulationParameters& run);
+
 // The newest usable checkpoint of the run with these parameters and sample
 // times, from path or else its previous generation; nothing if there is none,
 // or if it was written by another code version (noted). A damaged one is

@@ -55,7 +55,10 @@ public:
     // this rank's share of the ensemble (first_realization shifted, realizations
     // possibly 0 on idle ranks, threads = 0 resolved to the cores this rank may
     // use). Throws InputError when another rank failed before reaching here.
-    SimulationParameters share(const SimulationParameters& whole);
+    // nothing_to_do is rank 0's decision (the other ranks' value is not read)
+    // that the job has nothing to run (--resume of an output that is already
+    // the run's): then every rank gets nullopt and may leave main at once.
+    std::optional<SimulationParameters> share(const SimulationParameters& whole, bool nothing_to_do = false);
 
     // Collective: sends each rank's result (run with `mine` from share(), or
     // nothing when mine.realizations == 0) to rank 0, which returns the joined

@@ -192,7 +192,8 @@ struct Probe {
     enum class Kind {
         absent,       // nothing at the path
         not_regular,  // a directory, a device, a FIFO or a symbolic link
-        not_hdf5,     // a regular file that does not start with the HDF5 signature
+        empty,        // a regular file of no bytes: it holds nothing to lose, so it may be replaced
+        not_hdf5,     // a regular file with bytes that do not start with the HDF5 signature
         damaged,      // the HDF5 signature, but HDF5 cannot open it or list its root (truncated, damaged)
         hdf5,         // an HDF5 file whose root could be listed
     };

@@ -150,6 +150,25 @@ inline const CLI::Validator seed_in_range(
     },
     "0 .. 2^63-1");
 
+// shockgas-sim's --realizations, checked as text with CLI11's own conversion
+// (so every value it accepted still runs): a number that is no int, such as
+// 1e12 or 3000000000, gave CLI11's bare "Could not convert". The realizations
+// of a run are counted in an int; a larger ensemble runs as parts
+// (--first-realization) joined by shockgas-merge.
+inline const CLI::Validator realizations_in_range(
+    [](std::string& text) -> std::string {
+        int value = 0;
+        if (CLI::detail::lexical_cast(text, value) && value >= 1) return "";
+        char* end = nullptr;
+        const double number = std::strtod(text.c_str(), &end);
+        const bool too_many = end != text.c_str() && *end == '\0' && number > std::numeric_limits<int>::max();
+        return fmt::format("must be an integer from 1 to 2^31 - 1 = {}, not '{}'{}", std::numeric_limits<int>::max(),
+                           text,
+                           too_many ? " (a larger ensemble runs as parts: --first-realization, then shockgas-merge)"
+                                    : "");
+    },
+    "1 .. 2^31-1");
+
 // Parses; returns -1 to go on, or the exit status: 0 after --help or
 // --version, bad_input after a parse error (printed as one line).
 inline int parse(CLI::App& app, int argc, char** argv, const std::string& program) {
