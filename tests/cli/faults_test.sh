@@ -29,6 +29,8 @@
 set -u
 case_name=$1 sim=$2 dir=$3 python=${4:-} same=${5:-}
 source "$(dirname "$0")/checkpoint_helpers.sh"
+# python/shockgas of this source tree reads outputs' attributes (resume_complete_output).
+export PYTHONPATH="$(cd "$(dirname "$0")/../../python" && pwd)${PYTHONPATH:+:$PYTHONPATH}"
 mkdir -p "$dir/$case_name"
 cd "$dir/$case_name" || exit 1
 rm -rf ./*
@@ -249,9 +251,9 @@ with h5py.File(sys.argv[1], 'r+') as f:
     grep -q "nothing to do" "$1.err" && fail "--resume ($1) was taken for nothing to do"
     grep -q "^shockgas-sim: complete" "$1.err" || fail "--resume ($1) did not run to a complete output"
     "$python" -c "
-import sys, h5py
-with h5py.File(sys.argv[1], 'r') as f:
-    sys.exit(0 if f.attrs['date'] != 'marked' and f.attrs['status'] == 'complete' else 1)
+import sys, shockgas
+a = shockgas.attributes(sys.argv[1])
+sys.exit(0 if a['date'] != 'marked' and a['status'] == 'complete' else 1)
 " done.h5 || fail "--resume ($1) did not replace the output"
   }
   set_attribute status interrupted; set_attribute date marked
@@ -271,9 +273,8 @@ with h5py.File(sys.argv[1], 'r') as f:
   "$sim" "${args[@]}" -q --checkpoint-interval 0 -o done.h5 2>rerun.err || fail "a rerun without --resume failed"
   grep -q "nothing to do" rerun.err && fail "a rerun without --resume was taken for nothing to do"
   "$python" -c "
-import sys, h5py
-with h5py.File(sys.argv[1], 'r') as f:
-    sys.exit(0 if f.attrs['date'] != 'marked' else 1)
+import sys, shockgas
+sys.exit(0 if shockgas.attributes(sys.argv[1])['date'] != 'marked' else 1)
 " done.h5 || fail "a rerun without --resume did not replace the output"
   ;;
 *) echo "unknown case $case_name"; exit 1 ;;
