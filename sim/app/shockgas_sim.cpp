@@ -281,6 +281,10 @@ int main(int argc, char** argv) {
         shockgas::SimulationParameters mine = *shared;
         checkpoint.run_first_realization = p.first_realization;
         checkpoint.run_realizations = p.realizations;
+        // Under MPI a rank's block may end before another rank is stopped:
+        // its last checkpoint then keeps the finished block for --resume
+        // (removed below once the job is known complete).
+        checkpoint.checkpoint_when_done = session.ranks() > 1;
 
         // Each MPI rank keeps its own checkpoint of its own block.
         if (session.ranks() > 1) checkpoint_file = shockgas::rank_checkpoint_path(base_checkpoint, session.rank());
@@ -372,10 +376,13 @@ int main(int argc, char** argv) {
                                ? shockgas::EnsembleResult{}  // an MPI rank beyond the realizations: idle
                                : shockgas::run_ensemble(mine, p.init_file.empty() ? nullptr : &initial,
                                                         &interrupt_requested, progress, checkpoint);
-        const bool mine_interrupted = mine_result.status == "interrupted";
         const auto joined = session.reduce(mine, std::move(mine_result));
         if (!joined) {
-            if (!mine_interrupted && !checkpoint.path.empty()) {
+            // Only a job that ran to its end lets a rank drop its checkpoint:
+            // one whose own block finished keeps it when another rank was
+            // stopped (or the joining failed), so that --resume does not run
+            // the finished block again.
+            if (session.job_complete() && !checkpoint.path.empty()) {
                 remove_own_checkpoints();
                 remove_gathered();
             }

@@ -211,9 +211,46 @@ std::optional<SimulationParameters> DistributedSession::share(const SimulationPa
     return mine;
 }
 
+namespace {
+
+// Rank 0: the whole ensemble from every rank's block (kinds and payloads
+// indexed by rank); throws, naming the rank, when one could not be sent.
+EnsembleResult join_blocks(int ranks, const std::vector<BlockKind>& kinds, std::vector<std::vector<char>>& payloads) {
+    for (int source = 0; source < ranks; ++source)
+        if (kinds[static_cast<std::size_t>(source)] == BlockKind::failed) {
+            const auto& message = payloads[static_cast<std::size_t>(source)];
+            throw InputError(fmt::format("rank {} of {} could not send its realizations: {}", source, ranks,
+                                         std::string(message.begin(), message.end())));
+        }
+
+    TemporaryDirectory directory;
+    std::vector<OutputFile> parts;
+    std::vector<std::string> names;
+    double slowest_rank_seconds = 0.0;
+    for (int source = 0; source < ranks; ++source) {
+        if (kinds[static_cast<std::size_t>(source)] != BlockKind::part) continue;  // idle: more ranks than realizations
+        const fs::path path = directory.file(fmt::format("rank-{}.h5", source));
+        write_bytes(path, payloads[static_cast<std::size_t>(source)]);
+        payloads[static_cast<std::size_t>(source)] = {};  // hold each block once, as a decoded part
+        parts.push_back(read_output(path.string()));
+        names.push_back(fmt::format("rank {}", source));
+        slowest_rank_seconds = std::max(slowest_rank_seconds, parts.back().result.wall_seconds);
+    }
+    EnsembleResult joined = merge_outputs(parts, names).result;
+    // merge_outputs adds the parts' wall times (parts run one after another);
+    // ranks run side by side, so the ensemble took as long as the slowest one.
+    joined.wall_seconds = slowest_rank_seconds;
+    return joined;
+}
+
+}  // namespace
+
 std::optional<EnsembleResult> DistributedSession::reduce(const SimulationParameters& mine, EnsembleResult result) {
     phase_ = Phase::reduced;  // from here on every rank reaches the exchange below
-    if (ranks_ == 1) return result;
+    if (ranks_ == 1) {
+        job_complete_ = result.status != "interrupted";
+        return result;
+    }
 
     // Encode this rank's block; a failure becomes a message for rank 0, so
     // that rank 0 still receives from every rank and no one is left waiting.
@@ -234,6 +271,9 @@ std::optional<EnsembleResult> DistributedSession::reduce(const SimulationParamet
         const std::int64_t header[2] = {static_cast<std::int64_t>(kind), static_cast<std::int64_t>(payload.size())};
         send(header, 2, MPI_INT64_T, root_rank, header_tag);
         send_bytes(payload, root_rank);
+        int complete = 0;  // rank 0's word on the joined ensemble (below)
+        MPI_Bcast(&complete, 1, MPI_INT, root_rank, MPI_COMM_WORLD);
+        job_complete_ = complete != 0;
         return std::nullopt;
     }
 
@@ -248,31 +288,23 @@ std::optional<EnsembleResult> DistributedSession::reduce(const SimulationParamet
         kinds.push_back(static_cast<BlockKind>(header[0]));
         payloads.push_back(receive_bytes(header[1], source));
     }
-    for (int source = 0; source < ranks_; ++source)
-        if (kinds[static_cast<std::size_t>(source)] == BlockKind::failed) {
-            const auto& message = payloads[static_cast<std::size_t>(source)];
-            throw InputError(fmt::format("rank {} of {} could not send its realizations: {}", source, ranks_,
-                                         std::string(message.begin(), message.end())));
-        }
-
-    TemporaryDirectory directory;
-    std::vector<OutputFile> parts;
-    std::vector<std::string> names;
-    double slowest_rank_seconds = 0.0;
-    for (int source = 0; source < ranks_; ++source) {
-        if (kinds[static_cast<std::size_t>(source)] != BlockKind::part) continue;  // idle: more ranks than realizations
-        const fs::path path = directory.file(fmt::format("rank-{}.h5", source));
-        write_bytes(path, payloads[static_cast<std::size_t>(source)]);
-        payloads[static_cast<std::size_t>(source)] = {};  // hold each block once, as a decoded part
-        parts.push_back(read_output(path.string()));
-        names.push_back(fmt::format("rank {}", source));
-        slowest_rank_seconds = std::max(slowest_rank_seconds, parts.back().result.wall_seconds);
+    // Every rank waits for rank 0's word on the joined ensemble (job_complete):
+    // sent once it is joined, or as "not complete" when joining fails, so that
+    // no rank is left waiting and none removes its checkpoint for a job that
+    // wrote no output.
+    const auto tell_ranks = [](bool complete) {
+        int word = complete ? 1 : 0;
+        MPI_Bcast(&word, 1, MPI_INT, root_rank, MPI_COMM_WORLD);
+    };
+    try {
+        EnsembleResult joined = join_blocks(ranks_, kinds, payloads);
+        job_complete_ = joined.status != "interrupted";
+        tell_ranks(job_complete_);
+        return joined;
+    } catch (...) {
+        tell_ranks(false);
+        throw;
     }
-    EnsembleResult joined = merge_outputs(parts, names).result;
-    // merge_outputs adds the parts' wall times (parts run one after another);
-    // ranks run side by side, so the ensemble took as long as the slowest one.
-    joined.wall_seconds = slowest_rank_seconds;
-    return joined;
 }
 
 void DistributedSession::record_provenance(const std::string& output_path) const {

@@ -20,6 +20,7 @@ std::optional<SimulationParameters> DistributedSession::share(const SimulationPa
 
 std::optional<EnsembleResult> DistributedSession::reduce(const SimulationParameters& /*mine*/, EnsembleResult result) {
     phase_ = Phase::reduced;
+    job_complete_ = result.status != "interrupted";
     return result;
 }
 

@@ -132,8 +132,10 @@ public:
         // check) is rethrown here, on the caller's thread: escaping a
         // std::thread it would have aborted the process.
         if (failure_) std::rethrow_exception(failure_);
-        // Stopped by the user: keep what the run reached, to resume it.
-        if (!checkpoint_.path.empty() && stop_ && stop_->load()) write_checkpoint_now(final_epoch, wall_start, cpu_start);
+        // Stopped by the user: keep what the run reached, to resume it. Or ran
+        // to its end as one block of a job that may yet end interrupted.
+        if (!checkpoint_.path.empty() && ((stop_ && stop_->load()) || checkpoint_.checkpoint_when_done))
+            write_checkpoint_now(final_epoch, wall_start, cpu_start);
         result_.wall_seconds = previous_wall_seconds_ + seconds_since(wall_start);
         result_.cpu_seconds = previous_cpu_seconds_ + cpu_seconds_since(cpu_start);
         rusage usage{};

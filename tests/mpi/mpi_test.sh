@@ -15,6 +15,10 @@
 #                 realizations are gathered from the other blocks' checkpoints,
 #                 the file equals an uninterrupted run's bit for bit, and no
 #                 checkpoint is left behind
+#   finished_rank  Ctrl-C after rank 1 has finished its block but before rank 0
+#                 has: rank 1 keeps a checkpoint of its finished block, --resume
+#                 takes its realization from it instead of running it again, and
+#                 the file equals an uninterrupted run's bit for bit
 #   complete_output  --resume on 2 ranks over the run's complete output: rank 0
 #                 finds nothing to do, every rank leaves, exit 0, one line, the
 #                 file untouched
@@ -148,6 +152,35 @@ other_ranks)
   grep -q "gathering [1-9]" one_after.stderr || fail "one process did not gather from the ranks' checkpoints"
   "$python" "$compare" reference.h5 two_then_one.h5 || fail "$ranks ranks then one process differs"
   left=$(ls two_then_one.h5.checkpoint* 2>/dev/null)
+  [ -z "$left" ] || fail "checkpoints left behind: $left"
+  ;;
+finished_rank)
+  # R = 3 on 2 ranks: rank 0 runs realizations 0 and 1 one after the other,
+  # rank 1 realization 2, so rank 1 ends about halfway through rank 0's work
+  # (a few seconds each here). Until 2026-11-27 rank 1 removed its checkpoint
+  # as soon as its block was sent, and the resume ran realization 2 again.
+  run=(-N 20000 -r 0.9 -d 1e-2 --subthreshold elastic --engine hybrid -t 10000 --histogram-times 100,10000
+       -R 3 -s 5 -j 1 -q)
+  "$sim" "${run[@]}" -o reference.h5 || fail "the uninterrupted run failed"
+  "${mpiexec[@]}" "$ranks" "$sim" "${run[@]}" --checkpoint-interval 0.3 -o stopped.h5 2>stopped.stderr &
+  launcher=$!
+  # Rank 1's last checkpoint, written when its block ends, has none in progress.
+  for _ in $(seq 1 600); do
+    grep -q "rank 1\]: checkpoint: 0 realizations in progress" stopped.stderr && break
+    sleep 0.1
+  done
+  grep -q "rank 1\]: checkpoint: 0 realizations in progress" stopped.stderr ||
+    { kill -INT "$launcher"; wait "$launcher"; fail "rank 1 wrote no checkpoint when its block ended: $(cat stopped.stderr)"; }
+  kill -INT "$launcher"
+  wait "$launcher" && fail "the job finished before the interrupt: the test did not test"
+  [ -e stopped.h5.checkpoint.rank1 ] || fail "rank 1 kept no checkpoint of its finished block: $(cat stopped.stderr)"
+  "${mpiexec[@]}" "$ranks" "$sim" "${run[@]}" --resume -o stopped.h5 2>resumed.stderr ||
+    fail "mpirun -np $ranks --resume failed: $(cat resumed.stderr)"
+  cat resumed.stderr
+  grep -q "rank 1\]: resuming from .*: 1 realizations done, 0 continue" resumed.stderr ||
+    fail "rank 1 did not take its finished realization from its checkpoint"
+  "$python" "$compare" reference.h5 stopped.h5 "$ranks" || fail "the resumed file differs from the uninterrupted run"
+  left=$(ls stopped.h5.checkpoint* 2>/dev/null)
   [ -z "$left" ] || fail "checkpoints left behind: $left"
   ;;
 complete_output)

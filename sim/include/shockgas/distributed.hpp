@@ -66,6 +66,13 @@ public:
     // 0, naming the rank, when a block could not be joined.
     std::optional<EnsembleResult> reduce(const SimulationParameters& mine, EnsembleResult result);
 
+    // After reduce(), on every rank: whether rank 0 joined the whole ensemble
+    // and it ran to its end (not interrupted). Only then may a rank remove its
+    // checkpoint: a rank whose own block finished cannot tell from that alone
+    // whether the job will end interrupted (another rank stopped by Ctrl-C),
+    // and with its checkpoint gone --resume would run its block again.
+    bool job_complete() const { return job_complete_; }
+
     // Rank 0, after writing the output: records the number of ranks as the
     // root attribute mpi_ranks (provenance only; no dataset changes). Does
     // nothing in a one-rank run, so such files equal the serial build's.
@@ -77,6 +84,7 @@ private:
     int ranks_ = 1;
     Phase phase_ = Phase::setup;
     bool launched_ = false;  // MPI initialized (started by an MPI launcher)
+    bool job_complete_ = false;
 };
 
 }  // namespace shockgas

@@ -130,6 +130,12 @@ struct CheckpointOptions {
     // realizations outside the whole run belongs to another run.
     std::int64_t run_first_realization = 0;
     std::int64_t run_realizations = 0;
+    // Write a last checkpoint when the block runs to its end, too (with path
+    // set). An MPI rank whose block ends before another rank is stopped cannot
+    // yet tell whether the job will end interrupted; this checkpoint keeps its
+    // finished realizations for --resume, and is removed once rank 0 reports
+    // the job complete (DistributedSession::job_complete).
+    bool checkpoint_when_done = false;
 };
 
 // Runs the ensemble. initial_override, when non-null, replaces the generated
