@@ -68,6 +68,25 @@ void require_distinct(const std::vector<double>& values, const std::vector<std::
                                  name, values.front(), fmt::join(inputs, "', '"), purpose, name));
 }
 
+// The first input whose estimates have no sigma (a run of one realization: the jackknife has nothing
+// to leave out). Its values stand; the fits over the inputs, weighted by those sigmas, are then n/a
+// with this input named, rather than stopping the command (crossover, collapse).
+struct InputWithoutSigma {
+    std::string reason;  // "'x.h5' has no error bar (<the estimate's note>)"; empty while every input has one
+    // Records `input` when `estimate` has no sigma and no earlier input lacked one; true when it did
+    // now (the caller says so once in its data file).
+    bool record(const std::string& input, const Estimate& estimate) {
+        if (!reason.empty() || !std::isnan(estimate.sigma)) return false;
+        reason = fmt::format("'{}' has no error bar ({})", input, estimate.note);
+        return true;
+    }
+    bool found() const { return !reason.empty(); }
+    // Why `fits` are n/a: "the fits over eps are weighted by each input's sigma: 'x.h5' has no ...".
+    std::string why_not(const std::string& fits) const {
+        return fmt::format("{} are weighted by each input's sigma: {}", fits, reason);
+    }
+};
+
 // An argument as a POSIX shell reads it back: bare when it holds only
 // characters no shell treats specially, else in single quotes.
 std::string shell_quoted(const std::string& word) {
@@ -240,9 +259,7 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
                                                                    "t_stick_sigma", "T_stick", "T_stick_sigma",
                                                                    "haff_rate", "haff_rate_sigma",
                                                                    "t_stick_reference"});
-    // The first input whose crossovers have no sigma (one realization): the fits over eps, weighted
-    // by those sigmas, are then n/a with this reason rather than stopping the command.
-    std::string no_sigma;
+    InputWithoutSigma without_sigma;
     for (std::size_t k = 0; k < inputs.size(); ++k) {
         const double eps = inelasticity[k];
         CrossoverRule rule = fit_rule;
@@ -250,10 +267,8 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
         const auto crossovers = on_input(inputs[k], [&] {
             return find_crossovers(read_temperature_run(inputs[k]).history, rule);
         });
-        if (no_sigma.empty() && std::isnan(crossovers.t_stick.sigma)) {
-            no_sigma = fmt::format("'{}' has no error bar ({})", inputs[k], crossovers.t_stick.note);
-            if (file) file->comment("*_sigma nan in " + no_sigma);
-        }
+        if (without_sigma.record(inputs[k], crossovers.t_stick) && file)
+            file->comment("*_sigma nan in " + without_sigma.reason);
         t_dissip.push_back(crossovers.t_dissip);
         t_stick.push_back(crossovers.t_stick);
         temperature.push_back(crossovers.temperature_at_stick);
@@ -279,10 +294,10 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
                    format_estimate(crossovers.t_stick, "{:.4g}", "{:.2g}"),
                    format_estimate(crossovers.temperature_at_stick, "{:.4g}", "{:.2g}"));
     }
-    if (inputs.size() >= 2 && !no_sigma.empty()) {
+    if (inputs.size() >= 2 && without_sigma.found()) {
         // The powers of eps are weighted fits: without an input's sigma there is no weight for it.
         auto group = results.section("scaling_in_eps");
-        const std::string why = "the fits over eps are weighted by each input's sigma: " + no_sigma;
+        const std::string why = without_sigma.why_not("the fits over eps");
         group.set_attribute("note", why);
         fmt::print("t_dissip, t_stick, T(t_stick) against eps: n/a ({})\n", why);
     } else if (inputs.size() >= 2) {
@@ -531,38 +546,53 @@ void run_collapse(const AnalysisInvocation& invocation, const std::vector<std::s
                                                                    "collapse_time_sigma", "cluster_mass",
                                                                    "cluster_mass_sigma", "collapsed", "realizations",
                                                                    "collapse_time_spread"});
+    InputWithoutSigma without_sigma;
     for (std::size_t k = 0; k < inputs.size(); ++k) {
         const auto summary = on_input(inputs[k], [&] { return summarize_collapse(runs[k]); });
+        if (without_sigma.record(inputs[k], summary.time) && file)
+            file->comment("*_sigma and collapse_time_spread nan in " + without_sigma.reason);
         time.push_back(summary.time);
         mass.push_back(summary.cluster_mass);
+        // The spread is the sample standard deviation behind the time's sigma: n/a when it is, and why.
+        const Measured spread{summary.time_spread, summary.time.note};
         auto group = results.section("collapse" + std::to_string(k));
         group.set_attribute("inelasticity", summary.inelasticity);
         group.set_attribute("particles", summary.particles);
         set_estimate(group, "collapse_time", summary.time);
         set_estimate(group, "cluster_mass", summary.cluster_mass);
-        group.set_attribute("collapse_time_spread", summary.time_spread);
+        set_measured(group, "collapse_time_spread", spread);
         group.set_attribute("collapsed", static_cast<std::int64_t>(summary.collapsed));
         if (file)
             file->row({summary.inelasticity, static_cast<double>(summary.particles), summary.time.value,
                        summary.time.sigma, summary.cluster_mass.value, summary.cluster_mass.sigma,
                        static_cast<double>(summary.collapsed), static_cast<double>(summary.realizations),
                        summary.time_spread});
-        fmt::print("eps {:<8g} N {:<8} collapse time {} (spread {:.2g}), cluster mass {} ({}/{} collapsed)\n",
+        fmt::print("eps {:<8g} N {:<8} collapse time {} (spread {}), cluster mass {} ({}/{} collapsed)\n",
                    summary.inelasticity, summary.particles, format_estimate(summary.time, "{:.4g}", "{:.2g}"),
-                   summary.time_spread, format_estimate(summary.cluster_mass, "{:.4g}", "{:.2g}"), summary.collapsed,
-                   summary.realizations);
+                   // n/a alone: its reason is the time's sigma's, printed just before.
+                   spread.known() ? fmt::format("{:.2g}", spread.value) : std::string("n/a"),
+                   format_estimate(summary.cluster_mass, "{:.4g}", "{:.2g}"), summary.collapsed, summary.realizations);
     }
-    const std::string one_input = "one input: give runs of 2 or more ";
-    if (versus == "eps" && inputs.size() >= 2) {
+    const bool against_eps = versus == "eps";
+    const std::string across_inputs = against_eps ? "forms against eps" : "first-collapse statistics across N";
+    if (inputs.size() < 2) {
+        fmt::print("{}: n/a (one input: give runs of 2 or more {})\n", across_inputs, versus);
+    } else if (without_sigma.found()) {
+        // Every fit across the inputs weighs them by their sigmas (the Gumbel spread by their spreads);
+        // the hazard fit, with its own Nelson-Aalen sigmas, is part of the N statistics and goes with them.
+        const std::string why = without_sigma.why_not(against_eps ? "the forms against eps" : "the fits across N");
+        // Stored where the fits would be, so that a reader of either finds the reason.
+        const std::vector<std::string> sections = against_eps ? std::vector<std::string>{"time_forms", "mass_forms"}
+                                                              : std::vector<std::string>{"first_collapse"};
+        for (const auto& section : sections) results.section(section).set_attribute("note", why);
+        fmt::print("{}: n/a ({})\n", across_inputs, why);
+    } else if (against_eps) {
         fmt::print("collapse time against eps:\n");
         set_collapse_forms(results, "time_forms", fit_collapse_forms(CollapseQuantity::time, inelasticity, time));
         fmt::print("cluster mass against eps:\n");
         set_collapse_forms(results, "mass_forms",
                            fit_collapse_forms(CollapseQuantity::cluster_mass, inelasticity, mass));
-    } else if (versus == "eps") {
-        fmt::print("forms against eps: n/a ({}eps)\n", one_input);
-    }
-    if (versus == "N" && inputs.size() >= 2) {
+    } else {
         const auto scaling = fit_first_collapse_scaling(runs);
         auto group = results.section("first_collapse");
         set_power_law(group, "mean_time", scaling.mean_time);
@@ -596,8 +626,6 @@ void run_collapse(const AnalysisInvocation& invocation, const std::vector<std::s
                    format_measured(scaling.mean_time.reduced_chi2(), "{:.2f}"), scaling.hazard.slope,
                    scaling.hazard.slope_sigma(), format_estimate(scaling.predicted_mean_time_exponent, "{:.4f}"),
                    scaling.cluster_mass.slope, scaling.cluster_mass.slope_sigma());
-    } else if (versus == "N") {
-        fmt::print("first-collapse statistics across N: n/a ({}N)\n", one_input);
     }
     // One curve per input; with several N they should coincide.
     if (!hazard_data.empty()) {

@@ -79,9 +79,22 @@ CollapseSummary summarize_collapse(const CollapseEvents& events) {
                                            "which collisions are elastic or sticky, so inelastic collapse cannot "
                                            "happen; collapse needs runs with delta = 0 (shockgas-sim -d 0)",
                                            events.velocity_threshold));
-    if (events.realizations < 2)
-        throw InsufficientData(which + "the run has one realization; an error bar needs 2 or more collapses "
-                                       "(shockgas-sim -R 2 or more)");
+    if (events.realizations == 1) {
+        if (events.time.empty())
+            throw InsufficientData(which + "the run's one realization did not collapse before t_max (raise t_max, or "
+                                           "more particles: collapse needs N >~ ln(1/eps)/eps)");
+        // One realization: its collapse time and mass stand, their errors and the spread are n/a
+        // with the jackknife's reason, as crossover's times (the SE of a mean is the mean's
+        // delete-one jackknife; for R >= 2 it is computed directly below, as before). Until
+        // 2026-11-27 collapse refused such a run (exit status 2).
+        const auto alone = [](double value) {
+            return jackknife(1, [value](std::optional<std::size_t>) { return value; });
+        };
+        summary.time = alone(events.time.front());
+        summary.cluster_mass = alone(events.cluster_mass.front());
+        summary.time_spread = std::numeric_limits<double>::quiet_NaN();
+        return summary;
+    }
     if (events.time.size() < 2)
         throw InsufficientData(which + std::to_string(events.time.size()) +
                                " realizations collapsed; an error bar needs 2 or more (more particles: collapse "

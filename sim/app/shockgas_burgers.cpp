@@ -6,7 +6,8 @@
 //                    [--viscosity nu1,nu2,...] [--points P] --output profile.dat
 //                    [--summary vars.gp] [--study study.dat]
 //   shockgas-burgers --particles N [--ring-length L] --seed S --time t ...   (the same initial
-//                    condition shockgas-sim draws) or --init FILE.h5 (not with --run: a run's start is its own)
+//                    condition shockgas-sim draws) or --init FILE.h5 (none of these with --run: a
+//                    run's start is its own)
 //
 // profile.dat: block 0 "x v_inviscid v_nu..." on P equally spaced points; block 1 the
 // inviscid shocks "position mass velocity jump/v_rms". With --run and a snapshot at t,
@@ -92,14 +93,24 @@ int main(int argc, char** argv) {
     double ring_length = 0.0, time = 0.0, jump_fraction = 1.0;
     std::uint64_t seed = 1;
     std::vector<double> viscosities;
-    app.add_option("--run", run_path, "shockgas-sim output: N, L, seed (or init_file) and the snapshot time")
-        ->check(CLI::ExistingFile);
-    app.add_option("--init", init_path,
-                   "initial condition file (as shockgas-sim --init); not with --run, which takes the run's own")
-        ->check(CLI::ExistingFile);
-    app.add_option("-N,--particles", particles, "particles (with --seed: shockgas-sim's initial condition)");
-    app.add_option("-L,--ring-length", ring_length, "ring length (default N)");
-    app.add_option("-s,--seed", seed, "seed (as shockgas-sim)")->check(shockgas::cli::seed_in_range)->capture_default_str();
+    auto* run_option =
+        app.add_option("--run", run_path, "shockgas-sim output: N, L, seed (or init_file) and the snapshot time")
+            ->check(CLI::ExistingFile);
+    auto* init_option = app.add_option("--init", init_path, "initial condition file (as shockgas-sim --init)")
+                            ->check(CLI::ExistingFile);
+    auto* particles_option =
+        app.add_option("-N,--particles", particles, "particles (with --seed: shockgas-sim's initial condition)");
+    auto* ring_length_option = app.add_option("-L,--ring-length", ring_length, "ring length (default N)");
+    auto* seed_option = app.add_option("-s,--seed", seed, "seed (as shockgas-sim)")
+                            ->check(shockgas::cli::seed_in_range)
+                            ->capture_default_str();
+    // --run takes the start from the run itself (its N, L, seed and initial law, or its init file
+    // checked against the run's init_file_sha256). -N, -L and -s beside it were ignored without a
+    // word until 2026-11-27 (the profile was the run's, whatever they said); an --init would replace
+    // that start unchecked, and the run's particles would be compared with another start's profile.
+    const auto run_supplies = shockgas::cli::exclude(
+        run_option, {init_option, particles_option, ring_length_option, seed_option},
+        "--run takes the initial condition from the run (its N, L, seed and law, or its init file)");
     app.add_option("--realization", realization, "realization")->capture_default_str();
     app.add_option("-t,--time", time, "time (default: the run's first snapshot time)");
     app.add_option("--cells-per-particle", cells_per_particle, "grid cells per particle")->capture_default_str();
@@ -109,18 +120,10 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", output, "profile data file")->required();
     app.add_option("--summary", summary, "gnuplot variables: shock counts and particle-vs-Burgers distances");
     app.add_option("--study", study, "convergence tables (nu -> 0, grid refinement)");
-    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-burgers"); status >= 0) return status;
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-burgers", {run_supplies}); status >= 0)
+        return status;
 
     return shockgas::cli::run("shockgas-burgers", [&] {
-        // --run takes the start from the run itself (its seed and initial law,
-        // or its init file checked against the run's init_file_sha256): an
-        // --init beside it would replace that start unchecked, and the run's
-        // particles would be compared with the Burgers profile of another one.
-        if (!run_path.empty() && !init_path.empty())
-            throw shockgas::InputError(fmt::format(
-                "--run '{}' and --init '{}' exclude each other: --run takes the initial condition from the run (its "
-                "seed and law, or its init file); give one of them",
-                run_path, init_path));
         // Written as !(x > 0) so that NaN is refused too.
         if (cells_per_particle < 1) throw shockgas::InputError("--cells-per-particle must be at least 1");
         if (time != 0.0 && !(time > 0.0 && std::isfinite(time)))

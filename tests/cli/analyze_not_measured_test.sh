@@ -5,7 +5,8 @@
 # shockgas-dump). WORKDIR holds the fixture's runs: a.h5 (two realizations),
 # e05.h5 and e10.h5 (r = 0.9, 0.8), snap1.h5 (one realization, snapshots at
 # t = 10 and 1000), e10_one.h5 (one realization), hist.h5 (histograms at t = 10
-# and 100), short_tail.h5 (a far tail reaching z ~ 3.3).
+# and 100), short_tail.h5 (a far tail reaching z ~ 3.3), col06.h5 and col_one.h5
+# (delta = 0 runs that collapse: three realizations at r = 0.6, one at r = 0.5).
 set -u
 source "$(dirname "$0")/results_helpers.sh"
 analyze=$1 dump=$2 work=$3
@@ -41,8 +42,18 @@ has not_measured_one.h5 /decay '^v_chi2_per_dof = NaN$'
 has not_measured_one.h5 /decay '^v_chi2_per_dof_note = "one realization'
 has not_measured_one.h5 /decay '^v_exponent_fit_sigma = NaN$'
 has not_measured_one.h5 /decay '^v_exponent_fit_sigma_note = "one realization'
+# One realization, collapse: its time's sigma and spread are NaN with the reason, and the forms
+# against eps, weighted by the inputs' sigmas, are not fitted, their groups naming the input.
+"$analyze" collapse col06.h5 col_one.h5 -o not_measured_collapse.h5 >/dev/null || fail "collapse (R = 1) failed"
+has not_measured_collapse.h5 /collapse1 '^v_collapse_time_sigma = NaN$'
+has not_measured_collapse.h5 /collapse1 '^v_collapse_time_sigma_note = "one realization: the jackknife has nothing'
+has not_measured_collapse.h5 /collapse1 '^v_cluster_mass_sigma = NaN$'
+has not_measured_collapse.h5 /collapse1 '^v_collapse_time_spread = NaN$'
+has not_measured_collapse.h5 /collapse1 '^v_collapse_time_spread_note = "one realization'
+has not_measured_collapse.h5 /time_forms '^v_note = "the forms against eps are weighted by each input.s sigma: .col_one.h5. has no'
+has not_measured_collapse.h5 /mass_forms '^v_note = "the forms against eps are weighted by each input.s sigma: .col_one.h5. has no'
 # far-tail over a window beyond the data: the clipping is stored with the range fitted.
 "$analyze" far-tail short_tail.h5 -o not_measured_far_tail.h5 >/dev/null || fail "far-tail failed"
 has not_measured_far_tail.h5 /far_tail '^v_window_note = "the window \[2, 5.5\] was clipped to the data: .*fitted over z in \[2.01, '
 rm -f not_measured_shocks.h5 not_measured_decay.h5 not_measured_crossover.h5 not_measured_scaling.h5 \
-      not_measured_one.h5 not_measured_far_tail.h5
+      not_measured_one.h5 not_measured_far_tail.h5 not_measured_collapse.h5

@@ -19,6 +19,7 @@ foreach(_run IN ITEMS "a|-N;200;-r;0.5;-d;0.01;-t;100;-R;2"
                       "col|-N;2000;-r;0.5;-d;0;-t;10000;-R;3"
                       "col4k|-N;4000;-r;0.5;-d;0;-t;10000;-R;3"
                       "col06|-N;2000;-r;0.6;-d;0;-t;10000;-R;3"
+                      "col_one|-N;2000;-r;0.5;-d;0;-t;10000;-R;1"
                       "hist|-N;2000;-r;0.5;-d;0.01;-t;1000;-R;4;--histogram-times;10,100")
   string(FIND "${_run}" "|" _bar)
   string(SUBSTRING "${_run}" 0 ${_bar} _name)
@@ -216,6 +217,19 @@ shockgas_analyze_reports(crossover_one_realization
 shockgas_analyze_reports(crossover_one_realization_no_fit_over_eps
                          "against eps: n/a \\(the fits over eps are weighted by each input's sigma: 'e10_one\\.h5' has no error bar \\(one realization"
                          "nan|shockgas-analyze: error" crossover e05.h5 e10_one.h5 -o "${_analyze_dir}/one_crossover_eps.h5")
+
+# 13c. One realization, collapse: its time and mass with sigma n/a (and the spread n/a), and the fits
+# across inputs, weighted by their sigmas, n/a naming the input, against eps and against N (the
+# command refused the run, exit status 2, until 2026-11-27).
+shockgas_analyze_reports(collapse_one_realization
+                         "eps 0\\.25 +N 2000 +collapse time [0-9.]+ \\+- n/a \\(one realization: the jackknife has nothing to leave out; run -R 2 or more\\) \\(spread n/a\\), cluster mass [0-9.]+ \\+- n/a \\(one realization.*\\(1/1 collapsed\\)"
+                         "nan|shockgas-analyze: error" collapse col_one.h5 -o "${_analyze_dir}/one_collapse.h5")
+shockgas_analyze_reports(collapse_one_realization_no_forms_over_eps
+                         "forms against eps: n/a \\(the forms against eps are weighted by each input's sigma: 'col_one\\.h5' has no error bar \\(one realization"
+                         "nan|shockgas-analyze: error" collapse col06.h5 col_one.h5 -o "${_analyze_dir}/one_collapse_eps.h5")
+shockgas_analyze_reports(collapse_one_realization_no_fits_across_n
+                         "first-collapse statistics across N: n/a \\(the fits across N are weighted by each input's sigma: 'col_one\\.h5' has no error bar \\(one realization"
+                         "nan|shockgas-analyze: error" collapse col4k.h5 col_one.h5 --vs N -o "${_analyze_dir}/one_collapse_n.h5")
 
 # 14. far-tail: a window beyond the data says it was clipped, with the range fitted.
 shockgas_analyze_reports(far_tail_window_clipped

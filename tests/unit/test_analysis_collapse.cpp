@@ -144,15 +144,33 @@ TEST(AnalysisCollapse, ARealizationListedTwiceIsRefused) {
     std::filesystem::remove(outside);
 }
 
-TEST(AnalysisCollapse, OneRealizationAsksForMoreRealizations) {
+// One realization: its collapse time and mass stand, their sigmas and the spread are n/a with the
+// jackknife's reason, as crossover's times. Until 2026-11-27 summarize_collapse threw, and collapse
+// on an R = 1 run stopped with exit status 2. A run of one that did not collapse has no time at all.
+TEST(AnalysisCollapse, OneRealizationHasTimeAndMassWithoutSigma) {
     const auto path = write_synthetic_run("single", 5000, 0.9, 1, {10.0}, {50});
-    try {
-        sa::summarize_collapse(sa::read_collapse_events(path));
-        ADD_FAILURE() << "one collapse has no error bar";
-    } catch (const sa::InsufficientData& error) {
-        EXPECT_NE(std::string(error.what()).find("-R 2 or more"), std::string::npos) << error.what();
+    const auto summary = sa::summarize_collapse(sa::read_collapse_events(path));
+    EXPECT_EQ(summary.collapsed, 1u);
+    EXPECT_EQ(summary.realizations, 1u);
+    EXPECT_EQ(summary.time.value, 10.0);
+    EXPECT_EQ(summary.cluster_mass.value, 50.0);
+    for (const sa::Estimate* e : {&summary.time, &summary.cluster_mass}) {
+        EXPECT_TRUE(std::isnan(e->sigma)) << e->sigma;
+        EXPECT_NE(e->note.find("one realization"), std::string::npos) << e->note;
+        EXPECT_NE(e->note.find("-R 2 or more"), std::string::npos) << e->note;
     }
+    EXPECT_TRUE(std::isnan(summary.time_spread)) << summary.time_spread;
     std::filesystem::remove(path);
+
+    const auto none = write_synthetic_run("single_none", 5000, 0.9, 1, {}, {});
+    try {
+        sa::summarize_collapse(sa::read_collapse_events(none));
+        ADD_FAILURE() << "a realization that did not collapse has no collapse time";
+    } catch (const sa::InsufficientData& error) {
+        EXPECT_NE(std::string(error.what()).find("one realization did not collapse before t_max"), std::string::npos)
+            << error.what();
+    }
+    std::filesystem::remove(none);
 }
 
 TEST(AnalysisCollapse, McNamaraYoungMinimalCluster) {

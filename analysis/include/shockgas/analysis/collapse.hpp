@@ -42,8 +42,12 @@ struct CollapseSummary {
     Estimate cluster_mass;   // likewise, SE at least the counting resolution 1/sqrt(12 n)
     double time_spread = 0;  // sample standard deviation of t_collapse (the distribution's width)
 };
-// Throws InsufficientData when fewer than 2 realizations collapsed, or when
-// some did not (the mean over the collapsed ones would be biased early).
+// A run of one realization that collapsed gives its time and mass with sigma
+// NaN and the jackknife's reason in note (nothing to leave out), and
+// time_spread NaN for the same reason. Throws InsufficientData when a run of
+// R >= 2 had fewer than 2 collapses, when a run of one did not collapse, or
+// when some realizations did not (the mean over the collapsed ones would be
+// biased early).
 CollapseSummary summarize_collapse(const CollapseEvents& events);
 
 // One fitted form y = prefactor * g(eps; exponent), fitted as ln y with

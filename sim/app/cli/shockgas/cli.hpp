@@ -11,6 +11,7 @@
 #include <exception>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -119,6 +120,44 @@ inline std::string unknown_key_message(const CLI::App& app, const std::string& c
 
 }  // namespace detail
 
+// Options that one option supplies itself (shockgas-burgers' --run brings N, L, the seed and the
+// initial condition of the run): declared with CLI11's excludes, so that --help says so
+// ("Excludes: --run"), and refused by parse in one line naming both values and why. CLI11's own
+// message, "--run excludes --particles", says neither what was given nor why.
+struct Exclusion {
+    const CLI::Option* option;                // --run
+    std::vector<const CLI::Option*> others;   // what it supplies
+    std::string why;                          // "--run takes ... from the run (...)"
+};
+inline Exclusion exclude(CLI::Option* option, const std::vector<CLI::Option*>& others, std::string why) {
+    Exclusion exclusion{option, {}, std::move(why)};
+    for (CLI::Option* other : others) {
+        option->excludes(other);  // both ways: each lists the other in --help
+        exclusion.others.push_back(other);
+    }
+    return exclusion;
+}
+
+namespace detail {
+
+// "--run 'a.h5' and --particles '2000' exclude each other: <why>; give one of them", for the first
+// declared exclusion the command line breaks; "" for none (an excludes declared without exclude()).
+inline std::string exclusion_message(const std::vector<Exclusion>& exclusions) {
+    const auto given = [](const CLI::Option* option) {
+        return fmt::format("{} '{}'", option->get_name(), fmt::join(option->results(), ","));
+    };
+    for (const Exclusion& exclusion : exclusions) {
+        if (exclusion.option->count() == 0) continue;
+        for (const CLI::Option* other : exclusion.others)
+            if (other->count() > 0)
+                return fmt::format("{} and {} exclude each other: {}; give one of them", given(exclusion.option),
+                                   given(other), exclusion.why);
+    }
+    return "";
+}
+
+}  // namespace detail
+
 // CLI::NonNegativeNumber lets "nan" through (nan < 0 is false), and a NaN
 // interval would make every comparison with it false: progress lines never or
 // always. Intervals must be finite numbers >= 0.
@@ -170,8 +209,10 @@ inline const CLI::Validator realizations_in_range(
     "1 .. 2^31-1");
 
 // Parses; returns -1 to go on, or the exit status: 0 after --help or
-// --version, bad_input after a parse error (printed as one line).
-inline int parse(CLI::App& app, int argc, char** argv, const std::string& program) {
+// --version, bad_input after a parse error (printed as one line). exclusions:
+// the program's exclude() declarations, whose breach is named with its reason.
+inline int parse(CLI::App& app, int argc, char** argv, const std::string& program,
+                 const std::vector<Exclusion>& exclusions = {}) {
     try {
         app.parse(argc, argv);
         return -1;
@@ -183,6 +224,8 @@ inline int parse(CLI::App& app, int argc, char** argv, const std::string& progra
             message = detail::unknown_option_message(app, argc, argv);
         else if (dynamic_cast<const CLI::ConfigError*>(&error) != nullptr)
             message = detail::unknown_key_message(app, error.what());
+        else if (dynamic_cast<const CLI::ExcludesError*>(&error) != nullptr)
+            message = detail::exclusion_message(exclusions);
         // A misspelt or missing subcommand: CLI11's RequiredError ("A subcommand is required"), or an
         // ExtrasError whose words are all real options.
         if (message.empty() && (dynamic_cast<const CLI::RequiredError*>(&error) != nullptr ||
