@@ -342,7 +342,8 @@ int main(int argc, char** argv) {
         std::vector<std::string> targets;
         if (session.is_root()) targets.push_back(output);
         if (!checkpoint.path.empty())
-            targets.insert(targets.end(), {checkpoint.path, shockgas::previous_checkpoint_path(checkpoint.path)});
+            for (const auto& generation : shockgas::checkpoint_generations(checkpoint.path))
+                targets.push_back(generation);
         for (const auto& target : targets)
             for (const auto& stale : shockgas::h5::remove_stale_temporaries(target))
                 checkpoint.note(fmt::format("removed '{}', left by a run that no longer exists", stale));

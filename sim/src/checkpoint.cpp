@@ -26,6 +26,10 @@ namespace shockgas {
 
 std::string previous_checkpoint_path(const std::string& path) { return path + ".previous"; }
 
+std::array<std::string, 2> checkpoint_generations(const std::string& path) {
+    return {path, previous_checkpoint_path(path)};
+}
+
 void save_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
     write_checkpoint(path, checkpoint, previous_checkpoint_path(path));
 }
@@ -42,17 +46,37 @@ bool may_be_checkpoint(const h5::Probe& found) {
            (found.kind == Kind::hdf5 && found.holds("checkpoint"));
 }
 
-// The same for one generation `file`, knowing the other one: an empty file
-// holds nothing to lose, and a file that lost the HDF5 signature beside an
-// intact shockgas checkpoint of the other generation is a damaged generation
-// of that run (another file that merely has the name would not have one
-// beside it), which --resume passes over like any damaged checkpoint.
-bool may_be_generation(const std::string& file, const std::string& other_generation) {
+// The same for `file`, one generation of the checkpoint at `base`, knowing
+// the others: an empty file holds nothing to lose, and a file that lost the
+// HDF5 signature beside an intact shockgas checkpoint of another generation is
+// a damaged generation of that run (another file that merely has the name
+// would not have one beside it), which --resume passes over like any damaged
+// checkpoint.
+bool may_be_generation(const std::string& file, const std::string& base) {
     const h5::Probe found = h5::probe(file);
     if (may_be_checkpoint(found) || found.kind == h5::Probe::Kind::empty) return true;
     if (found.kind != h5::Probe::Kind::not_hdf5) return false;
-    const h5::Probe other = h5::probe(other_generation);
-    return other.kind == h5::Probe::Kind::hdf5 && other.holds("checkpoint");
+    const auto generations = checkpoint_generations(base);
+    return std::any_of(generations.begin(), generations.end(), [&](const std::string& other) {
+        if (other == file) return false;
+        const h5::Probe probed = h5::probe(other);
+        return probed.kind == h5::Probe::Kind::hdf5 && probed.holds("checkpoint");
+    });
+}
+
+// Whether anything is at path, a dangling symbolic link included: what
+// h5::probe calls absent, without opening the file.
+bool anything_at(const std::string& path) {
+    std::error_code error;
+    const std::filesystem::file_status status = std::filesystem::symlink_status(path, error);
+    return !error && std::filesystem::exists(status);
+}
+
+// Whether either generation of the checkpoint at base exists (a name taken).
+bool any_generation_exists(const std::string& base) {
+    const auto generations = checkpoint_generations(base);
+    return std::any_of(generations.begin(), generations.end(),
+                       [](const std::string& file) { return std::filesystem::exists(file); });
 }
 
 // A lock file holds the process id of its holder, or nothing.
@@ -92,10 +116,9 @@ bool same_file(const std::string& a, const std::string& b) {
 
 std::vector<std::string> remove_checkpoints(const std::string& path) {
     std::vector<std::string> kept;
-    const std::string previous = previous_checkpoint_path(path);
-    for (const auto& [file, other] : {std::pair{path, previous}, std::pair{previous, path}}) {
-        if (h5::probe(file).kind == h5::Probe::Kind::absent) continue;
-        if (may_be_generation(file, other))
+    for (const std::string& file : checkpoint_generations(path)) {
+        if (!anything_at(file)) continue;
+        if (may_be_generation(file, path))
             std::remove(file.c_str());
         else
             kept.push_back(file);
@@ -120,8 +143,8 @@ void check_checkpoint_path(const std::string& path, const std::vector<std::pair<
             throw InputError(fmt::format("checkpoint '{}' {} the {} '{}': give --checkpoint another path", path, how,
                                          role, other));
     }
-    for (const auto& [file, other] : {std::pair{path, previous}, std::pair{previous, path}}) {
-        if (may_be_generation(file, other)) continue;
+    for (const std::string& file : checkpoint_generations(path)) {
+        if (may_be_generation(file, path)) continue;
         const h5::Probe found = h5::probe(file);
         const char* what = found.kind == h5::Probe::Kind::not_regular ? "not a regular file"
                            : found.kind == h5::Probe::Kind::not_hdf5  ? "not an HDF5 file"
@@ -180,10 +203,8 @@ std::string damage_of(const std::string& file, const std::exception& error) {
 // generations of each checkpoint, for a message saying what to remove.
 std::string both_generations(const std::vector<std::string>& bases) {
     std::vector<std::string> names;
-    for (const std::string& base : bases) {
-        names.push_back(fmt::format("'{}'", base));
-        names.push_back(fmt::format("'{}'", previous_checkpoint_path(base)));
-    }
+    for (const std::string& base : bases)
+        for (const std::string& file : checkpoint_generations(base)) names.push_back(fmt::format("'{}'", file));
     return fmt::format("{} and {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
 }
 
@@ -244,7 +265,7 @@ std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>
     std::vector<std::string> warnings, bases;
     std::optional<std::pair<std::string, Checkpoint>> found;  // the first generation holding a run
     for (const std::string& name : files)
-        for (const std::string& file : {name, previous_checkpoint_path(name)}) {
+        for (const std::string& file : checkpoint_generations(name)) {
             const h5::Probe probed = h5::probe(file);
             if (probed.kind == h5::Probe::Kind::absent) continue;
             if (probed.kind != h5::Probe::Kind::damaged &&
@@ -301,7 +322,7 @@ std::vector<std::string> job_checkpoints(const std::string& base, int ranks) {
 
 void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run) {
     for (const std::string& name : files)
-        for (const std::string& file : {name, previous_checkpoint_path(name)}) {
+        for (const std::string& file : checkpoint_generations(name)) {
             if (!std::filesystem::exists(file)) continue;
             Checkpoint checkpoint;
             try {
@@ -317,10 +338,14 @@ void check_resume_checkpoints(const std::vector<std::string>& files, const Simul
 bool is_finished_output_of_run(const std::string& output, const std::vector<std::string>& checkpoints,
                                const SimulationParameters& run) {
     for (const std::string& name : checkpoints)
-        for (const std::string& file : {name, previous_checkpoint_path(name)})
-            if (h5::probe(file).kind != h5::Probe::Kind::absent) return false;  // --resume's to continue or refuse
-    const h5::Probe found = h5::probe(output);
-    if (found.kind != h5::Probe::Kind::hdf5 || !found.holds("timeseries")) return false;
+        for (const std::string& file : checkpoint_generations(name))
+            if (anything_at(file)) return false;  // --resume's to continue or refuse
+    // Read once, and only a regular file: opening a FIFO would block, and a
+    // symbolic link is no output (check_writable refuses both). What cannot
+    // be read as an output (nothing, an empty, damaged or another program's
+    // file, a checkpoint) throws: it is not this run's result.
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(output, error))) return false;
     try {
         const OutputFile existing = read_output(output);
         return existing.result.status != "interrupted" && existing.version == build_info().version &&
@@ -339,11 +364,11 @@ std::vector<std::string> keep_aside(const std::string& path, const std::string& 
     std::string tag;
     for (char c : version) tag += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
     std::string base = path + ".from-" + tag;
-    for (int k = 2; std::filesystem::exists(base) || std::filesystem::exists(previous_checkpoint_path(base)); ++k)
-        base = fmt::format("{}.from-{}.{}", path, tag, k);
+    for (int k = 2; any_generation_exists(base); ++k) base = fmt::format("{}.from-{}.{}", path, tag, k);
     std::vector<std::string> kept;
-    for (const auto& [from, to] : {std::pair{path, base}, std::pair{previous_checkpoint_path(path),
-                                                                    previous_checkpoint_path(base)}}) {
+    const auto sources = checkpoint_generations(path), targets = checkpoint_generations(base);
+    for (std::size_t k = 0; k < sources.size(); ++k) {
+        const std::string &from = sources[k], &to = targets[k];
         std::error_code error;
         if (!std::filesystem::exists(from, error)) continue;
         std::filesystem::rename(from, to, error);
@@ -365,9 +390,8 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
         if (note) note(text);
     };
     namespace fs = std::filesystem;
-    const std::string previous = previous_checkpoint_path(path);
     std::vector<std::string> damaged;  // one reason per damaged generation, newest first
-    for (const std::string& candidate : {path, previous}) {
+    for (const std::string& candidate : checkpoint_generations(path)) {
         if (!fs::exists(candidate)) continue;
         Checkpoint checkpoint;
         try {
@@ -404,7 +428,7 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
         }
         if (!damaged.empty())
             say(fmt::format("warning: {}; resuming from the previous checkpoint '{}'", damaged.front(), candidate));
-        else if (candidate == previous)
+        else if (candidate != path)
             say(fmt::format("'{}' is missing (killed while replacing it); resuming from the previous checkpoint '{}'",
                             path, candidate));
         return checkpoint;
@@ -420,22 +444,16 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
 std::string rank_checkpoint_path(const std::string& base, int rank) { return fmt::format("{}.rank{}", base, rank); }
 
 std::vector<std::string> other_block_checkpoints(const std::string& base, const std::string& own) {
-    const auto exists = [](const std::string& path) {
-        return std::filesystem::exists(path) || std::filesystem::exists(previous_checkpoint_path(path));
-    };
     std::vector<std::string> found;
-    for (int k = 0; exists(rank_checkpoint_path(base, k)); ++k)
+    for (int k = 0; any_generation_exists(rank_checkpoint_path(base, k)); ++k)
         if (rank_checkpoint_path(base, k) != own) found.push_back(rank_checkpoint_path(base, k));
-    if (base != own && exists(base)) found.push_back(base);
+    if (base != own && any_generation_exists(base)) found.push_back(base);
     return found;
 }
 
 void remove_gathered_checkpoints(const std::vector<std::string>& sources, const std::string& base, int ranks) {
-    const std::string previous_suffix = previous_checkpoint_path("");
-    for (std::string file : sources) {
-        if (file.size() > previous_suffix.size() &&
-            file.compare(file.size() - previous_suffix.size(), previous_suffix.size(), previous_suffix) == 0)
-            file.resize(file.size() - previous_suffix.size());
+    for (const std::string& source : sources) {
+        const std::string file = checkpoint_base(source);
         bool current = ranks <= 1 && file == base;
         for (int k = 0; k < ranks && ranks > 1; ++k) current |= file == rank_checkpoint_path(base, k);
         if (!current) remove_checkpoints(file);
@@ -474,7 +492,7 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
 
     namespace fs = std::filesystem;
     for (const std::string& name : candidates)
-        for (const std::string& candidate : {name, previous_checkpoint_path(name)}) {
+        for (const std::string& candidate : checkpoint_generations(name)) {
             if (!fs::exists(candidate)) continue;
             Checkpoint c;
             try {

@@ -25,6 +25,7 @@
 #include "shockgas/ensemble.hpp"
 #include "shockgas/event_engine.hpp"
 #include "shockgas/fast_engine.hpp"
+#include "shockgas/h5.hpp"
 #include "shockgas/output.hpp"
 
 namespace {
@@ -210,6 +211,26 @@ TEST(Checkpoint, OnlyAFinishedOutputOfThisRunWithNoCheckpointLeftIsTakenAsDone) 
     ASSERT_EQ(result.status, "complete");
     shockgas::write_output(output, p, result);
     EXPECT_TRUE(shockgas::is_finished_output_of_run(output, checkpoints, p));
+    // Only a regular file that reads as this output is taken for it: not a
+    // link to it (check_writable refuses writing through one), nor what is
+    // left of it when truncated or emptied, nor another program's file that
+    // has a /timeseries.
+    {
+        const std::string other = stem + "_other.h5";
+        fs::remove(other);
+        fs::create_symlink(output, other);
+        EXPECT_FALSE(shockgas::is_finished_output_of_run(other, checkpoints, p)) << "a symbolic link to it";
+        fs::remove(other);
+        fs::copy_file(output, other);
+        fs::resize_file(other, fs::file_size(other) / 2);
+        EXPECT_FALSE(shockgas::is_finished_output_of_run(other, checkpoints, p)) << "truncated";
+        fs::resize_file(other, 0);
+        EXPECT_FALSE(shockgas::is_finished_output_of_run(other, checkpoints, p)) << "empty";
+        fs::remove(other);
+        shockgas::h5::write_atomically(other, [](shockgas::h5::Group& root) { root.create_group("timeseries"); });
+        EXPECT_FALSE(shockgas::is_finished_output_of_run(other, checkpoints, p)) << "another program's file";
+        fs::remove(other);
+    }
     for (const auto& [what, change] :
          std::vector<std::pair<std::string, void (*)(SimulationParameters&)>>{
              {"t_max", [](SimulationParameters& q) { q.t_max = 10.0; }},

@@ -11,6 +11,7 @@
 // - A lock (PATH.lock, flock) lets one process at a time use a checkpoint.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -26,6 +27,10 @@ using Note = std::function<void(const std::string&)>;
 
 // PATH.previous: the older generation of the checkpoint at path.
 std::string previous_checkpoint_path(const std::string& path);
+// Both files of the checkpoint at path, newest first: path itself, then
+// previous_checkpoint_path. Whatever reads, checks, moves or removes a
+// checkpoint walks these, so that which files make one is said only here.
+std::array<std::string, 2> checkpoint_generations(const std::string& path);
 
 // Writes checkpoint to path atomically, keeping the one it replaces as the
 // previous generation. Throws h5::Error naming path and the cause (full disk,
@@ -66,8 +71,9 @@ std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>
 // collapsed), written by this code version, of the same run as --resume asks
 // of a checkpoint (run_signature: physics, sampling, seed and realizations),
 // while no generation of `checkpoints` (job_checkpoints: what the run would
-// continue or gather from) exists. An output that cannot be read (damaged,
-// not an output) is none: the run replaces it, as without --resume.
+// continue or gather from) exists. The output is read once, and only if it
+// is a regular file; one that cannot be read (damaged, not an output) is
+// none: the run replaces it, as without --resume.
 bool is_finished_output_of_run(const std::string& output, const std::vector<std::string>& checkpoints,
                                const SimulationParameters& run);
 
