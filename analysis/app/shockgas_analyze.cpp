@@ -102,15 +102,22 @@ std::string shell_quoted(const std::string& word) {
 // What the results file records of this run (AnalysisInvocation): the
 // command line, and every named option of the subcommand that ran with the
 // value it ran with, so that the file says how it was made (--jump-fraction 2
-// and the default gave 104 and 416 shocks in files that did not say which).
+// and the default gave 104 and 416 shocks in files that did not say which);
+// not the flags that print and exit, which are none of the run's settings.
 AnalysisInvocation invocation_of(const CLI::App& subcommand, int argc, char** argv) {
     AnalysisInvocation invocation;
     invocation.program = "shockgas-analyze " + subcommand.get_name();
     std::vector<std::string> words;
     for (int i = 0; i < argc; ++i) words.push_back(shell_quoted(argv[i]));
     invocation.command_line = fmt::format("{}", fmt::join(words, " "));
+    // --help, --help-all (every subcommand inherits it) and --version: they
+    // were recorded as settings of the run (help_all = "false").
+    const auto meta = [&subcommand](const CLI::Option* option) {
+        return option == subcommand.get_help_ptr() || option == subcommand.get_help_all_ptr() ||
+               option == subcommand.get_version_ptr();
+    };
     for (const CLI::Option* option : subcommand.get_options()) {
-        if (option->get_lnames().empty() || option->get_lnames().front() == "help") continue;
+        if (option->get_lnames().empty() || meta(option)) continue;
         std::string name = option->get_lnames().front();
         std::replace(name.begin(), name.end(), '-', '_');
         const bool flag = option->get_expected_max() == 0;  // a flag takes no value
