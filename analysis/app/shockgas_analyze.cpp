@@ -110,11 +110,11 @@ AnalysisInvocation invocation_of(const CLI::App& subcommand, int argc, char** ar
     std::vector<std::string> words;
     for (int i = 0; i < argc; ++i) words.push_back(shell_quoted(argv[i]));
     invocation.command_line = fmt::format("{}", fmt::join(words, " "));
-    // --help, --help-all (every subcommand inherits it) and --version: they
-    // were recorded as settings of the run (help_all = "false").
+    // --help and --help-all (every subcommand inherits both; --version is the
+    // main program's only): --help-all was recorded as a setting of the run
+    // (help_all = "false").
     const auto meta = [&subcommand](const CLI::Option* option) {
-        return option == subcommand.get_help_ptr() || option == subcommand.get_help_all_ptr() ||
-               option == subcommand.get_version_ptr();
+        return option == subcommand.get_help_ptr() || option == subcommand.get_help_all_ptr();
     };
     for (const CLI::Option* option : subcommand.get_options()) {
         if (option->get_lnames().empty() || meta(option)) continue;
@@ -585,9 +585,13 @@ void run_collapse(const AnalysisInvocation& invocation, const std::vector<std::s
     if (inputs.size() < 2) {
         fmt::print("{}: n/a (one input: give runs of 2 or more {})\n", across_inputs, versus);
     } else if (without_sigma.found()) {
-        // Every fit across the inputs weighs them by their sigmas (the Gumbel spread by their spreads);
-        // the hazard fit, with its own Nelson-Aalen sigmas, is part of the N statistics and goes with them.
-        const std::string why = without_sigma.why_not(against_eps ? "the forms against eps" : "the fits across N");
+        // Every fit across the inputs weighs them by their sigmas (the Gumbel spread by their spreads).
+        // The hazard fit has its own Nelson-Aalen sigmas but is stored and printed as one block with
+        // the N statistics (fit_first_collapse_scaling), so it is left out with them, and says so.
+        const std::string why =
+            against_eps ? without_sigma.why_not("the forms against eps")
+                        : without_sigma.why_not("the fits across N") +
+                              "; the hazard fit, which has sigmas of its own, is left out with them";
         // Stored where the fits would be, so that a reader of either finds the reason.
         const std::vector<std::string> sections = against_eps ? std::vector<std::string>{"time_forms", "mass_forms"}
                                                               : std::vector<std::string>{"first_collapse"};

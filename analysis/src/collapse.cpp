@@ -209,6 +209,11 @@ FirstCollapseScaling fit_first_collapse_scaling(const std::vector<CollapseEvents
     std::vector<double> gumbel_log_n, gumbel_time, gumbel_sigma;
     double spread_weight = 0.0, spread_sum = 0.0;
     for (const auto& run : runs) {
+        // Named here: a NaN sigma would otherwise reach the fits as "a non-finite sigma".
+        if (run.realizations < 2)
+            throw InsufficientData(fmt::format("eps = {:g}, N = {}: one realization: the fits across N weigh each "
+                                               "run by its error bar, which needs 2 or more (shockgas-sim -R 2 or more)",
+                                               run.inelasticity, run.particles));
         const auto summary = summarize_collapse(run);
         if (static_cast<double>(run.particles) / summary.cluster_mass.value >= gumbel_min_regions) {
             gumbel_log_n.push_back(std::log(static_cast<double>(run.particles)));

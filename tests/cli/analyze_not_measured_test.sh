@@ -6,7 +6,8 @@
 # e05.h5 and e10.h5 (r = 0.9, 0.8), snap1.h5 (one realization, snapshots at
 # t = 10 and 1000), e10_one.h5 (one realization), hist.h5 (histograms at t = 10
 # and 100), short_tail.h5 (a far tail reaching z ~ 3.3), col06.h5 and col_one.h5
-# (delta = 0 runs that collapse: three realizations at r = 0.6, one at r = 0.5).
+# (delta = 0 runs that collapse: three realizations at r = 0.6, one at r = 0.5), col4k.h5
+# (three at N = 4000, r = 0.5).
 set -u
 source "$(dirname "$0")/results_helpers.sh"
 analyze=$1 dump=$2 work=$3
@@ -52,8 +53,12 @@ has not_measured_collapse.h5 /collapse1 '^v_collapse_time_spread = NaN$'
 has not_measured_collapse.h5 /collapse1 '^v_collapse_time_spread_note = "one realization'
 has not_measured_collapse.h5 /time_forms '^v_note = "the forms against eps are weighted by each input.s sigma: .col_one.h5. has no'
 has not_measured_collapse.h5 /mass_forms '^v_note = "the forms against eps are weighted by each input.s sigma: .col_one.h5. has no'
+# Across N the whole first-collapse block is left out, the hazard fit named with it.
+"$analyze" collapse col4k.h5 col_one.h5 --vs N -o not_measured_collapse_n.h5 >/dev/null ||
+  fail "collapse --vs N (R = 1) failed"
+has not_measured_collapse_n.h5 /first_collapse '^v_note = "the fits across N are weighted by each input.s sigma: .col_one.h5. has no error bar .*; the hazard fit, which has sigmas of its own, is left out with them"$'
 # far-tail over a window beyond the data: the clipping is stored with the range fitted.
 "$analyze" far-tail short_tail.h5 -o not_measured_far_tail.h5 >/dev/null || fail "far-tail failed"
 has not_measured_far_tail.h5 /far_tail '^v_window_note = "the window \[2, 5.5\] was clipped to the data: .*fitted over z in \[2.01, '
 rm -f not_measured_shocks.h5 not_measured_decay.h5 not_measured_crossover.h5 not_measured_scaling.h5 \
-      not_measured_one.h5 not_measured_far_tail.h5 not_measured_collapse.h5
+      not_measured_one.h5 not_measured_far_tail.h5 not_measured_collapse.h5 not_measured_collapse_n.h5

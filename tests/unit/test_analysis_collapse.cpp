@@ -160,6 +160,18 @@ TEST(AnalysisCollapse, OneRealizationHasTimeAndMassWithoutSigma) {
         EXPECT_NE(e->note.find("-R 2 or more"), std::string::npos) << e->note;
     }
     EXPECT_TRUE(std::isnan(summary.time_spread)) << summary.time_spread;
+    // The fits across N need every run's error bar: refused naming the run, not as "a non-finite sigma".
+    const auto other = write_synthetic_run("several", 10000, 0.9, 3, {8.0, 9.0, 10.0}, {40, 50, 60});
+    try {
+        sa::fit_first_collapse_scaling({sa::read_collapse_events(other), sa::read_collapse_events(path)});
+        ADD_FAILURE() << "fits across N with a one-realization run";
+    } catch (const sa::InsufficientData& error) {
+        EXPECT_NE(std::string(error.what()).find("N = 5000: one realization: the fits across N weigh each run by its "
+                                                 "error bar"),
+                  std::string::npos)
+            << error.what();
+    }
+    std::filesystem::remove(other);
     std::filesystem::remove(path);
 
     const auto none = write_synthetic_run("single_none", 5000, 0.9, 1, {}, {});

@@ -119,6 +119,8 @@ struct FirstCollapseScaling {
 };
 // A region is about one collapsing cluster; 50 of them make the minimum an extreme.
 constexpr double gumbel_min_regions = 50.0;
+// Throws InsufficientData naming a run of one realization: the fits weigh each
+// run by its error bar, which one realization does not have (summarize_collapse).
 FirstCollapseScaling fit_first_collapse_scaling(const std::vector<CollapseEvents>& runs);
 
 // Power law y = C eps^exponent over several eps (fit_power_law with the SEs as
