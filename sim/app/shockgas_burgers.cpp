@@ -111,7 +111,12 @@ int main(int argc, char** argv) {
     const auto run_supplies = shockgas::cli::exclude(
         run_option, {init_option, particles_option, ring_length_option, seed_option},
         "--run takes the initial condition from the run (its N, L, seed and law, or its init file)");
-    app.add_option("--realization", realization, "realization")->capture_default_str();
+    auto* realization_option = app.add_option("--realization", realization, "realization")->capture_default_str();
+    // --init's file is the start itself (its N, L and velocities): -N, -L, -s and --realization beside it
+    // were ignored without a word as well.
+    const auto init_supplies =
+        shockgas::cli::exclude(init_option, {particles_option, ring_length_option, seed_option, realization_option},
+                               "--init's file is the initial condition itself (its N, L and velocities)");
     app.add_option("-t,--time", time, "time (default: the run's first snapshot time)");
     app.add_option("--cells-per-particle", cells_per_particle, "grid cells per particle")->capture_default_str();
     app.add_option("--viscosity", viscosities, "viscous profiles (Hopf-Cole) at these nu")->delimiter(',');
@@ -120,7 +125,7 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", output, "profile data file")->required();
     app.add_option("--summary", summary, "gnuplot variables: shock counts and particle-vs-Burgers distances");
     app.add_option("--study", study, "convergence tables (nu -> 0, grid refinement)");
-    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-burgers", {run_supplies}); status >= 0)
+    if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-burgers", {run_supplies, init_supplies}); status >= 0)
         return status;
 
     return shockgas::cli::run("shockgas-burgers", [&] {

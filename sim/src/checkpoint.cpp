@@ -64,15 +64,25 @@ bool may_be_generation(const std::string& file, const std::string& base) {
     });
 }
 
-// Whether anything is at path, a dangling symbolic link included: what
-// h5::probe calls absent, without opening the file.
+// The checkpoint whose generation file is (PATH for PATH or PATH.previous).
+std::string checkpoint_base(std::string file) {
+    const std::string suffix = previous_checkpoint_path("");
+    if (file.size() > suffix.size() && file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0)
+        file.resize(file.size() - suffix.size());
+    return file;
+}
+
+// Whether anything is at path, a dangling symbolic link included: true
+// unless h5::probe would call it absent, found without opening the file.
 bool anything_at(const std::string& path) {
     std::error_code error;
     const std::filesystem::file_status status = std::filesystem::symlink_status(path, error);
     return !error && std::filesystem::exists(status);
 }
 
-// Whether either generation of the checkpoint at base exists (a name taken).
+// Whether either generation of the checkpoint at base exists. It follows
+// symbolic links (std::filesystem::exists), so a dangling link counts as
+// no file.
 bool any_generation_exists(const std::string& base) {
     const auto generations = checkpoint_generations(base);
     return std::any_of(generations.begin(), generations.end(),
@@ -127,6 +137,13 @@ std::vector<std::string> remove_checkpoints(const std::string& path) {
 }
 
 void check_checkpoint_path(const std::string& path, const std::vector<std::pair<std::string, std::string>>& others) {
+    // A name ending in .previous is read as the older generation of the
+    // checkpoint without that ending (checkpoint_base): its lock, its messages
+    // and the clean-up after gathering would go to that other name.
+    if (checkpoint_base(path) != path)
+        throw InputError(fmt::format("checkpoint '{}' ends in '{}', the ending of a checkpoint's older generation, so "
+                                     "it would be taken for one of '{}': give --checkpoint another path",
+                                     path, previous_checkpoint_path(""), checkpoint_base(path)));
     // Every file the checkpoint writes or removes: both generations and the
     // lock. Each would destroy the run's output or init file of that name.
     const std::string previous = previous_checkpoint_path(path), lock = CheckpointLock::lock_path(path);
@@ -221,13 +238,6 @@ std::string run_differences(const Checkpoint& checkpoint, const SimulationParame
     return fmt::format("{}", fmt::join(differences, ", "));
 }
 
-// The checkpoint whose generation file is (PATH for PATH or PATH.previous).
-std::string checkpoint_base(std::string file) {
-    const std::string suffix = previous_checkpoint_path("");
-    if (file.size() > suffix.size() && file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0)
-        file.resize(file.size() - suffix.size());
-    return file;
-}
 
 // How far a checkpoint got: "t = 123.4 of 1000", "1 of 4 realizations done,
 // the furthest at t = 80.5 of 1000" (the furthest engine, as resuming says).
@@ -340,12 +350,16 @@ bool is_finished_output_of_run(const std::string& output, const std::vector<std:
     for (const std::string& name : checkpoints)
         for (const std::string& file : checkpoint_generations(name))
             if (anything_at(file)) return false;  // --resume's to continue or refuse
-    // Read once, and only a regular file: opening a FIFO would block, and a
-    // symbolic link is no output (check_writable refuses both). What cannot
-    // be read as an output (nothing, an empty, damaged or another program's
-    // file, a checkpoint) throws: it is not this run's result.
+    // Only a regular file: opening a FIFO would block, and a symbolic link is
+    // no output (check_writable refuses both). The probe, which reads the
+    // file's signature and names only, keeps read_output (which reads every
+    // dataset through) from another program's large HDF5 file; what still
+    // cannot be read as an output (damaged, a checkpoint) throws: it is not
+    // this run's result.
     std::error_code error;
     if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(output, error))) return false;
+    const h5::Probe found = h5::probe(output);
+    if (found.kind != h5::Probe::Kind::hdf5 || !found.holds("timeseries")) return false;
     try {
         const OutputFile existing = read_output(output);
         return existing.result.status != "interrupted" && existing.version == build_info().version &&

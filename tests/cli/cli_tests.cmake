@@ -101,6 +101,14 @@ foreach(_case IN ITEMS "particles|--particles '500'|-N;500" "ring_length|--ring-
                    -o "${_cli_dir}/burgers_run_and_${_name}.dat")
   set_tests_properties(cli.error.burgers_run_and_${_name} PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli)
 endforeach()
+# --init's file is the start itself: -N (like -L, -s and --realization) beside it was ignored as well.
+add_test(NAME cli.error.burgers_init_and_particles
+         COMMAND ${_expect}
+                 "^shockgas-burgers: error: --init '[^']*burgers_sticky\\.h5' and --particles '500' exclude each other: --init's file is the initial condition itself \\(its N, L and velocities\\); give one of them$"
+                 "${_cli_dir}/burgers_init_and_particles.dat" --
+                 $<TARGET_FILE:shockgas-burgers> --init "${_cli_dir}/burgers_sticky.h5" -N 500
+                 -o "${_cli_dir}/burgers_init_and_particles.dat")
+set_tests_properties(cli.error.burgers_init_and_particles PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli)
 shockgas_cli_error(restitution_above_one "restitution" -N 10 -r 1.5)
 shockgas_cli_error(restitution_negative "restitution" -N 10 -r -0.1)
 shockgas_cli_error(threshold_negative "threshold" -N 10 -d -1e-3)

@@ -175,6 +175,10 @@ TEST(CheckpointFiles, APathThatWouldDestroyAnotherFileIsRefused) {
               std::string::npos);
     EXPECT_NE(refusal(path, {{"init file", fs::absolute(lock).string()}}).find("is locked through"), std::string::npos);
     EXPECT_EQ(refusal(path, {{"output", "other.h5"}, {"init file", ""}}), "");
+    // A name that reads as another checkpoint's older generation (its lock and clean-up went to that one).
+    EXPECT_NE(refusal(previous, {}).find("checkpoint 'paths.checkpoint.previous' ends in '.previous', the ending of "
+                                         "a checkpoint's older generation"),
+              std::string::npos);
 
     shockgas::h5::write_atomically(path, [](shockgas::h5::Group& root) { root.set_attribute("a", 1.0); });
     EXPECT_NE(refusal(path, {}).find("is not a shockgas checkpoint (an HDF5 file without /checkpoint)"),

@@ -28,8 +28,8 @@ using Note = std::function<void(const std::string&)>;
 // PATH.previous: the older generation of the checkpoint at path.
 std::string previous_checkpoint_path(const std::string& path);
 // Both files of the checkpoint at path, newest first: path itself, then
-// previous_checkpoint_path. Whatever reads, checks, moves or removes a
-// checkpoint walks these, so that which files make one is said only here.
+// previous_checkpoint_path. Whatever reads, checks, moves or removes both
+// files of a checkpoint walks these.
 std::array<std::string, 2> checkpoint_generations(const std::string& path);
 
 // Writes checkpoint to path atomically, keeping the one it replaces as the
