@@ -350,14 +350,11 @@ bool is_finished_output_of_run(const std::string& output, const std::vector<std:
     for (const std::string& name : checkpoints)
         for (const std::string& file : checkpoint_generations(name))
             if (anything_at(file)) return false;  // --resume's to continue or refuse
-    // Only a regular file: opening a FIFO would block, and a symbolic link is
-    // no output (check_writable refuses both). The probe, which reads the
-    // file's signature and names only, keeps read_output (which reads every
-    // dataset through) from another program's large HDF5 file; what still
-    // cannot be read as an output (damaged, a checkpoint) throws: it is not
-    // this run's result.
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(output, error))) return false;
+    // The probe opens only a regular file (a FIFO would block, and a symbolic
+    // link is no output: check_writable refuses both) and reads its signature
+    // and names, which keeps read_output (which reads every dataset through)
+    // from another program's large HDF5 file; what still cannot be read as an
+    // output (damaged, a checkpoint) throws: it is not this run's result.
     const h5::Probe found = h5::probe(output);
     if (found.kind != h5::Probe::Kind::hdf5 || !found.holds("timeseries")) return false;
     try {
