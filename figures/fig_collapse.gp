@@ -38,11 +38,20 @@ tp(x) = time_power_prefactor * x**(time_power_exponent + 1.5)
 tl(x) = time_log_corrected_prefactor * log(1 / x)**time_log_corrected_exponent
 tq(x) = time_paper_prefactor
 tm(x) = time_mcnamara_young_prefactor * (log(1 / (2 * x)) / 2)**1.5
+if (!exists('time_power_exponent')) {
+    # The fits are n/a (shockgas-analyze stores a note naming why instead, e.g.
+    # an input of one realization has no sigma to weigh by): draw the points
+    # alone, without error bars, and say where the reason is.
+    set label 1 "forms n/a (why: the note of /time_forms in vs_eps.h5)" noenhanced at graph 0.02, 0.06 font ',7' front
+    plot datadir.'/vs_eps.dat' using 1:($3 * $1**1.5) with points lt 1 pt 7 title 'N = K/ε (forms n/a)'
+    unset label 1
+} else {
 plot datadir.'/vs_eps.dat' using 1:($3 * $1**1.5):($4 * $1**1.5) with yerrorbars lt 1 title 'N = K/ε', \
      tp(x) lt 2 title sprintf('ε^{%.3f ± %.3f}  ΔAIC %.0f', time_power_exponent, time_power_exponent_sigma_scaled, time_power_delta_aic), \
      tl(x) lt 3 title sprintf('ε^{-3/2}(ln 1/ε)^{%.2f ± %.2f}  ΔAIC %.0f', time_log_corrected_exponent, time_log_corrected_exponent_sigma_scaled, time_log_corrected_delta_aic), \
      tq(x) lt 4 title sprintf('ε^{-3/2}  ΔAIC %.0f', time_paper_delta_aic), \
      tm(x) lt 5 title sprintf('[ln(1/2ε)/2ε]^{3/2}  ΔAIC %.0f', time_mcnamara_young_delta_aic)
+}
 
 set ylabel 'cluster mass × ε'
 set yrange [1.5:5]
@@ -53,11 +62,17 @@ mp(x) = mass_power_prefactor * x**(mass_power_exponent + 1)
 ml(x) = mass_log_corrected_prefactor * log(1 / x)**mass_log_corrected_exponent
 mq(x) = mass_paper_prefactor
 mm(x) = mass_mcnamara_young_prefactor * log(1 / (2 * x)) / 2
+if (!exists('mass_power_exponent')) {
+    set label 1 "forms n/a (why: the note of /mass_forms in vs_eps.h5)" noenhanced at graph 0.02, 0.06 font ',7' front
+    plot datadir.'/vs_eps.dat' using 1:($5 * $1) with points lt 1 pt 7 title 'N = K/ε (forms n/a)'
+    unset label 1
+} else {
 plot datadir.'/vs_eps.dat' using 1:($5 * $1):($6 * $1) with yerrorbars lt 1 title 'N = K/ε', \
      mp(x) lt 2 title sprintf('ε^{%.3f ± %.3f}  ΔAIC %.0f', mass_power_exponent, mass_power_exponent_sigma_scaled, mass_power_delta_aic), \
      ml(x) lt 3 title sprintf('ε^{-1}(ln 1/ε)^{%.3f ± %.3f}  ΔAIC %.0f', mass_log_corrected_exponent, mass_log_corrected_exponent_sigma_scaled, mass_log_corrected_delta_aic), \
      mq(x) lt 4 title sprintf('ε^{-1}  ΔAIC %.0f', mass_paper_delta_aic), \
      mm(x) lt 5 title sprintf('ln(1/2ε)/2ε  ΔAIC %.0f', mass_mcnamara_young_delta_aic)
+}
 
 set xrange [*:*]
 set yrange [*:*]
@@ -70,6 +85,20 @@ set offsets 0, 0, graph 0.6, 0   # headroom for the key above the points
 set title sprintf('first collapse at ε = %g', eps_N) font ',9'
 tn(x) = fit_mean_time_prefactor * x**fit_mean_time_exponent
 tg(x) = fit_gumbel_intercept - fit_gumbel_tau * log(x)
+if (!exists('fit_mean_time_exponent')) {
+    set label 1 "fits n/a (why: the note of /first_collapse in vs_N.h5)" noenhanced at graph 0.02, 0.06 font ',7' front
+    plot datadir.'/vs_N.dat' using 2:3 with points lt 1 pt 7 title '⟨t_{collapse}⟩ (fits n/a)'
+    unset label 1
+} else {
+if (!exists('fit_gumbel_tau')) {
+    # Too few runs with N/m >= gumbel_min_regions: the Gumbel law is n/a, the rest stands.
+    set label 1 sprintf('Gumbel fit n/a: %s', fit_gumbel_note) noenhanced at graph 0.02, 0.06 font ',7' front
+    plot datadir.'/vs_N.dat' using 2:3:4 with yerrorbars lt 1 title '⟨t_{collapse}⟩ ± SE', \
+         datadir.'/vs_N.dat' using 2:9 with points lt 6 pt 6 title 'spread (s.d.)', \
+         tn(x) lt 2 title sprintf('N^{%.3f ± %.3f}  (χ^2/dof %.1f)', fit_mean_time_exponent, fit_mean_time_exponent_sigma, \
+             fit_mean_time_chi2_per_dof)
+    unset label 1
+} else {
 plot datadir.'/vs_N.dat' using 2:3:4 with yerrorbars lt 1 title '⟨t_{collapse}⟩ ± SE', \
      datadir.'/vs_N.dat' using 2:9 with points lt 6 pt 6 title 'spread (s.d.)', \
      tn(x) lt 2 title sprintf('N^{%.3f ± %.3f}  (χ^2/dof %.1f)', fit_mean_time_exponent, fit_mean_time_exponent_sigma, \
@@ -79,6 +108,8 @@ plot datadir.'/vs_N.dat' using 2:3:4 with yerrorbars lt 1 title '⟨t_{collapse}
      fit_gumbel_predicted_spread lt 3 dt 2 title sprintf('πτ/√6 = %.0f ± %.0f (measured %.0f ± %.0f)', \
          fit_gumbel_predicted_spread, fit_gumbel_predicted_spread_sigma, fit_gumbel_measured_spread, \
          fit_gumbel_measured_spread_sigma)
+}
+}
 
 set offsets 0, 0, 0, 0
 set xlabel 't'

@@ -582,21 +582,23 @@ void run_collapse(const AnalysisInvocation& invocation, const std::vector<std::s
     }
     const bool against_eps = versus == "eps";
     const std::string across_inputs = against_eps ? "forms against eps" : "first-collapse statistics across N";
-    if (inputs.size() < 2) {
-        fmt::print("{}: n/a (one input: give runs of 2 or more {})\n", across_inputs, versus);
-    } else if (without_sigma.found()) {
-        // Every fit across the inputs weighs them by their sigmas (the Gumbel spread by their spreads).
-        // The hazard fit has its own Nelson-Aalen sigmas but is stored and printed as one block with
-        // the N statistics (fit_first_collapse_scaling), so it is left out with them, and says so.
-        const std::string why =
-            against_eps ? without_sigma.why_not("the forms against eps")
-                        : without_sigma.why_not("the fits across N") +
-                              "; the hazard fit, which has sigmas of its own, is left out with them";
-        // Stored where the fits would be, so that a reader of either finds the reason.
+    // Stored where the fits would be, so that a reader of either (and the figure, which draws the
+    // points alone when the note is there) finds the reason.
+    const auto fits_not_available = [&](const std::string& why) {
         const std::vector<std::string> sections = against_eps ? std::vector<std::string>{"time_forms", "mass_forms"}
                                                               : std::vector<std::string>{"first_collapse"};
         for (const auto& section : sections) results.section(section).set_attribute("note", why);
         fmt::print("{}: n/a ({})\n", across_inputs, why);
+    };
+    if (inputs.size() < 2) {
+        fits_not_available(fmt::format("one input: give runs of 2 or more {}", versus));
+    } else if (without_sigma.found()) {
+        // Every fit across the inputs weighs them by their sigmas (the Gumbel spread by their spreads).
+        // The hazard fit has its own Nelson-Aalen sigmas but is stored and printed as one block with
+        // the N statistics (fit_first_collapse_scaling), so it is left out with them, and says so.
+        fits_not_available(against_eps ? without_sigma.why_not("the forms against eps")
+                                       : without_sigma.why_not("the fits across N") +
+                                             "; the hazard fit, which has sigmas of its own, is left out with them");
     } else if (against_eps) {
         fmt::print("collapse time against eps:\n");
         set_collapse_forms(results, "time_forms", fit_collapse_forms(CollapseQuantity::time, inelasticity, time));

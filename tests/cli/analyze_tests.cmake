@@ -145,6 +145,16 @@ add_test(NAME cli.analyze.not_measured_stored
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/analyze_not_measured_test.sh ${_analyze_program}
                  $<TARGET_FILE:shockgas-dump> "${_analyze_dir}")
 set_tests_properties(cli.analyze.not_measured_stored PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
+# ...and fig_collapse and fig_crossovers draw from such files: the points, and where the reason is (they
+# stopped on gnuplot's "undefined variable" where the fits were n/a).
+if(GNUPLOT_EXECUTABLE)
+  add_test(NAME cli.analyze.plots_without_fits
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/plots_without_fits_test.sh ${_analyze_program}
+                   $<TARGET_FILE:shockgas-dump> ${GNUPLOT_EXECUTABLE} ${PROJECT_SOURCE_DIR}/figures "${_analyze_dir}")
+  set_tests_properties(cli.analyze.plots_without_fits PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases
+                       TIMEOUT 60 PASS_REGULAR_EXPRESSION "fig_collapse and fig_crossovers drawn where their fits are n/a"
+                       FAIL_REGULAR_EXPRESSION "FAIL|undefined")
+endif()
 
 # 7. --hazard: refused where it cannot be written, written for one N.
 shockgas_analyze_error_all(hazard_needs_vs_n "^shockgas-analyze: error: --hazard needs --vs N"
