@@ -21,6 +21,7 @@
 #include "shockgas/checksum.hpp"
 #include "shockgas/cli.hpp"
 #include "shockgas/distributed.hpp"
+#include "shockgas/engine.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/memory.hpp"
@@ -149,7 +150,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--collapse-speed", p.collapse.collapse_speed,
                    "declare inelastic collapse at an inelastic collision slower than this with three or more "
-                   "clusters in contact")
+                   "clusters in contact; at most delta when delta > 0 (no collapse can happen then)")
         ->capture_default_str();
     app.add_option("-o,--output", output, "output HDF5 file (written atomically)")->capture_default_str();
     shockgas::CheckpointOptions checkpoint;
@@ -214,6 +215,10 @@ int main(int argc, char** argv) {
             p.init_file_sha256 = shockgas::file_sha256(p.init_file);
         }
         shockgas::validate(p);
+        // The engine is part of what identifies a run: a checkpoint holds one engine's states, and merge
+        // refuses parts of two. "auto" is resolved here (from the start's masses), so that --resume and
+        // "already complete" compare the engine that runs, not the word asked for.
+        p.engine = shockgas::resolve_engine_name(p, p.init_file.empty() ? nullptr : &initial);
         if (checkpoint_file.empty()) checkpoint_file = shockgas::checkpoint_path_for(output);
         const std::string base_checkpoint = checkpoint_file;
         const bool terminal = isatty(STDERR_FILENO) != 0;

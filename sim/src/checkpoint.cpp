@@ -232,6 +232,10 @@ std::string run_differences(const Checkpoint& checkpoint, const SimulationParame
     if (std::string physics = parameter_differences(checkpoint.parameters, run); !physics.empty())
         differences.push_back(std::move(physics));
     const SimulationParameters& c = checkpoint.parameters;
+    // Its engine states are one engine's: resumed under another, the file would name the one asked for
+    // while its realizations ran the other (found by a user review, 2026-11-27). Both names are resolved
+    // ("auto" never reaches here: the checkpoint stores the engine that ran).
+    if (c.engine != run.engine) differences.push_back(fmt::format("engine {} vs {}", run.engine, c.engine));
     if (check_realizations && (c.first_realization < run.first_realization ||
                                c.first_realization + c.realizations > run.first_realization + run.realizations))
         differences.push_back(fmt::format("realizations {} vs {}", realization_range(run), realization_range(c)));
@@ -360,7 +364,7 @@ bool is_finished_output_of_run(const std::string& output, const std::vector<std:
     try {
         const OutputFile existing = read_output(output);
         return existing.result.status != "interrupted" && existing.version == build_info().version &&
-               run_signature(existing.parameters) == run_signature(run);
+               run_signature(existing.parameters) == run_signature(run) && existing.result.engine == run.engine;
     } catch (const std::exception&) {
         return false;  // damaged or not an output: replaced, as without --resume
     }

@@ -63,10 +63,13 @@ class EnsembleRunner {
 public:
     EnsembleRunner(const SimulationParameters& parameters, const InitialCondition* initial_override,
                    const std::atomic<bool>* stop, const CheckpointOptions& checkpoint)
-        : parameters_(parameters), initial_override_(initial_override), stop_(stop), checkpoint_(checkpoint) {
+        : parameters_(with_engine_resolved(parameters, initial_override)),
+          initial_override_(initial_override),
+          stop_(stop),
+          checkpoint_(checkpoint) {
         result_.times = sample_grid(parameters);
         result_.realizations = parameters.realizations;
-        result_.engine = resolve_engine_name(parameters, initial_override);
+        result_.engine = parameters_.engine;
         histogram_times_ = parameters.histogram_times;
         std::sort(histogram_times_.begin(), histogram_times_.end());
         histogram_times_.erase(std::unique(histogram_times_.begin(), histogram_times_.end()), histogram_times_.end());
@@ -528,7 +531,12 @@ private:
         into.status = interrupted ? "interrupted" : collapsed ? "collapsed" : "complete";
     }
 
-    const SimulationParameters& parameters_;
+    // A copy with "auto" resolved: checkpoints store, and --resume compares, the engine that runs.
+    static SimulationParameters with_engine_resolved(SimulationParameters p, const InitialCondition* initial) {
+        p.engine = resolve_engine_name(p, initial);
+        return p;
+    }
+    const SimulationParameters parameters_;
     const InitialCondition* initial_override_;
     const std::atomic<bool>* stop_;
     CheckpointOptions checkpoint_;

@@ -87,6 +87,15 @@ void validate(const SimulationParameters& p) {
         throw InputError(fmt::format("histogram range must be positive, got {}", p.histogram_range));
     if (!(p.collapse.collapse_speed >= 0.0))
         throw InputError(fmt::format("collapse speed must be >= 0, got {}", p.collapse.collapse_speed));
+    // Above delta > 0 the criterion would fire on ordinary inelastic collisions (g >= delta) and declare
+    // a collapse that the threshold forbids: the analysis then refuses the run as one that cannot
+    // collapse, and the pass-through engine refuses these parameters (a user review, 2026-11-27).
+    if (p.collision.velocity_threshold > 0.0 && p.collapse.collapse_speed > p.collision.velocity_threshold)
+        throw InputError(fmt::format("collapse speed {} exceeds the threshold delta = {}: every inelastic collision "
+                                     "is then at least delta, so no collapse can happen, and one would be declared "
+                                     "falsely; give --collapse-speed at most delta (the default is {})",
+                                     p.collapse.collapse_speed, p.collision.velocity_threshold,
+                                     CollapseCriterion{}.collapse_speed));
     check_times(p.sample_times, p.t_max, "sample time");
     check_times(p.snapshot_times, p.t_max, "snapshot time");
     check_times(p.histogram_times, p.t_max, "histogram time");
@@ -121,6 +130,10 @@ std::vector<double> evenly_spaced_times(double interval, double t_max) {
         throw InputError(fmt::format("snapshot interval must be positive, got {}", interval));
     if (t_max / interval > 1e6)
         throw InputError(fmt::format("snapshot interval {} gives more than 10^6 snapshots", interval));
+    // As a --snapshot-times entry past t_max is refused: asked for, none would be taken, without a word.
+    if (interval > t_max * (1.0 + 1e-12))
+        throw InputError(fmt::format("snapshot interval {} exceeds t_max = {}: no snapshot would be taken", interval,
+                                     t_max));
     std::vector<double> times;
     for (std::int64_t k = 1; static_cast<double>(k) * interval <= t_max * (1.0 + 1e-12); ++k)
         times.push_back(std::min(static_cast<double>(k) * interval, t_max));

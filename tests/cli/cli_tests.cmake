@@ -293,6 +293,13 @@ shockgas_cli_error(realizations_zero "realizations" -N 10 -R 0)
 shockgas_cli_error(histogram_bins_zero "histogram bins" -N 10 --histogram-bins 0)
 shockgas_cli_error(snapshot_interval_zero "snapshot interval" -N 10 --snapshot-interval 0)
 shockgas_cli_error(collapse_speed_negative "collapse speed" -N 10 --collapse-speed -1)
+# Above delta > 0 the collapse criterion would declare a collapse the threshold forbids (user review, 2026-11-27).
+shockgas_cli_error(collapse_speed_above_threshold
+                   "collapse speed 0\\.1 exceeds the threshold delta = 0\\.01: every inelastic collision is then at least delta"
+                   -N 100 -r 0.5 -d 0.01 --collapse-speed 0.1)
+# A snapshot interval past t_max took no snapshot without a word (user review, 2026-11-27).
+shockgas_cli_error(snapshot_interval_past_t_max "snapshot interval 20 exceeds t_max = 10: no snapshot would be taken"
+                   -N 10 -t 10 --snapshot-interval 20)
 shockgas_cli_error(seed_negative "seed|-5" -N 10 --seed -5)
 shockgas_cli_error(init_garbage "not a readable HDF5 file" --init "${_cli_dir}/garbage.h5")
 shockgas_cli_error(init_directory "init" --init "${_cli_dir}")

@@ -268,7 +268,7 @@ def engine_refusal(engine, c):
         if c["r"] == 0:
             reasons.append(head + "r = 0 is the sticky gas")
         if c["delta"] == 0:
-            reasons.append(head + "delta = 0 has no elastic collisions")
+            reasons.append(head + "delta = 0 puts no collision below the threshold")
         if c["sub"] == "sticky":
             reasons.append(head + "sticky sub-threshold collisions merge particles")
         if not equal_masses:

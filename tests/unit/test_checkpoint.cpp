@@ -236,7 +236,10 @@ TEST(Checkpoint, OnlyAFinishedOutputOfThisRunWithNoCheckpointLeftIsTakenAsDone) 
              {"t_max", [](SimulationParameters& q) { q.t_max = 10.0; }},
              {"seed", [](SimulationParameters& q) { q.seed = 2; }},
              {"realizations", [](SimulationParameters& q) { q.realizations = 3; }},
-             {"first_realization", [](SimulationParameters& q) { q.first_realization = 1; }}}) {
+             {"first_realization", [](SimulationParameters& q) { q.first_realization = 1; }},
+             // The same run by another engine is another run (a user review, 2026-11-27: --resume
+             // --engine passthrough took an event engine's output as its own).
+             {"engine", [](SimulationParameters& q) { q.engine = "hybrid"; }}}) {
         SimulationParameters other = p;
         change(other);
         EXPECT_FALSE(shockgas::is_finished_output_of_run(output, checkpoints, other)) << "another " << what;
@@ -291,6 +294,18 @@ TEST(Checkpoint, CheckpointOfAnotherRunIsRefusedNamingTheDifferences) {
               std::string::npos)
         << message;
     EXPECT_EQ(notes, "") << "refused before any work";
+    EXPECT_TRUE(std::filesystem::exists(options.path)) << "the checkpoint must be kept";
+
+    // Another engine: the checkpoint's states are the event engine's, and a file resumed under the
+    // hybrid engine said "hybrid" while its realizations ran the event engine (user review, 2026-11-27).
+    // "auto" is resolved before it is compared: here it is the hybrid engine too.
+    for (const std::string engine : {"hybrid", "auto"}) {
+        other = p;
+        other.engine = engine;
+        EXPECT_NE(refusal(other).find("belongs to a run with other parameters: engine hybrid vs event in the checkpoint"),
+                  std::string::npos)
+            << engine << ": " << refusal(other);
+    }
     EXPECT_TRUE(std::filesystem::exists(options.path)) << "the checkpoint must be kept";
 
     // Fewer realizations than the checkpoint holds: the others would be lost.

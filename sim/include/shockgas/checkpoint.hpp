@@ -69,7 +69,8 @@ std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>
 // result of the run `run`, so that there is nothing to continue and nothing to
 // recompute: an output whose status is not interrupted (complete or
 // collapsed), written by this code version, of the same run as --resume asks
-// of a checkpoint (run_signature: physics, sampling, seed and realizations),
+// of a checkpoint (run_signature: physics, sampling, seed and realizations;
+// and the engine, which `run` names resolved),
 // while no generation of `checkpoints` (job_checkpoints: what the run would
 // continue or gather from) exists. The output is read once, and only if it
 // is a regular file; one that cannot be read (damaged, not an output) is

@@ -52,7 +52,7 @@ std::string PassThroughEngine::unsupported_reason(const std::vector<double>& mas
                                                   const CollapseCriterion& collapse) {
     if (model.restitution == 0.0) return "r = 0 is the sticky gas, where every collision merges (--engine exact)";
     if (!(model.velocity_threshold > 0.0))
-        return "delta = 0 has no elastic collisions to pass through (--engine event)";
+        return "delta = 0 puts no collision below the threshold, and only those are passed through (--engine event)";
     if (model.subthreshold != Subthreshold::elastic)
         return "sticky sub-threshold collisions merge particles (--engine event)";
     for (const double m : mass)
