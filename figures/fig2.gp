@@ -22,9 +22,9 @@ set key bottom left
 set size 1, 0.62
 set origin 0, 0.36
 plot for [i = 1:2] file(i) using 1:2 with lines lt i \
-         title sprintf('%s:  T ∝ t^{-%.3f ± %.3f}', word(names, i), exponent(i), sigma(i)), \
+         title sprintf('%s:  T ∝ t^{-%.3f%s}', word(names, i), exponent(i), plus_minus(sigma(i), '%.3f')), \
      for [i = 3:4] file(i) using 1:2 with lines lt i dt 2 \
-         title sprintf('%s:  T ∝ t^{-%.3f ± %.3f}', word(names, i), exponent(i), sigma(i)), \
+         title sprintf('%s:  T ∝ t^{-%.3f%s}', word(names, i), exponent(i), plus_minus(sigma(i), '%.3f')), \
      0.6 * x**(-2.0/3) with lines lt 8 title 'slope -2/3'
 unset logscale y
 set format y '%.2f'

@@ -19,7 +19,7 @@ set logscale xy
 set xlabel 't'
 set ylabel 'T(t)'
 set key bottom left
-set title 'temperature' . (have_fit ? sprintf(': T ∝ t^{−α}, α = %.3f ± %.3f on [%g, %g]', fit_exponent, fit_exponent_sigma, fit_t_lo, fit_t_hi) : ' (no fit)')
+set title 'temperature' . (have_fit ? sprintf(': T ∝ t^{−α}, α = %.3f%s on [%g, %g]', fit_exponent, plus_minus(fit_exponent_sigma, '%.3f'), fit_t_lo, fit_t_hi) : ' (no fit)')
 if (have_fit) {
     set arrow 1 from fit_t_lo, graph 0 to fit_t_lo, graph 1 nohead lc rgb '#999999' dt 3
     set arrow 2 from fit_t_hi, graph 0 to fit_t_hi, graph 1 nohead lc rgb '#999999' dt 3

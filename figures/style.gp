@@ -31,3 +31,6 @@ set linetype cycle 8
 
 decades = 'set format x "10^{%L}"; set format y "10^{%L}"'
 fidelity_note = sprintf('%s fidelity', fidelity)
+# ' ± sigma' printed with format f, or ' ± n/a' where shockgas-analyze stored NaN
+# (one or two realizations; its note in the results file says why).
+plus_minus(sigma, f) = (sigma == sigma) ? sprintf(' ± '.f, sigma) : ' ± n/a'

@@ -166,11 +166,12 @@ DecayWindow automatic_decay_window(double restitution, double velocity_threshold
         // particles would not help; the data end before the scaling regime.
         if ((run_status == "collapsed" || run_status == "interrupted") && last_time <= window.t_lo)
             throw InsufficientData(fmt::format(
-                "{}, but the run's last sample is t = {:g}, before it: it {}; draw T(t) without a fit with "
-                "--data-only, or choose a window with --t-lo/--t-hi",
+                "{}, but the last sample time that every realization reached is t = {:g}, before it: the run {}; "
+                "draw T(t) without a fit with --data-only, or choose a window with --t-lo/--t-hi",
                 start, last_time,
-                run_status == "collapsed" ? "stopped at inelastic collapse (delta = 0 runs stop there)"
-                                          : "was interrupted"));
+                run_status == "collapsed"
+                    ? "stopped at inelastic collapse (delta = 0 runs stop there)"
+                    : "was interrupted (continue it with shockgas-sim --resume and the same options)"));
         // Name the option that emptied the window when it was the user's
         // (--start-factor or --end-factor away from its default), not only
         // the run: a longer run does not help a window closed by an option.
@@ -203,10 +204,19 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
                                            t_lo, t_hi, inside.size()));
     // One realization (or identical ones): no scatter to weigh by; equal weights (sigma of ln T = 1).
     constexpr double equal_weights = 1.0;
+    // Two realizations are not weighed either. A standard error of <T> from two values has one degree
+    // of freedom, so the weights swung by orders of magnitude between neighbouring times and the fit
+    // followed a few of them: 0.879 (chi2/dof 182) on a run whose two realizations give 0.802 each
+    // (a user review, 2026-11-27). And the jackknife's replicas, one realization each, have no weights
+    // of their own, so its sigma belonged to another estimator.
+    constexpr std::int64_t fewest_to_weigh = 3;
+    const bool weighted = history.realizations >= fewest_to_weigh;
     std::vector<double> time;
     for (std::size_t k : inside) time.push_back(history.time[k]);
     // ln <T> = ln C - alpha ln t: the exponent is minus the log-log slope.
-    const auto points = history.fit_points(inside, std::nullopt, equal_weights);
+    auto points = history.fit_points(inside, std::nullopt, equal_weights);
+    if (!weighted)
+        for (std::size_t i = 0; i < points.sigma.size(); ++i) points.sigma[i] = equal_weights * points.mean[i];
     const LinearFit full = fit_power_law(time, points.mean, points.sigma);
     DecayFit result;
     result.t_lo = t_lo;
@@ -216,20 +226,33 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
     result.fit_sigma = full.slope_sigma();
     result.chi2_per_dof = full.chi2_per_dof();
     result.prefactor = std::exp(full.intercept);
-    if (history.realizations < 2) {
+    if (!weighted) {
         // The weights are the standard errors of <T>: with one realization
-        // there are none, and the equal weights put in their place (sigma of
-        // ln T = 1) give a chi2 and a slope width that measure nothing (chi2/dof
-        // ~ 0.00). The exponent itself (the unweighted fit) stands.
+        // there are none (with two, none worth the name, above), and the equal
+        // weights put in their place (sigma of ln T = 1) give a chi2 and a slope
+        // width that measure nothing (chi2/dof ~ 0.00). The exponent itself (the
+        // unweighted fit) stands.
         result.fit_sigma = std::numeric_limits<double>::quiet_NaN();
         result.chi2_per_dof = std::numeric_limits<double>::quiet_NaN();
-        result.fit_note = "one realization: no standard error of <T> to weigh the fit by; run -R 2 or more";
+        result.fit_note = history.realizations < 2
+                              ? "one realization: no standard error of <T> to weigh the fit by; run -R 3 or more"
+                              : "two realizations: the scatter of <T> over two is too rough to weigh the fit "
+                                "by, so it is unweighted; run -R 3 or more";
     }
     // Each replica is the whole estimator on R - 1 realizations, its weights included: with the full
     // sample's weights frozen the jackknife came out 35-40% small at R = 3 ... 6 (coverage of alpha
     // +- sigma 0.42-0.55 where Student's t gives 0.58-0.64, against 0.64-0.67 with the weights
     // recomputed; an independent audit's 200-400 synthetic ensembles per R, 2026-11-27). One
     // realization: sigma n/a with jackknife's note.
+    if (history.realizations == 2) {
+        // The two replicas' spread, |alpha_1 - alpha_2| / 2, has one degree of freedom (a one-sigma
+        // band of it covers 50%, not 68%): n/a, as the histogram tail's sigma with R = 2.
+        result.exponent_sigma = std::numeric_limits<double>::quiet_NaN();
+        result.exponent_sigma_note =
+            "two realizations: the jackknife's two replicas, one realization each, give a sigma with one degree of "
+            "freedom; run -R 3 or more";
+        return result;
+    }
     const Estimate jack = jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
         if (!left_out) return -full.slope;  // the full sample's fit, made above
         const auto replica = history.fit_points(inside, left_out, equal_weights);

@@ -57,4 +57,13 @@ grep -q '^fit_note = "the fits over eps are weighted by each input' "$dir/crosso
 "$gnuplot" -e "datadir='$dir'; outbase='$dir/fig_crossovers'; styledir='$figures'; theorydir='.'; fidelity='test'; format='png'" \
     "$figures/fig_crossovers.gp" 2> "$dir/gnuplot.err" || { cat "$dir/gnuplot.err"; fail "fig_crossovers: gnuplot failed"; }
 [ -s "$dir/fig_crossovers.png" ] || fail "fig_crossovers: no figure"
+# One input has no slope: the note says so (crossover wrote neither fits nor note until 2026-11-27).
+dir=fig_crossovers_one_input
+rm -rf "$dir" && mkdir "$dir" || fail "cannot make $dir"
+"$analyze" crossover e05.h5 -o "$dir/crossovers.h5" --data "$dir/crossovers.dat" >/dev/null || fail "crossover one input"
+"$dump" gnuplot-vars "$dir/crossovers.h5" /scaling_in_eps --prefix fit --output "$dir/crossovers.gp" \
+    || fail "dump scaling_in_eps (one input)"
+grep -q '^fit_note = "one input: give runs of 2 or more eps"$' "$dir/crossovers.gp" || fail "one input: no fit_note"
+"$gnuplot" -e "datadir='$dir'; outbase='$dir/fig_crossovers'; styledir='$figures'; theorydir='.'; fidelity='test'; format='png'" \
+    "$figures/fig_crossovers.gp" 2> "$dir/gnuplot.err" || { cat "$dir/gnuplot.err"; fail "fig_crossovers one input: gnuplot failed"; }
 echo "fig_collapse and fig_crossovers drawn where their fits are n/a"

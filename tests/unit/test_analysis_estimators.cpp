@@ -193,6 +193,32 @@ TEST(AnalysisDecay, JackknifeCoverageWithThreeRealizations) {
     shockgas::testing::expect_jackknife_coverage(inside, trials, student_coverage, "decay, R = 3");
 }
 
+// Two realizations: a standard error of <T> from two values has one degree of freedom, so weighing by it
+// let a few samples decide the fit (0.879 on a run whose two realizations give 0.802 each, a user review
+// of 2026-11-27), and the jackknife's replicas (one realization each) were unweighted, another estimator.
+// Now the fit is the unweighted one of ln <T> against ln t, with chi2, width and sigma n/a.
+TEST(AnalysisDecay, TwoRealizationsAreFittedUnweightedWithSigmaNotAvailable) {
+    std::mt19937_64 random(2028);
+    const auto history = correlated_history(random, 2.0 / 3.0, 2);
+    const auto fit = sa::fit_temperature_decay(history, 10.0, 1e4);
+    // Ordinary least squares of ln <T> on ln t over the window, written out here.
+    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, n = 0.0;
+    for (std::size_t k = 0; k < history.time.size(); ++k) {
+        if (history.time[k] < 10.0 || history.time[k] > 1e4) continue;
+        const double x = std::log(history.time[k]), y = std::log(0.5 * (history.at(0, k) + history.at(1, k)));
+        sx += x, sy += y, sxx += x * x, sxy += x * y, n += 1.0;
+    }
+    const double unweighted_exponent = -(n * sxy - sx * sy) / (n * sxx - sx * sx);
+    // The same sums in another order: rounding only.
+    constexpr double summation_order_tolerance = 1e-12;
+    EXPECT_NEAR(fit.exponent, unweighted_exponent, summation_order_tolerance);
+    EXPECT_TRUE(std::isnan(fit.exponent_sigma)) << fit.exponent_sigma;
+    EXPECT_NE(fit.exponent_sigma_note.find("two realizations"), std::string::npos) << fit.exponent_sigma_note;
+    EXPECT_TRUE(std::isnan(fit.chi2_per_dof)) << fit.chi2_per_dof;
+    EXPECT_TRUE(std::isnan(fit.fit_sigma)) << fit.fit_sigma;
+    EXPECT_NE(fit.fit_note.find("two realizations"), std::string::npos) << fit.fit_note;
+}
+
 TEST(AnalysisDecay, WindowRuleAndScan) {
     // Eq. (3): r = 0.9 -> eps = 0.05, t_stick = eps^-3/2 = 89.4; t_lo = 10 t_stick.
     const auto window = sa::automatic_decay_window(0.9, 1e-2, 1e6, 1e5);
@@ -205,8 +231,20 @@ TEST(AnalysisDecay, WindowRuleAndScan) {
         sa::automatic_decay_window(0.5, 0.0, 100, 7.94328, {}, "collapsed");
         ADD_FAILURE() << "an empty window must throw";
     } catch (const sa::InsufficientData& error) {
-        EXPECT_NE(std::string(error.what()).find("last sample is t = 7.94328"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("the last sample time that every realization reached is t = 7.94328"),
+                  std::string::npos)
+            << error.what();
         EXPECT_NE(std::string(error.what()).find("stopped at inelastic collapse"), std::string::npos) << error.what();
+    }
+    // Interrupted: the way on is --resume (a user review, 2026-11-27: the message named the last time
+    // every realization reached as "the run's last sample", and no --resume).
+    try {
+        sa::automatic_decay_window(0.5, 1e-2, 1000, 25.1189, {}, "interrupted");
+        ADD_FAILURE() << "an empty window must throw";
+    } catch (const sa::InsufficientData& error) {
+        EXPECT_NE(std::string(error.what()).find("was interrupted (continue it with shockgas-sim --resume"),
+                  std::string::npos)
+            << error.what();
     }
     // The sticky gas (eps = 1/2, eps^-3/2 = 2.8) still starts at t = 100, after its own transient.
     EXPECT_DOUBLE_EQ(sa::automatic_decay_window(0.0, 1e-2, 1e6, 1e5).t_lo, 100.0);
