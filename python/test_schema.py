@@ -30,11 +30,13 @@ except ImportError as error:  # pragma: no cover
 # Attribute kinds the readers rely on (analysis/, python/): strings are parsed as text, the rest as numbers.
 STRING_ATTRIBUTES = {"subthreshold", "sample_times", "snapshot_times", "histogram_times", "init_file",
                      "init_file_sha256", "positions", "velocity_distribution", "initial_condition", "engine", "status", "program", "version", "compiler",
-                     "compiler_flags", "build_type", "hdf5_version", "host", "date"}
+                     "compiler_flags", "build_type", "hdf5_version", "host", "date", "merged_by", "merged_date",
+                     "merged_from"}
 INTEGER_ATTRIBUTES = {"particles", "samples_per_decade", "histogram_bins", "realizations", "seed",
                       "stall_events_min", "schema_version", "total_collisions", "first_realization", "mpi_ranks"}
-# Documented root attributes that only some runs carry: mpi_ranks, written by an MPI run alone.
-OPTIONAL_ATTRIBUTES = {"mpi_ranks"}
+# Documented root attributes that only some runs carry: mpi_ranks, written by an MPI run alone; the
+# merged_* record of shockgas-merge, by a merged file alone.
+OPTIONAL_ATTRIBUTES = {"mpi_ranks", "merged_by", "merged_date", "merged_from"}
 INTEGER_DATASETS = {"realization_status", "first_particle", "realization", "collisions"}
 
 

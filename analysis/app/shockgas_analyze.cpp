@@ -143,6 +143,9 @@ struct RunParameters {
 RunParameters run_parameters(const std::string& path) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
+    // A far-tail sampler file passes check_inputs (far-tail reads it): named here for what it is, not by
+    // the first attribute it lacks ("missing attribute /restitution").
+    check_simulation_output(root, path);
     return {root.attribute_double("restitution"), root.attribute_double("velocity_threshold"),
             static_cast<double>(root.attribute_integer("particles")), root.attribute_double("t_max")};
 }
@@ -156,7 +159,7 @@ std::string restitution_label(double restitution) {
 std::unique_ptr<DataFile> temperature_data(const std::string& data, const std::string& input,
                                            const TemperatureHistory& history) {
     auto file = std::make_unique<DataFile>(data, "T(t) ensemble mean, " + input,
-                                           std::vector<std::string>{"time", "temperature", "temperature_sigma"});
+                                           std::vector<std::string>{input}, std::vector<std::string>{"time", "temperature", "temperature_sigma"});
     if (history.realizations < 2) file->comment("temperature_sigma nan: one realization, no scatter to estimate it");
     for (std::size_t k = 0; k < history.time.size(); ++k)
         file->row({history.time[k], history.mean(k), history.standard_error(k)});
@@ -233,7 +236,7 @@ void run_decay(const AnalysisInvocation& invocation, const std::string& input, c
         scan_file = std::make_unique<DataFile>(
             scan, fmt::format("decay exponent in moving windows of {:g} decades, moved by {:g}", options.scan_width,
                               options.scan_step),
-            std::vector<std::string>{"t_centre", "t_lo", "t_hi", "exponent", "exponent_sigma", "chi2_per_dof",
+            std::vector<std::string>{input}, std::vector<std::string>{"t_centre", "t_lo", "t_hi", "exponent", "exponent_sigma", "chi2_per_dof",
                                      "points"});
         if (history.realizations < 2)
             scan_file->comment("exponent_sigma, chi2_per_dof nan: one realization, no scatter to estimate them");
@@ -262,7 +265,7 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
     std::unique_ptr<DataFile> file;
     if (!data.empty())
         file = std::make_unique<DataFile>(data, "crossovers per inelasticity",
-                                          std::vector<std::string>{"eps", "t_dissip", "t_dissip_sigma", "t_stick",
+                                          inputs, std::vector<std::string>{"eps", "t_dissip", "t_dissip_sigma", "t_stick",
                                                                    "t_stick_sigma", "T_stick", "T_stick_sigma",
                                                                    "haff_rate", "haff_rate_sigma",
                                                                    "t_stick_reference"});
@@ -400,7 +403,7 @@ void run_scaling(const AnalysisInvocation& invocation, const std::vector<std::st
     std::unique_ptr<DataFile> file;
     if (!data.empty())
         file = std::make_unique<DataFile>(data, "Phi(z) = t^(-1/3) P(v,t), z = v t^(1/3); one block per histogram",
-                                          std::vector<std::string>{"z", "Phi"});
+                                          inputs, std::vector<std::string>{"z", "Phi"});
     for (std::size_t h = 0; h < histograms.size(); ++h) {
         const auto& histogram = histograms[h];
         auto group = results.section("histogram" + std::to_string(h));
@@ -485,7 +488,7 @@ void run_shocks(const AnalysisInvocation& invocation, const std::string& input, 
                                           fmt::format("velocity profile of the first snapshot (t = {:g}); block 1: "
                                                       "shocks; block 2: fitted segments",
                                                       first.time),
-                                          std::vector<std::string>{"position", "velocity", "mass"});
+                                          std::vector<std::string>{input}, std::vector<std::string>{"position", "velocity", "mass"});
         for (std::size_t i = 0; i < first.velocity.size(); ++i)
             file->row({first.position[i], first.velocity[i], first.mass[i]});
         file->blank_line();
@@ -551,7 +554,7 @@ void run_collapse(const AnalysisInvocation& invocation, const std::vector<std::s
     std::unique_ptr<DataFile> file, curves;
     if (!data.empty())
         file = std::make_unique<DataFile>(data, "inelastic collapse per input (mean and SE over realizations)",
-                                          std::vector<std::string>{"eps", "particles", "collapse_time",
+                                          inputs, std::vector<std::string>{"eps", "particles", "collapse_time",
                                                                    "collapse_time_sigma", "cluster_mass",
                                                                    "cluster_mass_sigma", "collapsed", "realizations",
                                                                    "collapse_time_spread"});
@@ -646,7 +649,7 @@ void run_collapse(const AnalysisInvocation& invocation, const std::vector<std::s
     if (!hazard_data.empty()) {
         curves = std::make_unique<DataFile>(
             hazard_data, "Nelson-Aalen cumulative collapse hazard per particle H(t)/N, one block per input",
-            std::vector<std::string>{"time", "hazard_per_particle", "hazard_per_particle_sigma", "particles"});
+            inputs, std::vector<std::string>{"time", "hazard_per_particle", "hazard_per_particle_sigma", "particles"});
         for (std::size_t k = 0; k < runs.size(); ++k) {
             const auto curve = on_input(inputs[k], [&] { return cumulative_hazard_per_particle(runs[k]); });
             curves->comment("N = " + std::to_string(runs[k].particles));
@@ -679,11 +682,11 @@ void run_compare(const AnalysisInvocation& invocation, const std::string& refere
     if (!data.empty())
         table = std::make_unique<DataFile>(
             data, "cost and deviation of T(t) from the reference " + reference_path,
-            std::vector<std::string>{"delta", "sticky", "collisions_per_particle", "cpu_seconds", "max_abs_deviation",
+            all, std::vector<std::string>{"delta", "sticky", "collisions_per_particle", "cpu_seconds", "max_abs_deviation",
                                      "time_of_max", "departure_time", "t_valid_delta_cubed"});
     if (!curves.empty())
         deviation_curves = std::make_unique<DataFile>(curves, "<T>/<T_ref> - 1 per input, one block each",
-                                                      std::vector<std::string>{"time", "deviation", "sigma"});
+                                                      all, std::vector<std::string>{"time", "deviation", "sigma"});
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         const auto [comparison, collisions] = on_input(inputs[i], [&] {
             const TemperatureRun run = read_temperature_run(inputs[i]);
@@ -770,7 +773,7 @@ void run_far_tail(const AnalysisInvocation& invocation, const std::string& input
     if (!data.empty()) {
         table = std::make_unique<DataFile>(
             data, "ln Phi(z) from " + input + " (shockgas-tail), with the fitted Eq. (6) form",
-            std::vector<std::string>{"z", "log_phi", "log_phi_sigma", "fitted_log_phi", "local_exponent"});
+            std::vector<std::string>{input}, std::vector<std::string>{"z", "log_phi", "log_phi_sigma", "fitted_log_phi", "local_exponent"});
         if (!gamma.fit.gamma_note.empty()) table->comment("fitted_log_phi nan: gamma " + gamma.fit.gamma_note);
         for (std::size_t i = 0; i < tail.z.size(); ++i) {
             if (!std::isfinite(tail.log_phi[i])) continue;

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
 
 namespace shockgas::analysis {
 
@@ -36,6 +37,7 @@ std::optional<std::string> realization_index_problem(const h5::Group& group, std
 CollapseEvents read_collapse_events(const std::string& path) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
+    check_simulation_output(root, path);
     CollapseEvents events;
     events.inelasticity = (1.0 - root.attribute_double("restitution")) / 2.0;  // r = 1 - 2 eps
     events.particles = root.attribute_integer("particles");

@@ -10,6 +10,7 @@
 #include <fmt/ranges.h>
 
 #include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
 
 namespace shockgas::analysis {
 
@@ -86,6 +87,8 @@ std::string comparison_differences(const std::string& reference_path, const std:
     const auto run_file = h5::File::open_read(run_path);
     const auto reference = reference_file.root();
     const auto run = run_file.root();
+    check_simulation_output(reference, reference_path);
+    check_simulation_output(run, run_path);
     std::vector<std::string> differences;
     for (const auto& [name, stored] : shared) {
         if (!reference.has_attribute(name) || !run.has_attribute(name)) continue;

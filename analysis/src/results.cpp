@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "shockgas/output.hpp"
 #include "shockgas/parameters.hpp"
@@ -116,10 +117,15 @@ void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std
     }
 }
 
-DataFile::DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& columns)
+DataFile::DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& inputs,
+                   const std::vector<std::string>& columns)
     // Checked before the file is opened: a missing directory is named as every output's is.
     : file_((check_data_file_writable(path), path), data_file_kind) {
-    std::string header = "# " + description + "\n#";
+    // Not dated: a rerun of the same code gives the same table (tools/reproduce-check compares them byte for byte).
+    std::string header = "# " + description + "\n" +
+                         provenance_comment("shockgas-analyze", fmt::format("{}", fmt::join(inputs, ", ")),
+                                            false) +
+                         "#";
     for (const auto& column : columns) header += ' ' + column;
     file_.write(header + '\n');
 }
@@ -136,8 +142,15 @@ void DataFile::blank_line() { file_.write("\n\n"); }
 void check_inputs(const std::vector<std::string>& inputs) {
     for (const auto& input : inputs) {
         const h5::Probe found = h5::probe(input);
-        if (found.kind == h5::Probe::Kind::hdf5 && found.holds("checkpoint"))
-            throw checkpoint_given_as_output(input);
+        if (found.kind != h5::Probe::Kind::hdf5) continue;  // its reader names what it is not
+        if (found.holds("checkpoint")) throw checkpoint_given_as_output(input);
+        // A results file given for a run said "missing attribute /restitution" (user review,
+        // 2026-11-27). A far-tail file is far-tail's input; any other subcommand's reader of a
+        // run (read_output, read_timeseries) refuses it in the same words.
+        const auto file = h5::File::open_read(input);
+        const auto root = file.root();
+        if (root.has_attribute("kind") && root.attribute_string("kind") == "far_tail") continue;
+        check_simulation_output(root, input);
     }
 }
 

@@ -8,7 +8,11 @@
 //   shockgas-burgers --particles N [--ring-length L] --seed S --time t ...   (the same initial
 //                    condition shockgas-sim draws) or --init FILE.h5 (none of these with --run: a
 //                    run's start is its own)
+// The profile is built on the lattice of the particles' start (burgers.hpp): a run's or an
+// init file's particles must be equally spaced, as shockgas-sim --positions lattice places them.
 //
+// Every text output begins with '#' lines naming this program's version, the date and the
+// start (seed, realization and law, or the run or init file).
 // profile.dat: block 0 "x v_inviscid v_nu..." on P equally spaced points; block 1 the
 // inviscid shocks "position mass velocity jump/v_rms". With --run and a snapshot at t,
 // the shocks found in the particles (shockgas::analysis::find_shocks, the Fig. 5 detector)
@@ -94,9 +98,12 @@ int main(int argc, char** argv) {
     std::uint64_t seed = 1;
     std::vector<double> viscosities;
     auto* run_option =
-        app.add_option("--run", run_path, "shockgas-sim output: N, L, seed (or init_file) and the snapshot time")
+        app.add_option("--run", run_path,
+                       "shockgas-sim output: N, L, seed (or init_file) and the snapshot time; its start must be "
+                       "equally spaced (--positions lattice, the default)")
             ->check(CLI::ExistingFile);
-    auto* init_option = app.add_option("--init", init_path, "initial condition file (as shockgas-sim --init)")
+    auto* init_option = app.add_option("--init", init_path,
+                                       "initial condition file (as shockgas-sim --init) of equally spaced particles")
                             ->check(CLI::ExistingFile);
     auto* particles_option =
         app.add_option("-N,--particles", particles, "particles (with --seed: shockgas-sim's initial condition)");
@@ -182,6 +189,9 @@ int main(int argc, char** argv) {
         shockgas::InitialLaw law;
         std::int64_t first_realization = 0;
         std::string init_sha256;
+        // What the start was, for the outputs' headers (two profiles of other seeds or runs
+        // differed in nothing else), and the file it came from, for the lattice refusal below.
+        std::string start, start_file;
         if (!run_path.empty()) {
             const shockgas::OutputFile run = shockgas::read_output(run_path);
             const shockgas::SimulationParameters& p = run.parameters;
@@ -199,6 +209,14 @@ int main(int argc, char** argv) {
                 init_path = p.init_file;
                 init_sha256 = p.init_file_sha256;
             }
+            start = p.init_file.empty()
+                        ? fmt::format("run '{}' realization {} (drawn as realization {} of seed {}, positions {}, "
+                                      "velocities {})",
+                                      run_path, realization, first_realization + realization, seed,
+                                      to_string(law.positions), to_string(law.velocities))
+                        : fmt::format("run '{}' realization {} (init file '{}')", run_path, realization, p.init_file);
+            start_file = p.init_file.empty() ? fmt::format("'{}'", run_path)
+                                             : fmt::format("the init file '{}' of '{}'", p.init_file, run_path);
             snapshots = shockgas::analysis::snapshots_from(run.result, ring_length);
             std::erase_if(snapshots, [&](const auto& s) { return s.realization != realization; });
             if (time <= 0.0 && !snapshots.empty()) time = snapshots.front().time;
@@ -211,13 +229,30 @@ int main(int argc, char** argv) {
                                                        init_path, run_path));
             initial = shockgas::read_initial_condition(init_path);
             check_memory(initial.size());
+            if (run_path.empty()) {
+                start = fmt::format("init file '{}'", init_path);
+                start_file = start;
+            }
         } else {
             if (particles < 2) throw shockgas::InputError("give --run, --init or --particles (at least 2)");
             check_memory(particles);
             if (!(ring_length > 0.0)) ring_length = static_cast<double>(particles);
             initial = shockgas::generate_initial_condition(particles, ring_length, seed, first_realization + realization,
                                                            law);
+            if (run_path.empty())
+                start = fmt::format("seed {} realization {} (positions {}, velocities {}, as shockgas-sim draws them)",
+                                    seed, realization, to_string(law.positions), to_string(law.velocities));
         }
+        // The profile is built on the lattice of the particles' start (grid_from_particles:
+        // particle i's cells centred on x_0 + i L/N); a start with other positions (a run made
+        // with --positions uniform, an init file's own) has no profile here. Refused naming its
+        // file before the work (the library's own refusal said only "particle 1").
+        if (const std::int64_t off = shockgas::burgers::first_off_lattice(initial); off >= 0)
+            throw shockgas::InputError(fmt::format(
+                "{} starts from particles that are not equally spaced (particle {} is off the lattice x_0 + i L/N): "
+                "the Burgers profile is built on the lattice of the particles' start, so it needs equally spaced "
+                "particles, as shockgas-sim --positions lattice (the default) places them",
+                start_file.empty() ? std::string("the start") : start_file, off));
         if (!(time > 0.0)) throw shockgas::InputError("no time: give --time or a run with snapshots");
         const std::int64_t n = initial.size();
         const double length = initial.ring_length;
@@ -230,7 +265,9 @@ int main(int argc, char** argv) {
         const double v_rms = std::sqrt(solver.temperature(time));
 
         // The texts are built here and written at the end, each through shockgas::TextFile.
-        std::string profile, convergence;
+        // Each begins with the program's version, the date and the start (provenance_comment).
+        const std::string provenance = shockgas::provenance_comment("shockgas-burgers", start, true);
+        std::string profile = provenance, convergence = provenance;
         fmt::format_to(std::back_inserter(profile), "# Burgers profile at t = {:.9g}: N = {}, L = {:.9g}, {} cells per particle, v_rms = {:.6g}\n",
                    time, n, length, cells_per_particle, v_rms);
         fmt::format_to(std::back_inserter(profile), "# x v_inviscid");
@@ -247,7 +284,7 @@ int main(int argc, char** argv) {
                            s.velocity, s.mass() / time / v_rms);
 
         const auto burgers_shocks = strong_shock_positions(solver, time, jump_fraction);
-        std::string vars = fmt::format("burgers_time = {:.10g}\nburgers_shock_count = {}\nburgers_v_rms = {:.10g}\n"
+        std::string vars = provenance + fmt::format("burgers_time = {:.10g}\nburgers_shock_count = {}\nburgers_v_rms = {:.10g}\n"
                                        "burgers_cells_per_particle = {}\n",
                                        time, burgers_shocks.size(), v_rms, cells_per_particle);
         fmt::print("Burgers at t = {:g}: {} shocks with drop >= {:g} v_rms (v_rms = {:.4g})\n", time,

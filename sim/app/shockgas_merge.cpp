@@ -1,5 +1,7 @@
 // shockgas-merge: joins ensemble parts (shockgas-sim --first-realization k)
-// into one file with the datasets a single run of all realizations writes.
+// into one file with the datasets a single run of all realizations writes; its
+// root attributes are the run's (the first part's date and host), and
+// merged_by, merged_date and merged_from say that and how it was merged.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -32,7 +34,9 @@ int main(int argc, char** argv) {
                                                        input, parts.back().version, shockgas::build_info().version));
         }
         const auto merged = shockgas::merge_outputs(parts, inputs);
-        shockgas::write_output(output, merged.parameters, merged.result);
+        // The parts' provenance (program, version, the first part's date and host), and
+        // merged_by, merged_date and merged_from for this merge.
+        shockgas::write_merged_output(output, merged, "shockgas-merge");
         fmt::print(stderr, "shockgas-merge: {} realization{} from {} part{} -> {} ({})\n", merged.result.realizations,
                    merged.result.realizations == 1 ? "" : "s", parts.size(), parts.size() == 1 ? "" : "s", output,
                    merged.result.status);

@@ -206,7 +206,8 @@ int main(int argc, char** argv) {
                 throw shockgas::InputError(fmt::format("--particles {} disagrees with the {} particles of '{}'",
                                                        p.particles, initial.size(), p.init_file));
             if (app.count("--ring-length") > 0 && p.ring_length != initial.ring_length)
-                throw shockgas::InputError("--ring-length disagrees with the init file's ring_length");
+                throw shockgas::InputError(fmt::format("--ring-length {} disagrees with the ring length {} of '{}'",
+                                                       p.ring_length, initial.ring_length, p.init_file));
             p.particles = initial.size();
             p.ring_length = initial.ring_length;
             // Recorded so that a result names its start beyond doubt: where

@@ -39,7 +39,10 @@ int main(int argc, char** argv) {
                    "proposals pick a site within +-focus of the tag with probability --focus-probability "
                    "(0: the whole window)")
         ->capture_default_str();
-    app.add_option("--focus-probability", p.focus_probability)->capture_default_str();
+    app.add_option("--focus-probability", p.focus_probability,
+                   "share of proposals whose site (a block shift's first site) is picked within +-focus of the "
+                   "tag; the rest pick any site of the window")
+        ->capture_default_str();
     app.add_option("--block-probability", p.block_probability, "share of block-shift moves")->capture_default_str();
     app.add_option("--block-max", p.block_max, "longest run of sites a block shift moves")->capture_default_str();
     app.add_option("--exchange-interval", p.exchange_interval, "steps per bias between replica exchanges")
@@ -68,8 +71,14 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--velocity-law", law, "initial velocities: gaussian or uniform (variance 1/3)")
         ->capture_default_str();
-    app.add_option("--z-min", p.z_min)->capture_default_str();
-    app.add_option("--z-max", p.z_max)->capture_default_str();
+    // Samples outside [z-min, z-max) are counted in no bin, and the unbiased chain fixes the
+    // norm, so the range must hold the whole unbiased mass (tail_sampler.hpp).
+    app.add_option("--z-min", p.z_min,
+                   "lower end of the z range histogrammed and written (must hold the whole unbiased mass)")
+        ->capture_default_str();
+    app.add_option("--z-max", p.z_max,
+                   "upper end of the z range histogrammed and written; samples beyond it are not counted")
+        ->capture_default_str();
     double bin_width = 0.02;
     app.add_option("--bin-width", bin_width,
                    "output bin width in z (a multiple of the 0.001 WHAM bins; the bin average differs from the "

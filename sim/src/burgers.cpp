@@ -96,19 +96,30 @@ std::int64_t floor_to_int(double x) { return static_cast<std::int64_t>(std::floo
 
 }  // namespace
 
+std::int64_t first_off_lattice(const InitialCondition& initial) {
+    const std::int64_t n = initial.size();
+    const double length = initial.ring_length;
+    const double spacing = length / static_cast<double>(n);
+    for (std::int64_t i = 0; i < n; ++i) {
+        const double expected = initial.position[0] + static_cast<double>(i) * spacing;
+        if (std::abs(initial.position[i] - expected) > lattice_tolerance * length) return i;
+    }
+    return -1;
+}
+
 Grid grid_from_particles(const InitialCondition& initial, std::int64_t cells) {
     const std::int64_t n = initial.size();
     if (n < 1 || cells < 1) throw std::invalid_argument("burgers: no particles or no cells");
     const double length = initial.ring_length;
     const double spacing = length / static_cast<double>(n);
     // The Lagrangian picture needs the particles' own cells: equal spacing and masses.
-    for (std::int64_t i = 0; i < n; ++i) {
-        const double expected = initial.position[0] + static_cast<double>(i) * spacing;
-        if (std::abs(initial.position[i] - expected) > 1e-9 * length)
-            throw InputError("burgers: particles are not equally spaced (particle " + std::to_string(i) + ")");
+    if (const std::int64_t off = first_off_lattice(initial); off >= 0)
+        throw InputError("burgers: particles are not equally spaced (particle " + std::to_string(off) +
+                         " is off the lattice x_0 + i L/N): the Burgers profile is built on the lattice of the "
+                         "particles' start");
+    for (std::int64_t i = 0; i < n; ++i)
         if (!initial.mass.empty() && initial.mass[i] != initial.mass[0])
             throw InputError("burgers: particles have unequal masses");
-    }
     Grid grid;
     grid.ring_length = length;
     grid.origin = initial.position[0] - 0.5 * spacing;  // particle i's cell is centred on x_i

@@ -142,6 +142,14 @@ std::string memory_refusal(const SimulationParameters& p, const MemoryPlan& plan
     // snapshots, histogram rows), kept until the output is written. Where one
     // alone would fit, it is their number that does not: lowering N does not
     // help a million realizations of N = 1000.
+    // The program itself is a fixed part that no N lowers: a budget below it
+    // ("--max-memory 1K") said "needs about 16 MiB ...; lower N".
+    if (program_bytes >= budget_bytes)
+        return fmt::format("not enough memory: any run needs at least {} (the program itself, whatever N), but {} "
+                           "may be used ({}); {}",
+                           format_bytes(program_bytes), format_bytes(budget_bytes), source,
+                           source == "--max-memory" ? "raise --max-memory"
+                                                    : "free memory or raise the limit, then set --max-memory");
     const double records = static_cast<double>(p.realizations) * plan.kept_bytes;
     const double one_alone = plan.need_bytes(1) - records + plan.kept_bytes;
     if (p.realizations > 1 && one_alone <= budget_bytes) {
@@ -155,9 +163,9 @@ std::string memory_refusal(const SimulationParameters& p, const MemoryPlan& plan
             source, most);
     }
     return fmt::format(
-        "not enough memory: one realization of N = {} needs about {}, but {} may be used ({}); lower N, the snapshots "
-        "or the histogram bins, or set --max-memory",
-        p.particles, format_bytes(one_alone), format_bytes(budget_bytes), source);
+        "not enough memory: one realization of N = {} needs about {} ({} of it the program itself, whatever N), but "
+        "{} may be used ({}); lower N, the snapshots or the histogram bins, or set --max-memory",
+        p.particles, format_bytes(one_alone), format_bytes(program_bytes), format_bytes(budget_bytes), source);
 }
 
 }  // namespace shockgas

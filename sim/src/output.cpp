@@ -148,6 +148,20 @@ void write_output(const std::string& path, const SimulationParameters& parameter
     h5::write_atomically(path, [&](h5::Group& root) { write_result(root, parameters, result); });
 }
 
+void write_merged_output(const std::string& path, const OutputFile& merged, const std::string& program) {
+    h5::write_atomically(path, [&](h5::Group& root) {
+        write_result(root, merged.parameters, merged.result);
+        // date and host say when and where the run was made (docs/cli-and-output.md); the merge
+        // wrote its own time there until 2026-11-27, and nothing said the file was merged.
+        // A part read from a file without them (none is written so) keeps the merge's.
+        if (!merged.date.empty()) root.set_attribute("date", merged.date);
+        if (!merged.host.empty()) root.set_attribute("host", merged.host);
+        root.set_attribute("merged_by", program + " " + build_info().version);
+        root.set_attribute("merged_date", utc_timestamp());
+        root.set_attribute("merged_from", fmt::format("{}", fmt::join(merged.merged_from, "\n")));
+    });
+}
+
 namespace {
 
 // Datasets of one file must agree in shape before any is indexed by
@@ -165,6 +179,7 @@ void expect_values(const std::string& file, const std::string& dataset, std::siz
 TimeSeries read_timeseries(const std::string& path) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
+    check_simulation_output(root, path);
     const auto series = root.open_group("timeseries");
     TimeSeries out;
     out.time = series.read_doubles("time");
@@ -265,6 +280,8 @@ OutputFile read_result(const h5::Group& root, const std::string& file) {
                          velocity_law_from_string(root.attribute_string("velocity_distribution"))};
     p.engine = root.attribute_string("engine");
     out.version = root.attribute_string("version");
+    if (root.has_attribute("date")) out.date = root.attribute_string("date");
+    if (root.has_attribute("host")) out.host = root.attribute_string("host");
 
     EnsembleResult& r = out.result;
     r.engine = p.engine;
@@ -357,12 +374,33 @@ InputError checkpoint_given_as_output(const std::string& path) {
                                   path));
 }
 
-OutputFile read_output(const std::string& path) {
-    const auto file = h5::File::open_read(path);
-    const auto root = file.root();
+std::string other_kind_of_file(const h5::Group& root) {
+    const std::string program = root.has_attribute("program") ? root.attribute_string("program") : "";
+    if (program == "shockgas-sim") return "";
+    // As the files name themselves (write_provenance's program; shockgas-tail's kind).
+    if (root.has_attribute("kind") && root.attribute_string("kind") == "far_tail")
+        return fmt::format("a far-tail sampler file (made by {}; shockgas-analyze far-tail reads it)",
+                           program.empty() ? "shockgas-tail" : program);
+    if (program.rfind("shockgas-analyze", 0) == 0) return fmt::format("an analysis results file (made by {})", program);
+    if (!program.empty()) return fmt::format("a file made by {}", program);
+    // write_initial_condition writes no provenance: its datasets say what it is.
+    if (!root.has("timeseries") && root.has("position") && root.has("velocity"))
+        return "an initial condition file (shockgas-sim --init reads it)";
+    return "";
+}
+
+void check_simulation_output(const h5::Group& root, const std::string& path) {
     // A checkpoint holds the output schema too, but of a run in progress
     // (realization_status 4): read as an output it would pass for a result.
     if (root.has("checkpoint")) throw checkpoint_given_as_output(path);
+    const std::string other = other_kind_of_file(root);
+    if (!other.empty()) throw InputError(fmt::format("'{}' is not a shockgas-sim output: it is {}", path, other));
+}
+
+OutputFile read_output(const std::string& path) {
+    const auto file = h5::File::open_read(path);
+    const auto root = file.root();
+    check_simulation_output(root, path);
     OutputFile out = read_result(root, path);
     const std::string& status = out.result.status;
     if (status != "complete" && status != "collapsed" && status != "interrupted")
@@ -433,6 +471,12 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
     }
     OutputFile merged = parts.front();
     EnsembleResult& r = merged.result;
+    const auto part_record = [&](std::size_t i) {
+        const SimulationParameters& p = parts[i].parameters;
+        return fmt::format("{} (realizations {} to {})", i < names.size() ? names[i] : std::to_string(i),
+                           p.first_realization, p.first_realization + p.realizations - 1);
+    };
+    merged.merged_from = {part_record(0)};
     const std::string signature = physics_signature(parts.front().parameters);
     std::int64_t next_realization = parts.front().parameters.first_realization + parts.front().parameters.realizations;
     bool interrupted = r.status == "interrupted", collapsed = r.status == "collapsed";
@@ -452,6 +496,7 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
             throw InputError(fmt::format("merge: '{}' starts at realization {}, expected {}", name,
                                          part.parameters.first_realization, next_realization));
         next_realization += part.parameters.realizations;
+        merged.merged_from.push_back(part_record(i));
         const EnsembleResult& p = part.result;
         const std::int64_t offset = r.realizations;
         grow_realizations(r, offset + p.realizations);

@@ -23,6 +23,14 @@ std::string host_name() {
     return name;
 }
 
+std::string provenance_comment(const std::string& program, const std::string& source, bool dated) {
+    std::string text = "# " + program + " " + build_info().version;
+    if (!source.empty()) text += ", from " + source;
+    text += '\n';
+    if (dated) text += "# date " + utc_timestamp() + '\n';
+    return text;
+}
+
 void write_provenance(h5::Group& root, const std::string& program) {
     const BuildInfo& info = build_info();
     root.set_attribute("program", program);

@@ -114,7 +114,7 @@ add_test(NAME cli.analyze.data_to_redirected_standard_output
                  sh ${_analyze_program} WORKING_DIRECTORY "${_analyze_dir}")
 set_tests_properties(cli.analyze.data_to_redirected_standard_output PROPERTIES LABELS cli
                      FIXTURES_REQUIRED analyze_cases TIMEOUT 60
-                     PASS_REGULAR_EXPRESSION "^# decay exponent in moving windows[^\n]*\n# t_centre[^\n]*\n[0-9].*\ndecay exponent "
+                     PASS_REGULAR_EXPRESSION "^# decay exponent in moving windows[^\n]*\n# shockgas-analyze [^\n]*, from a\\.h5\n# t_centre[^\n]*\n[0-9].*\ndecay exponent "
                      FAIL_REGULAR_EXPRESSION "error")
 
 # 5. Fits with no slope (one eps, one N) are refused naming the inputs; two points leave no chi2.
@@ -315,6 +315,35 @@ foreach(_case IN ITEMS "decay|decay" "crossover|crossover" "scaling|scaling" "sh
   shockgas_analyze_error(checkpoint_refused_${_name}
                          "^shockgas-analyze: error: 'interrupted\\.h5\\.checkpoint' is a shockgas-sim checkpoint \\(a run in progress\\), not an output: continue the run with shockgas-sim --resume and the same options$"
                          ${_arguments} interrupted.h5.checkpoint)
+endforeach()
+# 17b. A file that is not a run is named for what it is, in one line, by every subcommand: an analysis
+# results file (`scaling dec.h5` said "missing attribute /restitution in 'dec.h5'") before any work, and a
+# far-tail file (`decay tail.h5` said "missing group /timeseries") where the run is read; the user review
+# of 2026-11-27. far-tail reads the far-tail file, and crossover and scaling read a run's restitution
+# before the run (run_parameters in shockgas_analyze.cpp), so none of them is in the second list.
+add_test(NAME cli.analyze.setup.results_input
+         COMMAND $<TARGET_FILE:shockgas-analyze> decay a.h5 ${_window} -o results_input.h5
+         WORKING_DIRECTORY "${_analyze_dir}")
+set_tests_properties(cli.analyze.setup.results_input PROPERTIES FIXTURES_REQUIRED analyze_cases
+                     FIXTURES_SETUP analyze_results_input LABELS cli)
+foreach(_case IN ITEMS "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"
+                      "far_tail|far-tail" "compare|compare;a.h5")
+  string(REPLACE "|" ";" _parts "${_case}")
+  list(GET _parts 0 _name)
+  list(SUBLIST _parts 1 -1 _arguments)
+  shockgas_analyze_error(results_refused_${_name}
+                         "^shockgas-analyze: error: 'results_input\\.h5' is not a shockgas-sim output: it is an analysis results file \\(made by shockgas-analyze decay\\)$"
+                         ${_arguments} results_input.h5)
+  set_tests_properties(cli.analyze.results_refused_${_name} PROPERTIES FIXTURES_REQUIRED "analyze_cases;analyze_results_input")
+endforeach()
+foreach(_case IN ITEMS "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"
+                      "compare|compare;a.h5")
+  string(REPLACE "|" ";" _parts "${_case}")
+  list(GET _parts 0 _name)
+  list(SUBLIST _parts 1 -1 _arguments)
+  shockgas_analyze_error(tail_refused_${_name}
+                         "^shockgas-analyze: error: 'short_tail\\.h5' is not a shockgas-sim output: it is a far-tail sampler file \\(made by shockgas-tail; shockgas-analyze far-tail reads it\\)$"
+                         ${_arguments} short_tail.h5)
 endforeach()
 # 18. compare takes runs that differ in delta and the sub-threshold rule only: another N, r or seed is refused,
 # naming each difference (the run's value first); a run of another delta is compared.

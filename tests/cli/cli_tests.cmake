@@ -48,6 +48,16 @@ add_test(NAME cli.error.tail_half_window_huge
                  $<TARGET_FILE:shockgas-tail> -t 10 --half-window 100000000 -o "${_cli_dir}/tail_half_window_huge.h5"
          WORKING_DIRECTORY "${_cli_dir}")
 set_tests_properties(cli.error.tail_half_window_huge PROPERTIES LABELS cli)
+# Every option of shockgas-tail --help says what it does: --focus-probability, --z-min and --z-max had
+# no description (the user review of 2026-11-27).
+foreach(_case IN ITEMS "focus_probability|share of proposals whose site" "z_min|lower end of the z range"
+                      "z_max|upper end of the z range")
+  string(REPLACE "|" ";" _case "${_case}")
+  list(GET _case 0 _name)
+  list(GET _case 1 _words)
+  add_test(NAME cli.tail_help_${_name} COMMAND $<TARGET_FILE:shockgas-tail> --help)
+  set_tests_properties(cli.tail_help_${_name} PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "${_words}")
+endforeach()
 # shockgas-burgers: the same rule, NaN included.
 foreach(_case IN ITEMS "time_nan;^shockgas-burgers: error: --time must be positive and finite, not nan$;-N;100;-t;nan"
                       "cells_zero;--cells-per-particle must be at least 1;-N;100;-t;10;--cells-per-particle;0"
@@ -109,6 +119,24 @@ add_test(NAME cli.error.burgers_init_and_particles
                  $<TARGET_FILE:shockgas-burgers> --init "${_cli_dir}/burgers_sticky.h5" -N 500
                  -o "${_cli_dir}/burgers_init_and_particles.dat")
 set_tests_properties(cli.error.burgers_init_and_particles PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli)
+# The profile is built on the lattice of the particles' start: a run made with --positions uniform
+# is refused in one line naming the file, the first particle off the lattice and what is needed (it
+# said "burgers: particles are not equally spaced (particle 1)" until the user review of 2026-11-27).
+add_test(NAME cli.setup.burgers_uniform_run
+         COMMAND ${_sim} -N 100 --positions uniform -t 10 --snapshot-times 10 -q -o "${_cli_dir}/burgers_uniform.h5")
+set_tests_properties(cli.setup.burgers_uniform_run PROPERTIES FIXTURES_SETUP burgers_uniform LABELS cli)
+add_test(NAME cli.error.burgers_off_lattice_run
+         COMMAND ${_expect}
+                 "^shockgas-burgers: error: '[^']*burgers_uniform\\.h5' starts from particles that are not equally spaced \\(particle [0-9]+ is off the lattice x_0 \\+ i L/N\\): the Burgers profile is built on the lattice of the particles' start, so it needs equally spaced particles, as shockgas-sim --positions lattice \\(the default\\) places them$"
+                 "${_cli_dir}/burgers_off_lattice_run.dat" --
+                 $<TARGET_FILE:shockgas-burgers> --run "${_cli_dir}/burgers_uniform.h5" -o "${_cli_dir}/burgers_off_lattice_run.dat")
+set_tests_properties(cli.error.burgers_off_lattice_run PROPERTIES FIXTURES_REQUIRED burgers_uniform LABELS cli)
+# Every text output begins with the version, the date and the start (seed, realization and law, or
+# the run or init file): two profiles of other seeds could not be told apart before 2026-11-27.
+add_test(NAME cli.burgers_provenance
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/burgers_provenance_test.sh $<TARGET_FILE:shockgas-burgers>
+                 "${_cli_dir}/burgers_sticky.h5" "${_cli_dir}/burgers_provenance")
+set_tests_properties(cli.burgers_provenance PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli)
 shockgas_cli_error(restitution_above_one "restitution" -N 10 -r 1.5)
 shockgas_cli_error(restitution_negative "restitution" -N 10 -r -0.1)
 shockgas_cli_error(threshold_negative "threshold" -N 10 -d -1e-3)
@@ -224,6 +252,19 @@ if(SHOCKGAS_PYTHON)
   shockgas_cli_error(init_ensemble "one fixed initial condition.*--velocity-distribution"
                      --init "${_cli_dir}/good.h5" -R 4)
   set_tests_properties(cli.error.init_ensemble PROPERTIES FIXTURES_REQUIRED bad_init)
+  # Both values named, as the --particles mismatch names both (the user review of 2026-11-27).
+  shockgas_cli_error(init_ring_length_disagrees
+                     "^shockgas-sim: error: --ring-length 7 disagrees with the ring length 8 of '[^']*good\\.h5'$"
+                     --init "${_cli_dir}/good.h5" --ring-length 7)
+  set_tests_properties(cli.error.init_ring_length_disagrees PROPERTIES FIXTURES_REQUIRED bad_init)
+  # shockgas-burgers refuses an init file whose particles are not equally spaced, naming it.
+  add_test(NAME cli.error.burgers_off_lattice_init
+           COMMAND ${_expect}
+                   "^shockgas-burgers: error: init file '[^']*off_lattice\\.h5' starts from particles that are not equally spaced \\(particle 1 is off the lattice x_0 \\+ i L/N\\): the Burgers profile is built on the lattice"
+                   "${_cli_dir}/burgers_off_lattice_init.dat" --
+                   $<TARGET_FILE:shockgas-burgers> --init "${_cli_dir}/off_lattice.h5" -t 1
+                   -o "${_cli_dir}/burgers_off_lattice_init.dat")
+  set_tests_properties(cli.error.burgers_off_lattice_init PROPERTIES FIXTURES_REQUIRED bad_init LABELS cli)
 endif()
 
 # A good run prints the T(t) table and writes a complete file.
@@ -352,10 +393,16 @@ if(NOT SHOCKGAS_PYTHON)  # these compare outputs (and resume_other_build and res
   set_tests_properties(cli.faults.file_size_checkpoint cli.faults.hangup cli.faults.resume_other_build
                        cli.faults.resume_complete_output PROPERTIES DISABLED TRUE)
 endif()
-# A budget below one realization (100000 particles: about 41 MiB with checkpoints) is refused.
+# A budget below one realization (100000 particles: about 41 MiB with checkpoints) is refused,
+# naming the part of it that no N lowers.
 shockgas_cli_error(faults_memory_refused
-                   "not enough memory: one realization of N = 100000 needs about [0-9]+ MiB, but 1 MiB may be used \\(--max-memory\\)"
-                   -N 100000 -R 2 -j 2 -t 10 --max-memory 1M)
+                   "not enough memory: one realization of N = 100000 needs about [0-9]+ MiB \\(16 MiB of it the program itself, whatever N\\), but 30 MiB may be used \\(--max-memory\\); lower N"
+                   -N 100000 -R 2 -j 2 -t 10 --max-memory 30M)
+# A budget below the program itself: no N fits, so lowering N is not the advice (it was, "needs
+# about 16 MiB ...; lower N", until the user review of 2026-11-27).
+shockgas_cli_error(memory_below_the_program
+                   "^shockgas-sim: error: not enough memory: any run needs at least 16 MiB \\(the program itself, whatever N\\), but 1 KiB may be used \\(--max-memory\\); raise --max-memory$"
+                   -N 10 -t 10 --max-memory 1K)
 # Many realizations of a small N: what does not fit is their records, which lowering N would not
 # shrink (the refusal said "lower N" until the CLI audit of 2026-11-27).
 shockgas_cli_error(memory_many_realizations

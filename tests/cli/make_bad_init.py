@@ -24,3 +24,6 @@ write("out_of_range", position=x + 1.0, velocity=v)
 write("nan_velocity", position=x, velocity=np.where(v > 0.9, np.nan, v))
 write("no_ring_length", ring_length=None, position=x, velocity=v)
 write("good", position=x, velocity=v)
+# Not equally spaced (particle 1 off the lattice): a start shockgas-sim runs, but shockgas-burgers,
+# whose profile is built on the lattice of the start, refuses, naming the file and the particle.
+write("off_lattice", position=np.array([0.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]), velocity=v)

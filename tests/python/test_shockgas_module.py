@@ -124,6 +124,19 @@ class Runs(unittest.TestCase):
             np.testing.assert_array_equal(getattr(merged, name), getattr(self.whole, name), name)
         self.assertEqual(len(merged.snapshots), len(self.whole.snapshots))
 
+    def test_merged_file_records_the_merge_and_keeps_the_runs_provenance(self):
+        # The merged file said program shockgas-sim and the merge's own date, and nothing said it
+        # was merged (user review, 2026-11-27): the run's provenance is its first part's, and
+        # merged_by, merged_date and merged_from record the merge.
+        merged = shockgas.read_run(path("merged.h5")).attrs
+        first = shockgas.read_run(path("part0.h5")).attrs
+        for name in ("program", "version", "date", "host"):
+            self.assertEqual(merged[name], first[name], name)
+        self.assertEqual(merged["merged_by"], "shockgas-merge " + first["version"])
+        self.assertRegex(merged["merged_date"], r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ$")
+        self.assertEqual(merged["merged_from"].split("\n"),
+                         [path("part0.h5") + " (realizations 0 to 1)", path("part1.h5") + " (realizations 2 to 2)"])
+
     def test_engine_switch_time(self):
         # The event engine runs one method throughout: NaN. The hybrid engine records its hand-over
         # (N = 2000, r = 0.9, delta = 1e-2: at t = 1.25^31 = 1009.74 for both realizations, as the

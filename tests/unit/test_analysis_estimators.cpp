@@ -27,6 +27,7 @@
 #include "shockgas/observables.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/parameters.hpp"
+#include "shockgas/provenance.hpp"
 #include "shockgas/text_file.hpp"
 
 #include "../test_support.hpp"
@@ -965,26 +966,94 @@ bool has_temporary(const std::filesystem::path& directory) {
 
 }  // namespace
 
+// Found by the user review of 2026-11-27: `scaling dec.h5` (an analysis results
+// file) said "missing attribute /restitution in 'dec.h5'", `decay tail.h5` (a
+// shockgas-tail output) "missing group /timeseries". A file that says what it
+// is (its program attribute, kind = far_tail) is named for it, in one line.
+TEST(AnalysisResults, AnInputThatIsNotARunIsNamedForWhatItIs) {
+    const auto directory = scratch_directory("not_a_run");
+    const auto run = write_run("not_a_run_input", {}, {});
+    const auto results_path = (directory / "dec.h5").string();
+    {
+        sa::ResultsFile results(results_path, {"shockgas-analyze decay", "shockgas-analyze decay run.h5", {}}, {run});
+        results.commit();
+    }
+    const auto tail_path = (directory / "tail.h5").string();
+    {
+        shockgas::h5::AtomicFile file(tail_path);
+        auto root = file.root();
+        shockgas::write_provenance(root, "shockgas-tail");
+        root.set_attribute("kind", "far_tail");
+        file.commit();
+    }
+    const auto message = [](const std::function<void()>& read) {
+        try {
+            read();
+        } catch (const shockgas::InputError& error) {
+            return std::string(error.what());
+        } catch (const std::exception& error) {
+            return "not an InputError: " + std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    const std::string results_named =
+        "'" + results_path + "' is not a shockgas-sim output: it is an analysis results file (made by shockgas-analyze decay)";
+    // Before any work (every subcommand's check), and where a run is read.
+    EXPECT_EQ(message([&] { sa::check_inputs({run, results_path}); }), results_named);
+    EXPECT_EQ(message([&] { shockgas::read_output(results_path); }), results_named);
+    EXPECT_EQ(message([&] { sa::read_temperature_run(results_path); }), results_named);
+    // A far-tail file is far-tail's input: it passes the check, and a reader of a run names it.
+    EXPECT_NO_THROW(sa::check_inputs({tail_path}));
+    EXPECT_EQ(message([&] { sa::read_temperature_run(tail_path); }),
+              "'" + tail_path + "' is not a shockgas-sim output: it is a far-tail sampler file (made by shockgas-tail; "
+              "shockgas-analyze far-tail reads it)");
+    EXPECT_EQ(message([&] { sa::read_collapse_events(tail_path); }).find("is not a shockgas-sim output"), 1 + tail_path.size() + 2);
+    EXPECT_NO_THROW(sa::check_inputs({run}));
+    std::filesystem::remove_all(directory);
+    std::filesystem::remove(run);
+}
+
+// A table said what it held but not what made it nor from which files (user
+// review, 2026-11-27): one '#' line names the program's version and the inputs.
+TEST(AnalysisResults, DataFileNamesTheVersionAndTheInputs) {
+    const auto directory = scratch_directory("data_provenance");
+    const auto first = write_run("data_provenance_a", {}, {});
+    const auto second = write_run("data_provenance_b", {}, {});
+    const auto target = (directory / "table.dat").string();
+    {
+        sa::DataFile file(target, "test table", {first, second}, {"x"});
+        file.row({1.0});
+        file.commit();
+    }
+    std::ifstream in(target);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, "# test table\n# shockgas-analyze " + shockgas::build_info().version + ", from " + first + ", " +
+                        second + "\n# x\n1\n");
+    std::filesystem::remove_all(directory);
+    std::filesystem::remove(first);
+    std::filesystem::remove(second);
+}
+
 TEST(AnalysisResults, DataFileAppearsWhole) {
     const auto directory = scratch_directory("atomic");
     const auto target = (directory / "table.dat").string();
     {
         // A run that fails before commit() (an exception, here the scope's
         // end) leaves neither the table nor its temporary file.
-        sa::DataFile file(target, "test table", {"x", "y"});
+        sa::DataFile file(target, "test table", {}, {"x", "y"});
         file.row({1.0, 2.0});
         EXPECT_FALSE(std::filesystem::exists(target));
     }
     EXPECT_FALSE(std::filesystem::exists(target));
     EXPECT_FALSE(has_temporary(directory));
     {
-        sa::DataFile file(target, "test table", {"x", "y"});
+        sa::DataFile file(target, "test table", {}, {"x", "y"});
         file.row({1.0, 2.5});
         file.commit();
     }
     std::ifstream in(target);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_EQ(text, "# test table\n# x y\n1 2.5\n");
+    EXPECT_EQ(text, "# test table\n# shockgas-analyze " + shockgas::build_info().version + "\n# x y\n1 2.5\n");
     EXPECT_FALSE(has_temporary(directory));
     std::filesystem::remove_all(directory);
 }
@@ -994,7 +1063,7 @@ TEST(AnalysisResults, FullDiskIsAnInputErrorNamingTheFile) {
     // Small: the stdio buffer holds it, the flush fails. Large: a write fails.
     for (const std::size_t rows : {std::size_t{1}, std::size_t{100000}}) {
         try {
-            sa::DataFile file("/dev/full", "test table", {"x"});
+            sa::DataFile file("/dev/full", "test table", {}, {"x"});
             for (std::size_t i = 0; i < rows; ++i) file.row({static_cast<double>(i)});
             file.commit();
             ADD_FAILURE() << "a write to /dev/full must fail";
@@ -1033,7 +1102,7 @@ TEST(AnalysisResults, ALinkToAFileIsReplacedWholeOrNotAtAll) {
         const auto temporary = shockgas::replaced_file(link) + ".tmp." + std::to_string(::getpid());
         fs::create_symlink("/dev/full", temporary);
         try {
-            sa::DataFile file(link, "test table", {"x"});
+            sa::DataFile file(link, "test table", {}, {"x"});
             for (int i = 0; i < 100000; ++i) file.row({static_cast<double>(i)});
             file.commit();
             ADD_FAILURE() << "a write to a full disk succeeded";
@@ -1045,12 +1114,12 @@ TEST(AnalysisResults, ALinkToAFileIsReplacedWholeOrNotAtAll) {
         EXPECT_FALSE(fs::exists(fs::symlink_status(temporary))) << "temporary file left";
     }
     {
-        sa::DataFile file(link, "test table", {"x"});
+        sa::DataFile file(link, "test table", {}, {"x"});
         file.row({1.0});
         file.commit();
     }
     EXPECT_TRUE(fs::is_symlink(link));
-    EXPECT_EQ(read(real), "# test table\n# x\n1\n");
+    EXPECT_EQ(read(real), "# test table\n# shockgas-analyze " + shockgas::build_info().version + "\n# x\n1\n");
     EXPECT_FALSE(has_temporary(directory));
     fs::remove_all(directory);
 }

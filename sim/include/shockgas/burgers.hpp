@@ -36,8 +36,19 @@ struct Grid {
     double cell_width() const { return ring_length / static_cast<double>(velocity.size()); }
 };
 
+// How far (a fraction of L) a particle may sit from its lattice site x_0 + i L/N
+// and count as on it: rounding of positions written and read back, far below
+// any spacing a start could mean.
+constexpr double lattice_tolerance = 1e-9;
+
+// The first particle of initial off the lattice of its start (x_i = x_0 + i L/N
+// within lattice_tolerance L), or -1 when all are on it, as
+// `shockgas-sim --positions lattice` places them.
+std::int64_t first_off_lattice(const InitialCondition& initial);
+
 // Particles (equally spaced, unit masses, as generate_initial_condition makes
-// them) onto M cells; M a multiple or a divisor of N. Throws std::invalid_argument otherwise.
+// them) onto M cells; M a multiple or a divisor of N. Throws InputError otherwise
+// (std::invalid_argument for no particles or no cells).
 Grid grid_from_particles(const InitialCondition& initial, std::int64_t cells);
 
 // A shock of the inviscid solution: Lagrangian interval [q_left, q_right]

@@ -16,10 +16,17 @@ namespace h5 {
 class Group;
 }
 
+struct OutputFile;
+
 // Writes the whole result atomically (temporary file, then rename): root
 // attributes (every parameter, status, provenance) and the datasets
 // /timeseries, /snapshots, /histograms, /collapse.
 void write_output(const std::string& path, const SimulationParameters& parameters, const EnsembleResult& result);
+// The output of shockgas-merge: as write_output, with the parts' provenance kept
+// (program, version, and the date and host of the first part: when and where the
+// run was made, not merged) and the merge's own beside it: merged_by (program
+// and version), merged_date (UTC) and merged_from (merged.merged_from, one line each).
+void write_merged_output(const std::string& path, const OutputFile& merged, const std::string& program);
 
 // Root attributes naming every parameter; used by write_output and by any
 // other writer of the same schema.
@@ -46,6 +53,11 @@ struct OutputFile {
     SimulationParameters parameters;
     EnsembleResult result;
     std::string version;  // provenance: git describe of the program that wrote it
+    std::string date;     // provenance: when the run was made (UTC; a merged file: its first part's)
+    std::string host;     // provenance: where (a merged file: its first part's host)
+    // Set by merge_outputs: the parts, in order, each "NAME (realizations F to L)",
+    // which write_merged_output records beside the merge's own provenance.
+    std::vector<std::string> merged_from;
 };
 // Refuses (InputError) a checkpoint, and (h5::Error, naming the file and
 // the dataset) a file whose datasets disagree in shape or whose statuses are
@@ -54,6 +66,19 @@ OutputFile read_output(const std::string& path);
 // The one refusal of a checkpoint (a run in progress) given where an output
 // is read: read_output's, and shockgas-analyze's check of every input.
 InputError checkpoint_given_as_output(const std::string& path);
+// What a file is when it says it is not a shockgas-sim output, from its root:
+// its program attribute (an analysis results file, a far-tail sampler file,
+// shockgas-drift's record), or an initial condition's datasets; empty for an
+// output, and for a file that says nothing (one from before provenance, one
+// made by hand), which the readers take as before.
+std::string other_kind_of_file(const h5::Group& root);
+// Refuses, in one line, a file given where a shockgas-sim output is read that
+// is something else: "'PATH' is not a shockgas-sim output: it is <what>" (a
+// checkpoint: checkpoint_given_as_output). read_output and read_timeseries
+// call it, and every analysis reader of a run through them or itself, so a
+// wrong file is named for what it is rather than by the first attribute or
+// group it lacks ("missing group /timeseries").
+void check_simulation_output(const h5::Group& root, const std::string& path);
 
 // One stored ring state (a snapshot or a collapse state: time, position,
 // velocity, mass, first_particle) from its group; throws h5::Error naming

@@ -36,4 +36,11 @@ void write_provenance(h5::Group& root, const std::string& program);
 std::string utc_timestamp();
 std::string host_name();
 
+// The text outputs' counterpart of write_provenance (a gnuplot table, a
+// profile): '#' comment lines, which gnuplot and numpy.loadtxt skip.
+// "# <program> <version>, from <source>" and, when dated, "# date <UTC>" on a
+// line of its own: the one line in which a rerun of the same code differs,
+// which tools/reproduce-check leaves out of its comparison.
+std::string provenance_comment(const std::string& program, const std::string& source, bool dated);
+
 }  // namespace shockgas

@@ -67,8 +67,9 @@ std::string format_measured(const Measured& value, const std::string& spec, cons
 // sigma_spec when given, else in spec.
 std::string format_estimate(const Estimate& estimate, const std::string& spec, const std::string& sigma_spec = "");
 
-// A gnuplot data file: '#' lines (a description, then the column names),
-// then one whitespace-separated row per call. Written as every text output
+// A gnuplot data file: '#' lines (a description; the program, its version and
+// `inputs`, the files it was computed from, as shockgas::provenance_comment
+// writes them; the column names), then one whitespace-separated row per call. Written as every text output
 // is (shockgas::TextFile): beside the target and renamed onto it by commit(),
 // removed if commit() is not reached, so that a failed run never leaves a
 // table that looks complete; devices, FIFOs and links written through. A
@@ -76,7 +77,8 @@ std::string format_estimate(const Estimate& estimate, const std::string& spec, c
 // file 'TARGET': <reason>".
 class DataFile {
 public:
-    DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& columns);
+    DataFile(const std::string& path, const std::string& description, const std::vector<std::string>& inputs,
+             const std::vector<std::string>& columns);
     void row(const std::vector<double>& values);
     void comment(const std::string& text);
     void blank_line();  // separates gnuplot data blocks (index)
@@ -112,7 +114,10 @@ void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std
 // checkpoint (PATH.checkpoint, a run in progress). It holds the output
 // schema, so read as an output it would pass for a result of the run's first
 // samples (status "checkpoint"); every subcommand refuses it here, with the
-// words of shockgas::read_output.
+// words of shockgas::read_output. Nor is any a file that no subcommand reads
+// (an analysis results file, an initial condition: shockgas::check_simulation_output);
+// a far-tail sampler file passes, for far-tail, and the readers of a run
+// refuse it.
 void check_inputs(const std::vector<std::string>& inputs);
 
 // Commits a run's outputs together: the data files are closed first (where a
