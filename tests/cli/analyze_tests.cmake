@@ -307,44 +307,43 @@ shockgas_analyze_error(decay_interrupted_names_resume
                        "no sample time t > 0 was reached with T > 0 by every realization: the run was interrupted; continue it with shockgas-sim --resume and the same options, in 'interrupted.h5'$"
                        decay interrupted.h5)
 # 17. Every subcommand refuses a checkpoint (decay and compare printed results from one), in one check.
-foreach(_case IN ITEMS "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"
-                      "far_tail|far-tail" "compare|compare;a.h5")
-  string(REPLACE "|" ";" _parts "${_case}")
-  list(GET _parts 0 _name)
-  list(SUBLIST _parts 1 -1 _arguments)
-  shockgas_analyze_error(checkpoint_refused_${_name}
-                         "^shockgas-analyze: error: 'interrupted\\.h5\\.checkpoint' is a shockgas-sim checkpoint \\(a run in progress\\), not an output: continue the run with shockgas-sim --resume and the same options$"
-                         ${_arguments} interrupted.h5.checkpoint)
-endforeach()
+# shockgas_analyze_refused_by(<prefix> <file> <regex> <case>...): the test cli.analyze.<prefix>_<name> for
+# each case "name|subcommand[|arguments]", run on <file>, must fail with <regex>.
+set(_every_subcommand "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"
+                      "far_tail|far-tail" "compare|compare|a.h5")
+function(shockgas_analyze_refused_by prefix file regex)
+  foreach(_case IN LISTS ARGN)
+    string(REPLACE "|" ";" _parts "${_case}")
+    list(GET _parts 0 _name)
+    list(SUBLIST _parts 1 -1 _arguments)
+    shockgas_analyze_error(${prefix}_${_name} "${regex}" ${_arguments} ${file})
+  endforeach()
+endfunction()
+shockgas_analyze_refused_by(checkpoint_refused interrupted.h5.checkpoint
+  "^shockgas-analyze: error: 'interrupted\\.h5\\.checkpoint' is a shockgas-sim checkpoint \\(a run in progress\\), not an output: continue the run with shockgas-sim --resume and the same options$"
+  ${_every_subcommand})
 # 17b. A file that is not a run is named for what it is, in one line, by every subcommand: an analysis
 # results file (`scaling dec.h5` said "missing attribute /restitution in 'dec.h5'") before any work, and a
-# far-tail file (`decay tail.h5` said "missing group /timeseries") where the run is read; the user review
-# of 2026-11-27. far-tail reads the far-tail file, and crossover and scaling read a run's restitution
-# before the run (run_parameters in shockgas_analyze.cpp), so none of them is in the second list.
+# far-tail file (`decay tail.h5` said "missing group /timeseries") where the run is read (crossover and
+# scaling: where they read its restitution, run_parameters); the user review of 2026-11-27. far-tail reads
+# the far-tail file, so it is not in the second list.
 add_test(NAME cli.analyze.setup.results_input
          COMMAND $<TARGET_FILE:shockgas-analyze> decay a.h5 ${_window} -o results_input.h5
          WORKING_DIRECTORY "${_analyze_dir}")
 set_tests_properties(cli.analyze.setup.results_input PROPERTIES FIXTURES_REQUIRED analyze_cases
                      FIXTURES_SETUP analyze_results_input LABELS cli)
-foreach(_case IN ITEMS "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"
-                      "far_tail|far-tail" "compare|compare;a.h5")
-  string(REPLACE "|" ";" _parts "${_case}")
-  list(GET _parts 0 _name)
-  list(SUBLIST _parts 1 -1 _arguments)
-  shockgas_analyze_error(results_refused_${_name}
-                         "^shockgas-analyze: error: 'results_input\\.h5' is not a shockgas-sim output: it is an analysis results file \\(made by shockgas-analyze decay\\)$"
-                         ${_arguments} results_input.h5)
+shockgas_analyze_refused_by(results_refused results_input.h5
+  "^shockgas-analyze: error: 'results_input\\.h5' is not a shockgas-sim output: it is an analysis results file \\(made by shockgas-analyze decay\\)$"
+  ${_every_subcommand})
+foreach(_case IN LISTS _every_subcommand)
+  string(REGEX REPLACE "\\|.*" "" _name "${_case}")
   set_tests_properties(cli.analyze.results_refused_${_name} PROPERTIES FIXTURES_REQUIRED "analyze_cases;analyze_results_input")
 endforeach()
-foreach(_case IN ITEMS "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"
-                      "compare|compare;a.h5")
-  string(REPLACE "|" ";" _parts "${_case}")
-  list(GET _parts 0 _name)
-  list(SUBLIST _parts 1 -1 _arguments)
-  shockgas_analyze_error(tail_refused_${_name}
-                         "^shockgas-analyze: error: 'short_tail\\.h5' is not a shockgas-sim output: it is a far-tail sampler file \\(made by shockgas-tail; shockgas-analyze far-tail reads it\\)$"
-                         ${_arguments} short_tail.h5)
-endforeach()
+set(_every_subcommand_of_a_run ${_every_subcommand})
+list(REMOVE_ITEM _every_subcommand_of_a_run "far_tail|far-tail")
+shockgas_analyze_refused_by(tail_refused short_tail.h5
+  "^shockgas-analyze: error: 'short_tail\\.h5' is not a shockgas-sim output: it is a far-tail sampler file \\(made by shockgas-tail; shockgas-analyze far-tail reads it\\)$"
+  ${_every_subcommand_of_a_run})
 # 18. compare takes runs that differ in delta and the sub-threshold rule only: another N, r or seed is refused,
 # naming each difference (the run's value first); a run of another delta is compared.
 shockgas_analyze_error(compare_other_restitution
