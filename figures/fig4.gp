@@ -13,8 +13,8 @@ set format y "10^{%L}"
 set xrange [-3.2:3.2]
 set yrange [1e-5:2]
 set key top right
-set label 1 sprintf("scaling exponent β = %.3f ± %.3f (1/3 expected)\ncollapse distance at β = 1/3: %.2g", \
-    collapse_beta, collapse_beta_sigma, collapse_distance_at_one_third) at graph 0.03, graph 0.95 left font ',10'
+set label 1 sprintf("scaling exponent β = %.3f%s (1/3 expected)\ncollapse distance at β = 1/3: %.2g", \
+    collapse_beta, plus_minus(collapse_beta_sigma, '%.3f'), collapse_distance_at_one_third) at graph 0.03, graph 0.95 left font ',10'
 # Nine blocks in the order r = 0, 0.5, 0.9, each at three increasing times.
 rnames = '"r = 0" "r = 0.5" "r = 0.9"'
 plot for [b = 0:8] datadir.'/phi.dat' index b using 1:($2 > 0 ? $2 : NaN) with points lt (b / 3 + 1) pt (7 + 2 * (b % 3)) ps 0.6 \

@@ -47,8 +47,8 @@ if (!exists('time_power_exponent')) {
     unset label 1
 } else {
 plot datadir.'/vs_eps.dat' using 1:($3 * $1**1.5):($4 * $1**1.5) with yerrorbars lt 1 title 'N = K/ε', \
-     tp(x) lt 2 title sprintf('ε^{%.3f ± %.3f}  ΔAIC %.0f', time_power_exponent, time_power_exponent_sigma_scaled, time_power_delta_aic), \
-     tl(x) lt 3 title sprintf('ε^{-3/2}(ln 1/ε)^{%.2f ± %.2f}  ΔAIC %.0f', time_log_corrected_exponent, time_log_corrected_exponent_sigma_scaled, time_log_corrected_delta_aic), \
+     tp(x) lt 2 title sprintf('ε^{%.3f%s}  ΔAIC %.0f', time_power_exponent, plus_minus(time_power_exponent_sigma_scaled, '%.3f'), time_power_delta_aic), \
+     tl(x) lt 3 title sprintf('ε^{-3/2}(ln 1/ε)^{%.2f%s}  ΔAIC %.0f', time_log_corrected_exponent, plus_minus(time_log_corrected_exponent_sigma_scaled, '%.2f'), time_log_corrected_delta_aic), \
      tq(x) lt 4 title sprintf('ε^{-3/2}  ΔAIC %.0f', time_paper_delta_aic), \
      tm(x) lt 5 title sprintf('[ln(1/2ε)/2ε]^{3/2}  ΔAIC %.0f', time_mcnamara_young_delta_aic)
 }
@@ -68,8 +68,8 @@ if (!exists('mass_power_exponent')) {
     unset label 1
 } else {
 plot datadir.'/vs_eps.dat' using 1:($5 * $1):($6 * $1) with yerrorbars lt 1 title 'N = K/ε', \
-     mp(x) lt 2 title sprintf('ε^{%.3f ± %.3f}  ΔAIC %.0f', mass_power_exponent, mass_power_exponent_sigma_scaled, mass_power_delta_aic), \
-     ml(x) lt 3 title sprintf('ε^{-1}(ln 1/ε)^{%.3f ± %.3f}  ΔAIC %.0f', mass_log_corrected_exponent, mass_log_corrected_exponent_sigma_scaled, mass_log_corrected_delta_aic), \
+     mp(x) lt 2 title sprintf('ε^{%.3f%s}  ΔAIC %.0f', mass_power_exponent, plus_minus(mass_power_exponent_sigma_scaled, '%.3f'), mass_power_delta_aic), \
+     ml(x) lt 3 title sprintf('ε^{-1}(ln 1/ε)^{%.3f%s}  ΔAIC %.0f', mass_log_corrected_exponent, plus_minus(mass_log_corrected_exponent_sigma_scaled, '%.3f'), mass_log_corrected_delta_aic), \
      mq(x) lt 4 title sprintf('ε^{-1}  ΔAIC %.0f', mass_paper_delta_aic), \
      mm(x) lt 5 title sprintf('ln(1/2ε)/2ε  ΔAIC %.0f', mass_mcnamara_young_delta_aic)
 }
@@ -95,14 +95,14 @@ if (!exists('fit_gumbel_tau')) {
     set label 1 sprintf('Gumbel fit n/a: %s', fit_gumbel_note) noenhanced at graph 0.02, 0.06 font ',7' front
     plot datadir.'/vs_N.dat' using 2:3:4 with yerrorbars lt 1 title '⟨t_{collapse}⟩ ± SE', \
          datadir.'/vs_N.dat' using 2:9 with points lt 6 pt 6 title 'spread (s.d.)', \
-         tn(x) lt 2 title sprintf('N^{%.3f ± %.3f}  (χ^2/dof %.1f)', fit_mean_time_exponent, fit_mean_time_exponent_sigma, \
-             fit_mean_time_chi2_per_dof)
+         tn(x) lt 2 title sprintf('N^{%.3f%s}  (χ^2/dof %s)', fit_mean_time_exponent, plus_minus(fit_mean_time_exponent_sigma, '%.3f'), \
+             number_or_na(fit_mean_time_chi2_per_dof, '%.1f'))
     unset label 1
 } else {
 plot datadir.'/vs_N.dat' using 2:3:4 with yerrorbars lt 1 title '⟨t_{collapse}⟩ ± SE', \
      datadir.'/vs_N.dat' using 2:9 with points lt 6 pt 6 title 'spread (s.d.)', \
-     tn(x) lt 2 title sprintf('N^{%.3f ± %.3f}  (χ^2/dof %.1f)', fit_mean_time_exponent, fit_mean_time_exponent_sigma, \
-         fit_mean_time_chi2_per_dof), \
+     tn(x) lt 2 title sprintf('N^{%.3f%s}  (χ^2/dof %s)', fit_mean_time_exponent, plus_minus(fit_mean_time_exponent_sigma, '%.3f'), \
+         number_or_na(fit_mean_time_chi2_per_dof, '%.1f')), \
      tg(x) lt 3 title sprintf('Gumbel (N/m ≥ %.0f): a - τ ln N, τ = %.0f ± %.0f', fit_gumbel_min_regions, \
          fit_gumbel_tau, fit_gumbel_tau_sigma), \
      fit_gumbel_predicted_spread lt 3 dt 2 title sprintf('πτ/√6 = %.0f ± %.0f (measured %.0f ± %.0f)', \

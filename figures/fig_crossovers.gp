@@ -31,10 +31,10 @@ if (!exists('fit_t_stick_exponent')) {
     unset label 1
 } else {
 plot datadir.'/crossovers.dat' using 1:2:3 with yerrorbars lt 3 title 't_{dissip}', \
-     f_dissip(x) with lines lt 3 title sprintf('t_{dissip} ∝ ε^{%.3f ± %.3f}  (-1 at leading order; Haff: 0.345/(ε(1-ε)))', fit_t_dissip_exponent, fit_t_dissip_exponent_sigma), \
+     f_dissip(x) with lines lt 3 title sprintf('t_{dissip} ∝ ε^{%.3f%s}  (-1 at leading order; Haff: 0.345/(ε(1-ε)))', fit_t_dissip_exponent, plus_minus(fit_t_dissip_exponent_sigma, '%.3f')), \
      datadir.'/crossovers.dat' using 1:4:5 with yerrorbars lt 4 title 't_{stick}', \
-     f_stick(x) with lines lt 4 title sprintf('t_{stick} ∝ ε^{%.3f ± %.3f}  (-3/2 as ε → 0)', fit_t_stick_exponent, fit_t_stick_exponent_sigma), \
+     f_stick(x) with lines lt 4 title sprintf('t_{stick} ∝ ε^{%.3f%s}  (-3/2 as ε → 0)', fit_t_stick_exponent, plus_minus(fit_t_stick_exponent_sigma, '%.3f')), \
      datadir.'/crossovers.dat' using 1:10 with linespoints lt 4 dt 2 pt 6 title sprintf('exact ε^{-3/2} crossover, same rule: ε^{%.3f} here', fit_t_stick_reference_exponent), \
      datadir.'/crossovers.dat' using 1:6:7 with yerrorbars lt 5 title 'T(t_{stick})', \
-     f_temperature(x) with lines lt 5 title sprintf('T(t_{stick}) ∝ ε^{%.3f ± %.3f}  (expected +1)', fit_temperature_at_stick_exponent, fit_temperature_at_stick_exponent_sigma)
+     f_temperature(x) with lines lt 5 title sprintf('T(t_{stick}) ∝ ε^{%.3f%s}  (expected +1)', fit_temperature_at_stick_exponent, plus_minus(fit_temperature_at_stick_exponent_sigma, '%.3f'))
 }

@@ -34,3 +34,5 @@ fidelity_note = sprintf('%s fidelity', fidelity)
 # ' ± sigma' printed with format f, or ' ± n/a' where shockgas-analyze stored NaN
 # (one or two realizations; its note in the results file says why).
 plus_minus(sigma, f) = (sigma == sigma) ? sprintf(' ± '.f, sigma) : ' ± n/a'
+# A number printed with format f, or 'n/a' where it is NaN (a chi2/dof of two points).
+number_or_na(x, f) = (x == x) ? sprintf(f, x) : 'n/a'

@@ -17,7 +17,10 @@ the root attribute `input_path` (or --run). Estimator (analysis/src/temperature.
     sigma_k = 1.
 With one realization there is no jackknife and no standard error to weight by: the C++ prints
 "+- n/a" and stores exponent_sigma and chi2_per_dof NaN; then the exponent (an unweighted fit) is
-compared and the other two are reported as n/a (they agree when both sides give none).
+compared and the other two are reported as n/a (they agree when both sides give none). Two
+realizations are treated the same way since 2026-11-27: a standard error from two values (one degree
+of freedom) is no weight, and the jackknife's two one-realization replicas give a sigma of one degree
+of freedom, so the C++ fits unweighted and stores both NaN.
 
 The run: --run RUN.h5, else the results file's `input_path`. That path is as it was given to
 shockgas-analyze, relative to wherever it ran, so a relative one is looked for next to the results
@@ -88,6 +91,9 @@ def refit(run, t_lo, t_hi):
                          f"realization; the decay fit had more: this is not the analysed run")
     x = np.log(t)
 
+    # Fewer than this many realizations: the fit is unweighted (equal weights), as in the C++.
+    fewest_to_weigh = 3
+
     def fit(rows):
         """-slope and chi2 of the weighted fit on these realizations (rows of T)."""
         n = rows.shape[0]
@@ -95,17 +101,19 @@ def refit(run, t_lo, t_hi):
         se = rows.std(axis=0, ddof=1) / np.sqrt(n) if n >= 2 else np.zeros_like(mean)
         # No scatter above rounding (identical realizations, or one): equal weights, as the C++ does.
         se = np.where(se > 1e-12 * mean, se, mean)
+        if R < fewest_to_weigh:  # the whole run's rule, in every replica too
+            se = mean
         slope, chi2 = weighted_slope(x, np.log(mean), se / mean)   # d ln y = dy / y
         return -slope, chi2
 
     exponent, chi2 = fit(T)
-    if R < 2:  # one realization: nothing to leave out, the C++ stores NaN ("+- n/a")
+    if R < fewest_to_weigh:  # one realization, nothing to leave out; two, one degree of freedom: "+- n/a"
         jack_sigma = float("nan")
     else:
         jack = np.array([fit(np.delete(T, i, axis=0))[0] for i in range(R)])
         jack_sigma = float(np.sqrt((R - 1) / R * np.sum((jack - jack.mean()) ** 2)))
-    # One realization: no standard error, so no weights, and chi2 has no meaning (the C++ stores NaN).
-    chi2_per_dof = chi2 / (len(t) - 2) if R >= 2 else float("nan")
+    # Unweighted (one or two realizations): chi2 has no meaning (the C++ stores NaN).
+    chi2_per_dof = chi2 / (len(t) - 2) if R >= fewest_to_weigh else float("nan")
     return dict(exponent=exponent, exponent_sigma=jack_sigma, chi2_per_dof=chi2_per_dof, points=len(t),
                 realizations=R)
 

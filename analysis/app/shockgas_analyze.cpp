@@ -238,8 +238,12 @@ void run_decay(const AnalysisInvocation& invocation, const std::string& input, c
                               options.scan_step),
             std::vector<std::string>{input}, std::vector<std::string>{"t_centre", "t_lo", "t_hi", "exponent", "exponent_sigma", "chi2_per_dof",
                                      "points"});
-        if (history.realizations < 2)
-            scan_file->comment("exponent_sigma, chi2_per_dof nan: one realization, no scatter to estimate them");
+        if (history.realizations < 3)
+            scan_file->comment(history.realizations < 2
+                                   ? "exponent_sigma, chi2_per_dof nan: one realization, no scatter to estimate them"
+                                   : "exponent_sigma, chi2_per_dof nan: two realizations, too few to weigh the fit "
+                                     "by their scatter (it is unweighted) or to give the jackknife more than one "
+                                     "degree of freedom");
         for (const auto& w : windows)
             scan_file->row({std::sqrt(w.t_lo * w.t_hi), w.t_lo, w.t_hi, w.exponent, w.exponent_sigma, w.chi2_per_dof,
                             static_cast<double>(w.points)});
@@ -920,7 +924,8 @@ int main(int argc, char** argv) {
             // subcommand; then option values, then every output path, before
             // any work: a bad value or an unwritable path never costs a long
             // analysis, and no output may replace an input or another output.
-            check_inputs(all_inputs);
+            check_inputs(all_inputs, *far_tail ? "a far-tail sampler file (made by shockgas-tail)"
+                                               : "a shockgas-sim output");
             if (*decay) {
                 if (t_lo_option->count() > 0) {
                     require_positive("--t-lo", t_lo);

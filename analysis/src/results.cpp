@@ -139,18 +139,19 @@ void DataFile::row(const std::vector<double>& values) {
 void DataFile::comment(const std::string& text) { file_.write("# " + text + '\n'); }
 void DataFile::blank_line() { file_.write("\n\n"); }
 
-void check_inputs(const std::vector<std::string>& inputs) {
+void check_inputs(const std::vector<std::string>& inputs, const std::string& expected) {
     for (const auto& input : inputs) {
         const h5::Probe found = h5::probe(input);
         if (found.kind != h5::Probe::Kind::hdf5) continue;  // its reader names what it is not
         if (found.holds("checkpoint")) throw checkpoint_given_as_output(input);
         // A results file given for a run said "missing attribute /restitution" (user review,
         // 2026-11-27). A far-tail file is far-tail's input; any other subcommand's reader of a
-        // run (read_output, read_timeseries) refuses it in the same words.
+        // run (read_output, read_timeseries) refuses it as check_simulation_output words it.
         const auto file = h5::File::open_read(input);
         const auto root = file.root();
         if (root.has_attribute("kind") && root.attribute_string("kind") == "far_tail") continue;
-        check_simulation_output(root, input);
+        if (const std::string other = other_kind_of_file(root); !other.empty())
+            throw InputError(fmt::format("'{}' is not {}: it is {}", input, expected, other));
     }
 }
 

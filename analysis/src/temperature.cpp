@@ -259,7 +259,10 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
         return -fit_power_law(time, replica.mean, replica.sigma).slope;
     });
     result.exponent_sigma = jack.sigma;
-    result.exponent_sigma_note = jack.note;
+    // One realization: the jackknife's own advice (-R 2) would not do for this fit, whose sigma is n/a at
+    // R = 2 as well (above); the fit note beside it says -R 3.
+    result.exponent_sigma_note =
+        history.realizations < 2 ? "one realization: the jackknife has nothing to leave out; run -R 3 or more" : jack.note;
     return result;
 }
 

@@ -145,7 +145,7 @@ std::string memory_refusal(const SimulationParameters& p, const MemoryPlan& plan
     // The program itself is a fixed part that no N lowers: a budget below it
     // ("--max-memory 1K") said "needs about 16 MiB ...; lower N".
     if (program_bytes >= budget_bytes)
-        return fmt::format("not enough memory: any run needs at least {} (the program itself, whatever N), but {} "
+        return fmt::format("not enough memory: any run needs more than {} (the program itself, whatever N), but {} "
                            "may be used ({}); {}",
                            format_bytes(program_bytes), format_bytes(budget_bytes), source,
                            source == "--max-memory" ? "raise --max-memory"

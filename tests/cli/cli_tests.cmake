@@ -401,7 +401,7 @@ shockgas_cli_error(faults_memory_refused
 # A budget below the program itself: no N fits, so lowering N is not the advice (it was, "needs
 # about 16 MiB ...; lower N", until the user review of 2026-11-27).
 shockgas_cli_error(memory_below_the_program
-                   "^shockgas-sim: error: not enough memory: any run needs at least 16 MiB \\(the program itself, whatever N\\), but 1 KiB may be used \\(--max-memory\\); raise --max-memory$"
+                   "^shockgas-sim: error: not enough memory: any run needs more than 16 MiB \\(the program itself, whatever N\\), but 1 KiB may be used \\(--max-memory\\); raise --max-memory$"
                    -N 10 -t 10 --max-memory 1K)
 # Many realizations of a small N: what does not fit is their records, which lowering N would not
 # shrink (the refusal said "lower N" until the CLI audit of 2026-11-27).

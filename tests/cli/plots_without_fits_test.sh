@@ -66,4 +66,5 @@ rm -rf "$dir" && mkdir "$dir" || fail "cannot make $dir"
 grep -q '^fit_note = "one input: give runs of 2 or more eps"$' "$dir/crossovers.gp" || fail "one input: no fit_note"
 "$gnuplot" -e "datadir='$dir'; outbase='$dir/fig_crossovers'; styledir='$figures'; theorydir='.'; fidelity='test'; format='png'" \
     "$figures/fig_crossovers.gp" 2> "$dir/gnuplot.err" || { cat "$dir/gnuplot.err"; fail "fig_crossovers one input: gnuplot failed"; }
+[ -s "$dir/fig_crossovers.png" ] || fail "fig_crossovers one input: no figure"
 echo "fig_collapse and fig_crossovers drawn where their fits are n/a"

@@ -99,6 +99,18 @@ class OneRealization(unittest.TestCase):
         self.assertRegex(result.stdout, r"exponent_sigma +C\+\+ n/a +scipy n/a .* ok")
         self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ n/a +scipy n/a .* ok")
 
+    # Two realizations: the C++ fits unweighted with sigma and chi2 n/a (since 2026-11-27); the refit
+    # weighed by the two-value standard error and failed on every R = 2 result (a review found it).
+    def test_two_realizations_are_unweighted_on_both_sides(self):
+        directory = os.path.join(WORK, "two")
+        make(directory, "run2.h5", "-R", 2, "-s", 9)
+        analyze(directory, "run2.h5", "decay2.h5")
+        result = refit("decay2.h5", cwd=directory)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertRegex(result.stdout, r"exponent +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
+        self.assertRegex(result.stdout, r"exponent_sigma +C\+\+ n/a +scipy n/a .* ok")
+        self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ n/a +scipy n/a .* ok")
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -60,9 +60,11 @@ std::string PassThroughEngine::unsupported_reason(const std::vector<double>& mas
             return "unequal masses: an elastic collision then does not exchange velocities (--engine event)";
     // The event engines declare collapse at an inelastic collision slower than
     // collapse_speed; with g >= delta >= collapse_speed that cannot happen, so
-    // this engine, which reports none, gives the same answer.
+    // this engine, which reports none, gives the same answer. validate() refuses
+    // a collapse speed above delta > 0 for every engine; this keeps the engine's
+    // own precondition for callers of the library that skip it.
     if (collapse.collapse_speed > model.velocity_threshold)
-        return fmt::format("the collapse speed {} exceeds delta = {} (--engine event)", collapse.collapse_speed,
+        return fmt::format("the collapse speed {} exceeds delta = {}", collapse.collapse_speed,
                            model.velocity_threshold);
     if (mass.size() >= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
         return "more than 2^31 - 1 particles";

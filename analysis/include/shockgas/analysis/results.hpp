@@ -118,7 +118,8 @@ void check_outputs(const std::vector<OutputPath>& outputs, const std::vector<std
 // (an analysis results file, an initial condition: shockgas::check_simulation_output);
 // a far-tail sampler file passes, for far-tail, and the readers of a run
 // refuse it.
-void check_inputs(const std::vector<std::string>& inputs);
+// `expected` names what the subcommand reads, for the message ("'x.h5' is not <expected>: it is ...").
+void check_inputs(const std::vector<std::string>& inputs, const std::string& expected = "a shockgas-sim output");
 
 // Commits a run's outputs together: the data files are closed first (where a
 // full disk shows), then the results file is committed, then the data files
