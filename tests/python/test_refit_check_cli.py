@@ -88,28 +88,26 @@ class FindsTheAnalysedRun(unittest.TestCase):
         sc.one_line_error(self, refit("shocks.h5", cwd=directory), NAME, "no /decay section")
 
 
-class OneRealization(unittest.TestCase):
-    def test_sigma_is_not_applicable_on_both_sides(self):
-        directory = os.path.join(WORK, "one")
-        make(directory, "run1.h5", "-R", 1, "-s", 9)
-        analyze(directory, "run1.h5", "decay1.h5")
-        result = refit("decay1.h5", cwd=directory)
+class TooFewToWeigh(unittest.TestCase):
+    """One or two realizations: the exponent is the unweighted fit on both sides, sigma and chi2 n/a."""
+
+    def expect_unweighted_on_both_sides(self, realizations):
+        directory = os.path.join(WORK, "R%d" % realizations)
+        make(directory, "run.h5", "-R", realizations, "-s", 9)
+        analyze(directory, "run.h5", "decay.h5")
+        result = refit("decay.h5", cwd=directory)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         self.assertRegex(result.stdout, r"exponent +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
         self.assertRegex(result.stdout, r"exponent_sigma +C\+\+ n/a +scipy n/a .* ok")
         self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ n/a +scipy n/a .* ok")
 
-    # Two realizations: the C++ fits unweighted with sigma and chi2 n/a (since 2026-11-27); the refit
-    # weighed by the two-value standard error and failed on every R = 2 result (a review found it).
-    def test_two_realizations_are_unweighted_on_both_sides(self):
-        directory = os.path.join(WORK, "two")
-        make(directory, "run2.h5", "-R", 2, "-s", 9)
-        analyze(directory, "run2.h5", "decay2.h5")
-        result = refit("decay2.h5", cwd=directory)
-        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
-        self.assertRegex(result.stdout, r"exponent +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
-        self.assertRegex(result.stdout, r"exponent_sigma +C\+\+ n/a +scipy n/a .* ok")
-        self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ n/a +scipy n/a .* ok")
+    def test_one_realization(self):
+        self.expect_unweighted_on_both_sides(1)
+
+    # Two: the C++ fits unweighted with sigma and chi2 n/a since 2026-11-27; the refit weighed by the
+    # two-value standard error and failed on every R = 2 result until a review found it.
+    def test_two_realizations(self):
+        self.expect_unweighted_on_both_sides(2)
 
 
 if __name__ == "__main__":
