@@ -231,38 +231,34 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
         // there are none (with two, none worth the name, above), and the equal
         // weights put in their place (sigma of ln T = 1) give a chi2 and a slope
         // width that measure nothing (chi2/dof ~ 0.00). The exponent itself (the
-        // unweighted fit) stands.
+        // unweighted fit) stands. Its jackknife sigma is n/a too: one realization
+        // has nothing to leave out, and the two replicas of two, one realization
+        // each, spread with one degree of freedom (a one-sigma band of it covers
+        // 50%, not 68%; n/a, as the histogram tail's sigma with R = 2).
+        const bool one = history.realizations < 2;
         result.fit_sigma = std::numeric_limits<double>::quiet_NaN();
         result.chi2_per_dof = std::numeric_limits<double>::quiet_NaN();
-        result.fit_note = history.realizations < 2
-                              ? "one realization: no standard error of <T> to weigh the fit by; run -R 3 or more"
+        result.fit_note = one ? "one realization: no standard error of <T> to weigh the fit by; run -R 3 or more"
                               : "two realizations: the scatter of <T> over two is too rough to weigh the fit "
                                 "by, so it is unweighted; run -R 3 or more";
+        result.exponent_sigma = std::numeric_limits<double>::quiet_NaN();
+        result.exponent_sigma_note =
+            one ? "one realization: the jackknife has nothing to leave out; run -R 3 or more"
+                : "two realizations: the jackknife's two replicas, one realization each, give a sigma with one "
+                  "degree of freedom; run -R 3 or more";
+        return result;
     }
     // Each replica is the whole estimator on R - 1 realizations, its weights included: with the full
     // sample's weights frozen the jackknife came out 35-40% small at R = 3 ... 6 (coverage of alpha
     // +- sigma 0.42-0.55 where Student's t gives 0.58-0.64, against 0.64-0.67 with the weights
-    // recomputed; an independent audit's 200-400 synthetic ensembles per R, 2026-11-27). One
-    // realization: sigma n/a with jackknife's note.
-    if (history.realizations == 2) {
-        // The two replicas' spread, |alpha_1 - alpha_2| / 2, has one degree of freedom (a one-sigma
-        // band of it covers 50%, not 68%): n/a, as the histogram tail's sigma with R = 2.
-        result.exponent_sigma = std::numeric_limits<double>::quiet_NaN();
-        result.exponent_sigma_note =
-            "two realizations: the jackknife's two replicas, one realization each, give a sigma with one degree of "
-            "freedom; run -R 3 or more";
-        return result;
-    }
+    // recomputed; an independent audit's 200-400 synthetic ensembles per R, 2026-11-27).
     const Estimate jack = jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
         if (!left_out) return -full.slope;  // the full sample's fit, made above
         const auto replica = history.fit_points(inside, left_out, equal_weights);
         return -fit_power_law(time, replica.mean, replica.sigma).slope;
     });
     result.exponent_sigma = jack.sigma;
-    // One realization: the jackknife's own advice (-R 2) would not do for this fit, whose sigma is n/a at
-    // R = 2 as well (above); the fit note beside it says -R 3.
-    result.exponent_sigma_note =
-        history.realizations < 2 ? "one realization: the jackknife has nothing to leave out; run -R 3 or more" : jack.note;
+    result.exponent_sigma_note = jack.note;
     return result;
 }
 
