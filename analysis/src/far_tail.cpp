@@ -9,13 +9,14 @@
 #include <fmt/format.h>
 
 #include "shockgas/h5.hpp"
+#include "shockgas/output.hpp"
 
 namespace shockgas::analysis {
 
 FarTail read_far_tail(const std::string& path) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
-    if (!root.has_attribute("kind") || root.attribute_string("kind") != "far_tail")
+    if (!is_far_tail_file(root))
         throw h5::Error("not a far-tail file (shockgas-tail output has the root attribute kind = far_tail) in '" +
                         path + "'");
     FarTail tail;

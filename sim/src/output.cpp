@@ -374,11 +374,15 @@ InputError checkpoint_given_as_output(const std::string& path) {
                                   path));
 }
 
+bool is_far_tail_file(const h5::Group& root) {
+    return root.has_attribute("kind") && root.attribute_string("kind") == "far_tail";
+}
+
 std::string other_kind_of_file(const h5::Group& root) {
     const std::string program = root.has_attribute("program") ? root.attribute_string("program") : "";
     if (program == "shockgas-sim") return "";
     // As the files name themselves (write_provenance's program; shockgas-tail's kind).
-    if (root.has_attribute("kind") && root.attribute_string("kind") == "far_tail")
+    if (is_far_tail_file(root))
         return fmt::format("a far-tail sampler file (made by {}; shockgas-analyze far-tail reads it)",
                            program.empty() ? "shockgas-tail" : program);
     if (program.rfind("shockgas-analyze", 0) == 0) return fmt::format("an analysis results file (made by {})", program);

@@ -72,6 +72,9 @@ InputError checkpoint_given_as_output(const std::string& path);
 // output, and for a file that says nothing (one from before provenance, one
 // made by hand), which the readers take as before.
 std::string other_kind_of_file(const h5::Group& root);
+// Whether root is a shockgas-tail far-tail file (its root attribute kind = far_tail, which the
+// sampler writes): the one test for it, for other_kind_of_file and the analysis's readers.
+bool is_far_tail_file(const h5::Group& root);
 // Refuses, in one line, a file given where a shockgas-sim output is read that
 // is something else: "'PATH' is not a shockgas-sim output: it is <what>" (a
 // checkpoint: checkpoint_given_as_output). read_output and read_timeseries
