@@ -27,6 +27,15 @@ function(shockgas_error_case prefix case)
   set_tests_properties(cli.error.${prefix}_${_name} PROPERTIES LABELS cli)
 endfunction()
 
+# shockgas-burgers' refusal of its arguments (ARGN) as the test cli.error.burgers_<name>: one line
+# matching regex, status 2, and no profile -o burgers_<name>.dat; fixture: the run or file it reads.
+function(shockgas_burgers_error name fixture regex)
+  set(_output "${_cli_dir}/burgers_${name}.dat")
+  add_test(NAME cli.error.burgers_${name}
+           COMMAND ${_expect} "${regex}" "${_output}" -- $<TARGET_FILE:shockgas-burgers> ${ARGN} -o "${_output}")
+  set_tests_properties(cli.error.burgers_${name} PROPERTIES FIXTURES_REQUIRED ${fixture} LABELS cli)
+endfunction()
+
 # The far-tail sampler follows the same rule (status 2, one line, no file).
 foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;need >= 2 chains;--chains;1"
                       "block_probability;block probability must lie in;--block-probability;1.5"
@@ -103,34 +112,23 @@ foreach(_case IN ITEMS "particles|--particles '500'|-N;500" "ring_length|--ring-
   list(GET _case 0 _name)
   list(GET _case 1 _given)
   list(SUBLIST _case 2 -1 _arguments)
-  add_test(NAME cli.error.burgers_run_and_${_name}
-           COMMAND ${_expect}
-                   "^shockgas-burgers: error: --run '[^']*burgers_sticky\\.h5' and ${_given} exclude each other: --run takes the initial condition from the run \\(its N, L, seed and law, or its init file\\); give one of them$"
-                   "${_cli_dir}/burgers_run_and_${_name}.dat" --
-                   $<TARGET_FILE:shockgas-burgers> --run "${_cli_dir}/burgers_sticky.h5" ${_arguments}
-                   -o "${_cli_dir}/burgers_run_and_${_name}.dat")
-  set_tests_properties(cli.error.burgers_run_and_${_name} PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli)
+  shockgas_burgers_error(run_and_${_name} burgers_sticky
+    "^shockgas-burgers: error: --run '[^']*burgers_sticky\\.h5' and ${_given} exclude each other: --run takes the initial condition from the run \\(its N, L, seed and law, or its init file\\); give one of them$"
+    --run "${_cli_dir}/burgers_sticky.h5" ${_arguments})
 endforeach()
 # --init's file is the start itself: -N (like -L, -s and --realization) beside it was ignored as well.
-add_test(NAME cli.error.burgers_init_and_particles
-         COMMAND ${_expect}
-                 "^shockgas-burgers: error: --init '[^']*burgers_sticky\\.h5' and --particles '500' exclude each other: --init's file is the initial condition itself \\(its N, L and velocities\\); give one of them$"
-                 "${_cli_dir}/burgers_init_and_particles.dat" --
-                 $<TARGET_FILE:shockgas-burgers> --init "${_cli_dir}/burgers_sticky.h5" -N 500
-                 -o "${_cli_dir}/burgers_init_and_particles.dat")
-set_tests_properties(cli.error.burgers_init_and_particles PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli)
+shockgas_burgers_error(init_and_particles burgers_sticky
+  "^shockgas-burgers: error: --init '[^']*burgers_sticky\\.h5' and --particles '500' exclude each other: --init's file is the initial condition itself \\(its N, L and velocities\\); give one of them$"
+  --init "${_cli_dir}/burgers_sticky.h5" -N 500)
 # The profile is built on the lattice of the particles' start: a run made with --positions uniform
 # is refused in one line naming the file, the first particle off the lattice and what is needed (it
 # said "burgers: particles are not equally spaced (particle 1)" until the user review of 2026-11-27).
 add_test(NAME cli.setup.burgers_uniform_run
          COMMAND ${_sim} -N 100 --positions uniform -t 10 --snapshot-times 10 -q -o "${_cli_dir}/burgers_uniform.h5")
 set_tests_properties(cli.setup.burgers_uniform_run PROPERTIES FIXTURES_SETUP burgers_uniform LABELS cli)
-add_test(NAME cli.error.burgers_off_lattice_run
-         COMMAND ${_expect}
-                 "^shockgas-burgers: error: '[^']*burgers_uniform\\.h5' starts from particles that are not equally spaced \\(particle [0-9]+ is off the lattice x_0 \\+ i L/N\\): the Burgers profile is built on the lattice of the particles' start, so it needs equally spaced particles, as shockgas-sim --positions lattice \\(the default\\) places them$"
-                 "${_cli_dir}/burgers_off_lattice_run.dat" --
-                 $<TARGET_FILE:shockgas-burgers> --run "${_cli_dir}/burgers_uniform.h5" -o "${_cli_dir}/burgers_off_lattice_run.dat")
-set_tests_properties(cli.error.burgers_off_lattice_run PROPERTIES FIXTURES_REQUIRED burgers_uniform LABELS cli)
+shockgas_burgers_error(off_lattice_run burgers_uniform
+  "^shockgas-burgers: error: '[^']*burgers_uniform\\.h5' starts from particles that are not equally spaced \\(particle [0-9]+ is off the lattice x_0 \\+ i L/N\\): the Burgers profile is built on the lattice of the particles' start, so it needs equally spaced particles, as shockgas-sim --positions lattice \\(the default\\) places them$"
+  --run "${_cli_dir}/burgers_uniform.h5")
 # Every text output begins with the version, the date and the start (seed, realization and law, or
 # the run or init file): two profiles of other seeds could not be told apart before 2026-11-27.
 add_test(NAME cli.burgers_provenance
@@ -258,13 +256,9 @@ if(SHOCKGAS_PYTHON)
                      --init "${_cli_dir}/good.h5" --ring-length 7)
   set_tests_properties(cli.error.init_ring_length_disagrees PROPERTIES FIXTURES_REQUIRED bad_init)
   # shockgas-burgers refuses an init file whose particles are not equally spaced, naming it.
-  add_test(NAME cli.error.burgers_off_lattice_init
-           COMMAND ${_expect}
-                   "^shockgas-burgers: error: init file '[^']*off_lattice\\.h5' starts from particles that are not equally spaced \\(particle 1 is off the lattice x_0 \\+ i L/N\\): the Burgers profile is built on the lattice"
-                   "${_cli_dir}/burgers_off_lattice_init.dat" --
-                   $<TARGET_FILE:shockgas-burgers> --init "${_cli_dir}/off_lattice.h5" -t 1
-                   -o "${_cli_dir}/burgers_off_lattice_init.dat")
-  set_tests_properties(cli.error.burgers_off_lattice_init PROPERTIES FIXTURES_REQUIRED bad_init LABELS cli)
+  shockgas_burgers_error(off_lattice_init bad_init
+    "^shockgas-burgers: error: init file '[^']*off_lattice\\.h5' starts from particles that are not equally spaced \\(particle 1 is off the lattice x_0 \\+ i L/N\\): the Burgers profile is built on the lattice"
+    --init "${_cli_dir}/off_lattice.h5" -t 1)
 endif()
 
 # A good run prints the T(t) table and writes a complete file.

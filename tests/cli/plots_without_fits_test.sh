@@ -13,6 +13,11 @@ set -u
 analyze=$1 dump=$2 gnuplot=$3 figures=$4 work=$5
 cd "$work" || exit 1
 fail() { echo "FAIL: $*"; exit 1; }
+plot() {  # plot FIGURE DIR: gnuplot draws DIR/FIGURE.png from the files in DIR, or the test fails
+    "$gnuplot" -e "datadir='$2'; outbase='$2/$1'; styledir='$figures'; theorydir='.'; fidelity='test'; format='png'" \
+        "$figures/$1.gp" 2> "$2/gnuplot.err" || { cat "$2/gnuplot.err"; fail "$2: gnuplot failed"; }
+    [ -s "$2/$1.png" ] || fail "$2: no figure"
+}
 draw() {  # draw NAME EPS_INPUTS... -- N_INPUTS...
     local name=$1; shift
     local eps=() n=()
@@ -30,10 +35,18 @@ draw() {  # draw NAME EPS_INPUTS... -- N_INPUTS...
         >/dev/null || fail "$name: collapse --vs N failed"
     "$dump" gnuplot-vars "$dir/vs_N.h5" /first_collapse --prefix fit --output "$dir/vs_N.gp" \
         || fail "$name: dump first_collapse"
-    "$gnuplot" -e "datadir='$dir'; outbase='$dir/fig_collapse'; styledir='$figures'; theorydir='.'; fidelity='test'; format='png'" \
-        "$figures/fig_collapse.gp" 2> "$dir/gnuplot.err" || { cat "$dir/gnuplot.err"; fail "$name: gnuplot failed"; }
-    [ -s "$dir/fig_collapse.png" ] || fail "$name: no figure"
+    plot fig_collapse "$dir"
     echo "$name: drawn"
+}
+draw_crossovers() {  # draw_crossovers NAME NOTE_REGEX INPUTS...: the note stored, then the figure
+    local dir="fig_crossovers_$1" note=$2; shift 2
+    rm -rf "$dir" && mkdir "$dir" || fail "cannot make $dir"
+    "$analyze" crossover "$@" -o "$dir/crossovers.h5" --data "$dir/crossovers.dat" >/dev/null \
+        || fail "$dir: crossover failed"
+    "$dump" gnuplot-vars "$dir/crossovers.h5" /scaling_in_eps --prefix fit --output "$dir/crossovers.gp" \
+        || fail "$dir: dump scaling_in_eps"
+    grep -q "$note" "$dir/crossovers.gp" || fail "$dir: no fit_note matching $note"
+    plot fig_crossovers "$dir"
 }
 # The fits are n/a, so the notes stand where the numbers would: the figure
 # has only them to go on.
@@ -47,24 +60,7 @@ grep -q '^time_note = "one input: give runs of 2 or more eps"$' fig_collapse_one
 grep -q '^fit_note = "one input: give runs of 2 or more N"$' fig_collapse_one_input/vs_N.gp || fail "one input: no fit_note"
 
 # fig_crossovers, its fits n/a for the same reason.
-dir=fig_crossovers_no_sigma
-rm -rf "$dir" && mkdir "$dir" || fail "cannot make $dir"
-"$analyze" crossover e05.h5 e10_one.h5 -o "$dir/crossovers.h5" --data "$dir/crossovers.dat" >/dev/null \
-    || fail "crossover failed"
-"$dump" gnuplot-vars "$dir/crossovers.h5" /scaling_in_eps --prefix fit --output "$dir/crossovers.gp" \
-    || fail "dump scaling_in_eps"
-grep -q '^fit_note = "the fits over eps are weighted by each input' "$dir/crossovers.gp" || fail "no fit_note"
-"$gnuplot" -e "datadir='$dir'; outbase='$dir/fig_crossovers'; styledir='$figures'; theorydir='.'; fidelity='test'; format='png'" \
-    "$figures/fig_crossovers.gp" 2> "$dir/gnuplot.err" || { cat "$dir/gnuplot.err"; fail "fig_crossovers: gnuplot failed"; }
-[ -s "$dir/fig_crossovers.png" ] || fail "fig_crossovers: no figure"
+draw_crossovers no_sigma '^fit_note = "the fits over eps are weighted by each input' e05.h5 e10_one.h5
 # One input has no slope: the note says so (crossover wrote neither fits nor note until 2026-11-27).
-dir=fig_crossovers_one_input
-rm -rf "$dir" && mkdir "$dir" || fail "cannot make $dir"
-"$analyze" crossover e05.h5 -o "$dir/crossovers.h5" --data "$dir/crossovers.dat" >/dev/null || fail "crossover one input"
-"$dump" gnuplot-vars "$dir/crossovers.h5" /scaling_in_eps --prefix fit --output "$dir/crossovers.gp" \
-    || fail "dump scaling_in_eps (one input)"
-grep -q '^fit_note = "one input: give runs of 2 or more eps"$' "$dir/crossovers.gp" || fail "one input: no fit_note"
-"$gnuplot" -e "datadir='$dir'; outbase='$dir/fig_crossovers'; styledir='$figures'; theorydir='.'; fidelity='test'; format='png'" \
-    "$figures/fig_crossovers.gp" 2> "$dir/gnuplot.err" || { cat "$dir/gnuplot.err"; fail "fig_crossovers one input: gnuplot failed"; }
-[ -s "$dir/fig_crossovers.png" ] || fail "fig_crossovers one input: no figure"
+draw_crossovers one_input '^fit_note = "one input: give runs of 2 or more eps"$' e05.h5
 echo "fig_collapse and fig_crossovers drawn where their fits are n/a"
