@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -282,6 +283,10 @@ OutputFile read_result(const h5::Group& root, const std::string& file) {
     out.version = root.attribute_string("version");
     if (root.has_attribute("date")) out.date = root.attribute_string("date");
     if (root.has_attribute("host")) out.host = root.attribute_string("host");
+    if (root.has_attribute("merged_from")) {
+        std::istringstream lines(root.attribute_string("merged_from"));
+        for (std::string line; std::getline(lines, line);) out.merged_from.push_back(line);
+    }
 
     EnsembleResult& r = out.result;
     r.engine = p.engine;
@@ -475,12 +480,17 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
     }
     OutputFile merged = parts.front();
     EnsembleResult& r = merged.result;
-    const auto part_record = [&](std::size_t i) {
+    // A part that was itself merged brings its own parts along, indented under
+    // its line, so that a merge of merges still names every file it came from.
+    merged.merged_from.clear();
+    const auto record_part = [&](std::size_t i) {
         const SimulationParameters& p = parts[i].parameters;
-        return fmt::format("{} (realizations {} to {})", i < names.size() ? names[i] : std::to_string(i),
-                           p.first_realization, p.first_realization + p.realizations - 1);
+        merged.merged_from.push_back(fmt::format("{} (realizations {} to {})",
+                                                 i < names.size() ? names[i] : std::to_string(i), p.first_realization,
+                                                 p.first_realization + p.realizations - 1));
+        for (const auto& line : parts[i].merged_from) merged.merged_from.push_back("  " + line);
     };
-    merged.merged_from = {part_record(0)};
+    record_part(0);
     const std::string signature = physics_signature(parts.front().parameters);
     std::int64_t next_realization = parts.front().parameters.first_realization + parts.front().parameters.realizations;
     bool interrupted = r.status == "interrupted", collapsed = r.status == "collapsed";
@@ -500,7 +510,7 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
             throw InputError(fmt::format("merge: '{}' starts at realization {}, expected {}", name,
                                          part.parameters.first_realization, next_realization));
         next_realization += part.parameters.realizations;
-        merged.merged_from.push_back(part_record(i));
+        record_part(i);
         const EnsembleResult& p = part.result;
         const std::int64_t offset = r.realizations;
         grow_realizations(r, offset + p.realizations);

@@ -211,6 +211,36 @@ TEST(Output, PartsMergeIntoTheSingleRunResult) {
     EXPECT_THROW(shockgas::merge_outputs({parts[1], parts[0]}, {names[1], names[0]}), shockgas::InputError);
 }
 
+// A merged file merged again named only the merged file, so the parts it came from
+// were lost from the provenance: each part's own merged_from now follows its line.
+TEST(Output, MergeOfMergedFilesNamesEveryPart) {
+    shockgas::SimulationParameters p;
+    p.particles = 100;
+    p.t_max = 5;
+    std::vector<std::string> names;
+    std::vector<shockgas::OutputFile> parts;
+    for (const int first : {0, 1, 2}) {
+        auto part_parameters = p;
+        part_parameters.first_realization = first;
+        part_parameters.realizations = 1;
+        names.push_back(temp_path(fmt::format("nested_part{}.h5", first)));
+        shockgas::write_output(names.back(), part_parameters, shockgas::run_ensemble(part_parameters, nullptr));
+        parts.push_back(shockgas::read_output(names.back()));
+    }
+    const auto inner_path = temp_path("nested_inner.h5");
+    shockgas::write_merged_output(inner_path, shockgas::merge_outputs({parts[0], parts[1]}, {names[0], names[1]}),
+                                  "test");
+    const auto inner = shockgas::read_output(inner_path);
+    EXPECT_EQ(inner.merged_from, (std::vector<std::string>{names[0] + " (realizations 0 to 0)",
+                                                           names[1] + " (realizations 1 to 1)"}));
+    EXPECT_TRUE(parts[2].merged_from.empty());
+    const auto outer = shockgas::merge_outputs({inner, parts[2]}, {inner_path, names[2]});
+    EXPECT_EQ(outer.merged_from,
+              (std::vector<std::string>{inner_path + " (realizations 0 to 1)", "  " + names[0] + " (realizations 0 to 0)",
+                                        "  " + names[1] + " (realizations 1 to 1)",
+                                        names[2] + " (realizations 2 to 2)"}));
+}
+
 // copy_realization is how merge_outputs and gather_checkpoint move a
 // realization: it must replace the target's records of that realization where
 // they stood (EnsembleResult keeps snapshots by (realization, time) and

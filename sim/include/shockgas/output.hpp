@@ -55,8 +55,10 @@ struct OutputFile {
     std::string version;  // provenance: git describe of the program that wrote it
     std::string date;     // provenance: when the run was made (UTC; a merged file: its first part's)
     std::string host;     // provenance: where (a merged file: its first part's host)
-    // Set by merge_outputs: the parts, in order, each "NAME (realizations F to L)",
-    // which write_merged_output records beside the merge's own provenance.
+    // Set by merge_outputs: the parts, in order, each "NAME (realizations F to L)"
+    // followed by that part's own merged_from indented by two spaces (a merged
+    // part), which write_merged_output records beside the merge's own provenance
+    // and read_output reads back (empty for a file that was not merged).
     std::vector<std::string> merged_from;
 };
 // Refuses (InputError) a checkpoint, and (h5::Error, naming the file and
