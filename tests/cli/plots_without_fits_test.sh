@@ -7,7 +7,8 @@
 # the scripts used to stop on gnuplot's "undefined variable". Now they draw the
 # points and name the note.
 # WORKDIR holds the analyze fixture's runs: col06.h5 (three realizations,
-# r = 0.6), col_one.h5 (one, r = 0.5), col4k.h5 (three, N = 4000), e05.h5
+# r = 0.6), col_one.h5 (one, r = 0.5), col4k.h5 (three, N = 4000), col300.h5
+# (three, N = 300: N/m = 30, below the Gumbel fit's 50 regions), e05.h5
 # (four realizations, r = 0.9), e10_one.h5 (one, r = 0.8).
 set -u
 analyze=$1 dump=$2 gnuplot=$3 figures=$4 work=$5
@@ -58,6 +59,11 @@ draw one_input col_one.h5 -- col_one.h5
 grep -q '^time_note = "one input: give runs of 2 or more eps"$' fig_collapse_one_input/time_forms.gp \
     || fail "one input: no time_note"
 grep -q '^fit_note = "one input: give runs of 2 or more N"$' fig_collapse_one_input/vs_N.gp || fail "one input: no fit_note"
+# The fits across N stand but the Gumbel fit alone is n/a: only col.h5 has N/m >= 50.
+draw gumbel_na col06.h5 col.h5 -- col300.h5 col.h5
+grep -q '^fit_gumbel_note = "1 run with N/<m> >= 50; the Gumbel fit needs 2 N"$' fig_collapse_gumbel_na/vs_N.gp \
+    || fail "Gumbel n/a: no fit_gumbel_note"
+grep -q '^fit_mean_time_exponent = ' fig_collapse_gumbel_na/vs_N.gp || fail "Gumbel n/a: the fits across N are missing"
 
 # fig_crossovers, its fits n/a for the same reason.
 draw_crossovers no_sigma '^fit_note = "the fits over eps are weighted by each input' e05.h5 e10_one.h5
