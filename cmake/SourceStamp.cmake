@@ -1,31 +1,20 @@
 # Run at build time (cmake -P). Writes STAMP = SHA-256 over the simulator's
-# sources and the compiler and flags, rewriting the file only when that hash
-# changes. Simulations depend on this stamp instead of on the shockgas-sim
-# binary: the binary is relinked at every commit (it embeds git describe for
-# provenance), but a simulation is stale only when the code that computes it,
-# or the way it is compiled, changed. (Globbing here is deliberate: the stamp
-# must cover every file in these directories, including ones added later.)
+# sources and the compiler and flags (shockgas_source_hash, SourceHash.cmake),
+# rewriting the file only when that hash changes. Simulations depend on this
+# stamp instead of on the shockgas-sim binary: the binary is relinked at every
+# commit (it embeds git describe for provenance), but a simulation is stale only
+# when the code that computes it, or the way it is compiled, changed. The same
+# hash is compiled into the programs (BuildInfo.cmake) and recorded in every
+# output and checkpoint as simulator_sha256.
 #
 # DIRECTORIES is separated by "|", not ";": a ";" inside a -D value reaches
 # this script escaped ("\;"), which makes the whole value one directory that
 # does not exist, and the stamp then hashed no file at all (so until this was
 # found, changing the simulator never reran a simulation). STAMP.files lists
 # what was hashed; ctest pipeline.stamp_covers_sim_sources checks it.
+include(${CMAKE_CURRENT_LIST_DIR}/SourceHash.cmake)
 string(REPLACE "|" ";" _directories "${DIRECTORIES}")
-set(_content "${COMPILER_INFO}\n")
-foreach(dir IN LISTS _directories)
-  if(NOT IS_DIRECTORY "${dir}")
-    message(FATAL_ERROR "SourceStamp: no directory '${dir}'")
-  endif()
-  file(GLOB_RECURSE _files LIST_DIRECTORIES false "${dir}/*")
-  list(SORT _files)
-  foreach(f IN LISTS _files)
-    file(SHA256 "${f}" _hash)
-    file(RELATIVE_PATH _relative "${SOURCE_DIR}" "${f}")
-    string(APPEND _content "${_hash}  ${_relative}\n")
-  endforeach()
-endforeach()
-string(SHA256 _stamp "${_content}")
+shockgas_source_hash(_stamp _content "${SOURCE_DIR}" "${_directories}" "${COMPILER_INFO}")
 set(_old "")
 if(EXISTS "${STAMP}")
   file(READ "${STAMP}" _old)

@@ -17,12 +17,11 @@ if(SHOCKGAS_PIPELINE_FROM_INSTALL)
   add_custom_target(shockgas_sim_stamp)
 else()
   set(SHOCKGAS_SIM_STAMP "${CMAKE_BINARY_DIR}/shockgas-sim.stamp")
-  string(TOUPPER "${CMAKE_BUILD_TYPE}" _pipeline_build_type)
   add_custom_target(shockgas_sim_stamp
     COMMAND ${CMAKE_COMMAND}
             -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
-            "-DDIRECTORIES=${PROJECT_SOURCE_DIR}/sim/src|${PROJECT_SOURCE_DIR}/sim/include|${PROJECT_SOURCE_DIR}/sim/app"
-            "-DCOMPILER_INFO=${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION} ${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_pipeline_build_type}}"
+            "-DDIRECTORIES=${SHOCKGAS_SIM_DIRECTORIES}"
+            "-DCOMPILER_INFO=${SHOCKGAS_SIM_COMPILER_INFO}"
             -DSTAMP=${SHOCKGAS_SIM_STAMP}
             -P ${PROJECT_SOURCE_DIR}/cmake/SourceStamp.cmake
     BYPRODUCTS ${SHOCKGAS_SIM_STAMP} ${SHOCKGAS_SIM_STAMP}.files

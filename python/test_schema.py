@@ -29,7 +29,7 @@ except ImportError as error:  # pragma: no cover
 
 # Attribute kinds the readers rely on (analysis/, python/): strings are parsed as text, the rest as numbers.
 STRING_ATTRIBUTES = {"subthreshold", "sample_times", "snapshot_times", "histogram_times", "init_file",
-                     "init_file_sha256", "positions", "velocity_distribution", "initial_condition", "engine", "status", "program", "version", "compiler",
+                     "init_file_sha256", "simulator_sha256", "positions", "velocity_distribution", "initial_condition", "engine", "status", "program", "version", "compiler",
                      "compiler_flags", "build_type", "hdf5_version", "host", "date", "merged_by", "merged_date",
                      "merged_from"}
 INTEGER_ATTRIBUTES = {"particles", "samples_per_decade", "histogram_bins", "realizations", "seed",

@@ -26,11 +26,12 @@ int main(int argc, char** argv) {
         std::vector<shockgas::OutputFile> parts;
         for (const auto& input : inputs) {
             parts.push_back(shockgas::read_output(input));
-            // The merged file records this program's version as its
-            // provenance, so it must be the version that made the parts.
-            if (parts.back().version != shockgas::build_info().version)
-                throw shockgas::InputError(fmt::format("'{}' was made by version {}, this is {}: merge with the same "
-                                                       "build that ran the parts",
+            // The merged file records this program's provenance (its version and
+            // simulator_sha256), so it must have the simulator that made the parts;
+            // merged_from names each part's own version.
+            if (!shockgas::made_by_this_simulator(parts.back().version, parts.back().simulator_sha256))
+                throw shockgas::InputError(fmt::format("'{}' was made by version {}, this is {}, whose simulator "
+                                                       "differs: merge with a build of the simulator that ran the parts",
                                                        input, parts.back().version, shockgas::build_info().version));
         }
         const auto merged = shockgas::merge_outputs(parts, inputs);

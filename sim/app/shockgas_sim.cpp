@@ -161,7 +161,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--checkpoint", checkpoint_file, "checkpoint file (default: OUTPUT.checkpoint)");
     app.add_flag("--resume", checkpoint.resume,
-                 "continue from the checkpoint if there is one of this run (same parameters and code version); "
+                 "continue from the checkpoint if there is one of this run (same parameters and simulator: sources, compiler "
+                 "and flags, recorded as simulator_sha256); "
                  "the output is bit-identical to an uninterrupted run. Without a checkpoint, start from t = 0; one of a "
                  "run with other parameters is refused, naming them");
     double progress_interval = 60.0;

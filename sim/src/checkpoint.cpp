@@ -301,9 +301,10 @@ std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>
     { const CheckpointLock running(checkpoint_base(file)); }
     const std::string remove = both_generations(bases);
     const std::string at = fmt::format("{}, saved {}", checkpoint_progress(checkpoint), saved_at(file));
-    if (checkpoint.version != build_info().version)
-        throw InputError(fmt::format("'{}' holds an interrupted run of shockgas {} ({}), which only that version can "
-                                     "continue (this is {}): remove {} to start anew",
+    if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256))
+        throw InputError(fmt::format("'{}' holds an interrupted run of shockgas {} ({}), which only a build of that "
+                                     "simulator can continue (this is {}, whose simulator differs): remove {} to start "
+                                     "anew",
                                      file, checkpoint.version, at, build_info().version, remove));
     if (const std::string differences = run_differences(checkpoint, run, true); !differences.empty())
         throw InputError(fmt::format("'{}' holds an interrupted run with other parameters ({} in the checkpoint; {}): "
@@ -344,7 +345,8 @@ void check_resume_checkpoints(const std::vector<std::string>& files, const Simul
             } catch (const std::exception&) {
                 continue;  // damaged: passed over with a warning when the run loads it
             }
-            if (checkpoint.version != build_info().version) continue;  // ignored with a note when loaded
+            if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256))
+                continue;  // ignored with a note when loaded
             check_checkpoint_of_run(file, checkpoint, run);
         }
 }
@@ -363,7 +365,8 @@ bool is_finished_output_of_run(const std::string& output, const std::vector<std:
     if (found.kind != h5::Probe::Kind::hdf5 || !found.holds("timeseries")) return false;
     try {
         const OutputFile existing = read_output(output);
-        return existing.result.status != "interrupted" && existing.version == build_info().version &&
+        return existing.result.status != "interrupted" &&
+               made_by_this_simulator(existing.version, existing.simulator_sha256) &&
                run_signature(existing.parameters) == run_signature(run) && existing.result.engine == run.engine;
     } catch (const std::exception&) {
         return false;  // damaged or not an output: replaced, as without --resume
@@ -425,16 +428,17 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
                             candidate, realization_range(checkpoint.parameters), realization_range(parameters)));
             return std::nullopt;
         }
-        if (checkpoint.version != build_info().version) {
-            // Another build continues nothing bit for bit, so the run starts
+        if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) {
+            // Another simulator continues nothing bit for bit, so the run starts
             // anew; but the hours in the old checkpoint are moved aside, not
-            // overwritten by this run's first checkpoint, so that the build
-            // that wrote them can still finish them.
+            // overwritten by this run's first checkpoint, so that a build of the
+            // simulator that wrote them can still finish them.
             const std::vector<std::string> kept = keep_aside(path, checkpoint.version);
-            say(fmt::format("checkpoint '{}' was written by shockgas {}, this is {}: starting from t = 0; kept it as "
-                            "'{}'{} (that build can continue it there with --checkpoint; remove it when done)",
+            say(fmt::format("checkpoint '{}' was written by shockgas {}, this is {}, whose simulator differs: starting "
+                            "from t = 0; kept it as '{}'{} (a build of {} can continue it there with --checkpoint; "
+                            "remove it when done)",
                             candidate, checkpoint.version, build_info().version, kept.front(),
-                            kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
+                            kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string(), checkpoint.version));
             return std::nullopt;
         }
         if (const std::string problem = layout_problem(checkpoint, parameters, sample_times); !problem.empty()) {
@@ -446,6 +450,10 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
         else if (candidate != path)
             say(fmt::format("'{}' is missing (killed while replacing it); resuming from the previous checkpoint '{}'",
                             path, candidate));
+        if (checkpoint.version != build_info().version)
+            say(fmt::format("checkpoint '{}' was written by shockgas {}, this is {}: the same simulator (sources, "
+                            "compiler and flags), so it is continued",
+                            candidate, checkpoint.version, build_info().version));
         return checkpoint;
     }
     if (damaged.size() == 1)
@@ -488,6 +496,7 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
     Checkpoint out;
     out.parameters = parameters;
     out.version = build_info().version;
+    out.simulator_sha256 = build_info().simulator_sha256;
     out.signature = run_signature(parameters);
     EnsembleResult& r = out.result;
     r.times = sample_times;
@@ -516,8 +525,8 @@ std::optional<Checkpoint> gather_checkpoint(const std::vector<std::string>& cand
                 say(fmt::format("warning: passing over checkpoint '{}': {}", candidate, error.what()));
                 continue;
             }
-            if (c.signature != run_signature(c.parameters) || c.version != build_info().version)
-                continue;  // another code version, or not a whole checkpoint
+            if (c.signature != run_signature(c.parameters) || !made_by_this_simulator(c.version, c.simulator_sha256))
+                continue;  // another simulator, or not a whole checkpoint
             // Another run: refused, as load_checkpoint does.
             check_checkpoint_of_run(candidate, c, whole_run != nullptr ? *whole_run : parameters, whole_run != nullptr);
             if (physics_signature(c.parameters) != physics || !layout_problem(c, c.parameters, sample_times).empty())

@@ -281,6 +281,7 @@ OutputFile read_result(const h5::Group& root, const std::string& file) {
                          velocity_law_from_string(root.attribute_string("velocity_distribution"))};
     p.engine = root.attribute_string("engine");
     out.version = root.attribute_string("version");
+    if (root.has_attribute("simulator_sha256")) out.simulator_sha256 = root.attribute_string("simulator_sha256");
     if (root.has_attribute("date")) out.date = root.attribute_string("date");
     if (root.has_attribute("host")) out.host = root.attribute_string("host");
     if (root.has_attribute("merged_from")) {
@@ -485,9 +486,9 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
     merged.merged_from.clear();
     const auto record_part = [&](std::size_t i) {
         const SimulationParameters& p = parts[i].parameters;
-        merged.merged_from.push_back(fmt::format("{} (realizations {} to {})",
+        merged.merged_from.push_back(fmt::format("{} (realizations {} to {}, shockgas {})",
                                                  i < names.size() ? names[i] : std::to_string(i), p.first_realization,
-                                                 p.first_realization + p.realizations - 1));
+                                                 p.first_realization + p.realizations - 1, parts[i].version));
         for (const auto& line : parts[i].merged_from) merged.merged_from.push_back("  " + line);
     };
     record_part(0);
@@ -503,9 +504,9 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
         if (part.result.engine != r.engine)
             throw InputError(fmt::format("merge: '{}' used engine {}, '{}' used {}", name, part.result.engine, names[0],
                                          r.engine));
-        if (part.version != merged.version)
-            throw InputError(fmt::format("merge: '{}' was made by version {}, '{}' by {}", name, part.version, names[0],
-                                         merged.version));
+        if (!same_simulator(part.version, part.simulator_sha256, merged.version, merged.simulator_sha256))
+            throw InputError(fmt::format("merge: '{}' was made by version {}, '{}' by {}, whose simulators differ", name,
+                                         part.version, names[0], merged.version));
         if (part.parameters.first_realization != next_realization)
             throw InputError(fmt::format("merge: '{}' starts at realization {}, expected {}", name,
                                          part.parameters.first_realization, next_realization));
@@ -573,6 +574,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     out.parameters = std::move(partial.parameters);
     out.result = std::move(partial.result);
     out.version = std::move(partial.version);
+    out.simulator_sha256 = std::move(partial.simulator_sha256);
     out.source = path;
     const auto group = root.open_group("checkpoint");
     out.signature = group.attribute_string("run_signature");

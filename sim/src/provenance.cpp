@@ -23,6 +23,16 @@ std::string host_name() {
     return name;
 }
 
+bool same_simulator(const std::string& version, const std::string& simulator_sha256, const std::string& other_version,
+                    const std::string& other_simulator_sha256) {
+    if (!simulator_sha256.empty() && !other_simulator_sha256.empty()) return simulator_sha256 == other_simulator_sha256;
+    return version == other_version;
+}
+
+bool made_by_this_simulator(const std::string& version, const std::string& simulator_sha256) {
+    return same_simulator(version, simulator_sha256, build_info().version, build_info().simulator_sha256);
+}
+
 std::string provenance_comment(const std::string& program, const std::string& source, bool dated) {
     std::string text = "# " + program + " " + build_info().version;
     if (!source.empty()) text += ", from " + source;
@@ -35,6 +45,7 @@ void write_provenance(h5::Group& root, const std::string& program) {
     const BuildInfo& info = build_info();
     root.set_attribute("program", program);
     root.set_attribute("version", info.version);
+    root.set_attribute("simulator_sha256", info.simulator_sha256);
     root.set_attribute("compiler", info.compiler);
     root.set_attribute("compiler_flags", info.compiler_flags);
     root.set_attribute("build_type", info.build_type);

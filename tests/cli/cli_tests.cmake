@@ -374,7 +374,8 @@ if(SHOCKGAS_PYTHON)
   set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 300)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock resume_other_parameters
-                      rerun_without_resume memory_fewer_at_once hangup resume_other_build resume_complete_output)
+                      rerun_without_resume memory_fewer_at_once hangup resume_other_build resume_same_simulator
+                      resume_complete_output)
   add_test(NAME cli.faults.${_case}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/faults_test.sh ${_case} ${_sim} "${_cli_dir}/faults"
                    "${SHOCKGAS_PYTHON}" ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py)
@@ -385,7 +386,7 @@ foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries l
 endforeach()
 if(NOT SHOCKGAS_PYTHON)  # these compare outputs (and resume_other_build and resume_complete_output edit files) with Python
   set_tests_properties(cli.faults.file_size_checkpoint cli.faults.hangup cli.faults.resume_other_build
-                       cli.faults.resume_complete_output PROPERTIES DISABLED TRUE)
+                       cli.faults.resume_same_simulator cli.faults.resume_complete_output PROPERTIES DISABLED TRUE)
 endif()
 # A budget below one realization (100000 particles: about 41 MiB with checkpoints) is refused,
 # naming the part of it that no N lowers.

@@ -155,8 +155,9 @@ hangup)
   "$python" "$same" reference.h5 hup.h5 >same.out 2>&1 || { cat same.out; fail "the resumed run differs from the uninterrupted one"; }
   ;;
 resume_other_build)
-  # A checkpoint written by another build: the run starts anew (no other build continues a run bit
-  # for bit), and both generations are moved aside, untouched, for the build that wrote them.
+  # A checkpoint written by a build of another simulator (another simulator_sha256): the run starts
+  # anew (no other simulator continues a run bit for bit), and both generations are moved aside,
+  # untouched, for a build of the simulator that wrote them.
   args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99 -t 1000)
   "$sim" "${args[@]}" --checkpoint-interval 0 -o reference.h5 2>reference.err || fail "the reference run failed"
   run_until_checkpoints 2 INT first.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o ob.h5
@@ -166,6 +167,7 @@ import sys, h5py
 for name in sys.argv[1:]:
     with h5py.File(name, 'r+') as f:
         f.attrs['version'] = 'oldbuild/1'
+        f.attrs['simulator_sha256'] = '0' * 64
 " ob.h5.checkpoint ob.h5.checkpoint.previous || fail "could not mark the checkpoints as another build's"
   cp ob.h5.checkpoint kept.checkpoint
   cp ob.h5.checkpoint.previous kept.previous
@@ -176,6 +178,29 @@ for name in sys.argv[1:]:
     fail "the other build's checkpoint was not kept unchanged"
   [ ! -e ob.h5.checkpoint ] || fail "the finished run left its own checkpoint"
   "$python" "$same" reference.h5 ob.h5 >same.out 2>&1 || { cat same.out; fail "the run started anew differs from the uninterrupted one"; }
+  ;;
+resume_same_simulator)
+  # A checkpoint written by another version of the same simulator (a commit that changed only docs,
+  # analysis or tests, or an uncommitted edit there: the same simulator_sha256) is continued: the
+  # result is bit-identical to an uninterrupted run. Until 2026-11-28 any other version started the
+  # run anew, so a docs commit between `paper-tier stop` and `start` threw away the runs in progress.
+  args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99 -t 1000)
+  "$sim" "${args[@]}" --checkpoint-interval 0 -o reference.h5 2>reference.err || fail "the reference run failed"
+  run_until_checkpoints 2 INT first.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o ss.h5
+  [ -e ss.h5.checkpoint ] || fail "the interrupted run left no checkpoint"
+  "$python" -c "
+import sys, h5py
+for name in sys.argv[1:]:
+    with h5py.File(name, 'r+') as f:
+        assert len(f.attrs['simulator_sha256']) == 64, 'no simulator_sha256 in the checkpoint'
+        f.attrs['version'] = 'docsonly/1'
+" ss.h5.checkpoint ss.h5.checkpoint.previous || fail "could not mark the checkpoints as another version's"
+  "$sim" "${args[@]}" --checkpoint-interval 0 --resume -o ss.h5 2>resumed.err || fail "the --resume failed"
+  grep -q "checkpoint 'ss.h5.checkpoint' was written by shockgas docsonly/1, this is .*: the same simulator (sources, compiler and flags), so it is continued" resumed.err ||
+    { cat resumed.err; fail "the run did not say that it continued another version's checkpoint"; }
+  grep -q "resuming from 'ss.h5.checkpoint'" resumed.err || { cat resumed.err; fail "the run did not resume"; }
+  ! ls ss.h5.checkpoint.from-* >/dev/null 2>&1 || fail "the same simulator's checkpoint was moved aside"
+  "$python" "$same" reference.h5 ss.h5 >same.out 2>&1 || { cat same.out; fail "the resumed run differs from the uninterrupted one"; }
   ;;
 rerun_without_resume)
   args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99 -t 1000)
@@ -258,7 +283,15 @@ sys.exit(0 if a['date'] != 'marked' and a['status'] == 'complete' else 1)
   }
   set_attribute status interrupted; set_attribute date marked
   recomputed interrupted "${args[@]}"
-  set_attribute version oldbuild/1; set_attribute date marked
+  # Another version of the same simulator (the same simulator_sha256) made the same numbers: nothing to do.
+  set_attribute version docsonly/1
+  cp done.h5 kept.h5
+  "$sim" "${args[@]}" --checkpoint-interval 0 --resume -o done.h5 2>same_simulator.err ||
+    fail "--resume over the same simulator's complete output failed"
+  grep -Eq "$nothing" same_simulator.err && cmp -s kept.h5 done.h5 ||
+    fail "--resume over another version's output of the same simulator recomputed it"
+  set_attribute simulator_sha256 0000000000000000000000000000000000000000000000000000000000000000
+  set_attribute date marked
   recomputed other_build "${args[@]}"
   set_attribute date marked
   recomputed other_parameters -N 2000 -r 0.8 -d 0.005 -R 2 -j 2 -s 99 -t 50

@@ -23,4 +23,13 @@ for f in $tracked; do
   grep -qxF "$line" "$record" || { echo "FAIL: $f (with its current content) is not in the stamp"; missing=1; }
 done
 [ "$missing" -eq 0 ] || exit 1
-echo "ok: the stamp covers all $count simulator sources"
+# The programs compile in the same hash (cmake/BuildInfo.cmake) and record it as
+# simulator_sha256, which --resume compares: one computation, so a checkpoint is
+# continued exactly when the simulation it belongs to is not stale.
+work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
+"$build/sim/shockgas-sim" -N 10 -t 1 -q -o "$work/run.h5" 2>/dev/null || { echo "FAIL: a tiny run failed"; exit 1; }
+"$build/sim/shockgas-dump" gnuplot-vars "$work/run.h5" / --prefix run --output "$work/root.gp" || { echo "FAIL: dump"; exit 1; }
+recorded=$(sed -n 's/^run_simulator_sha256 = "\([0-9a-f]*\)"$/\1/p' "$work/root.gp")
+stamp=$(cat "$build/shockgas-sim.stamp")
+[ "$recorded" = "$stamp" ] || { echo "FAIL: the run records simulator_sha256 '$recorded', the stamp is '$stamp'"; exit 1; }
+echo "ok: the stamp covers all $count simulator sources, and the programs record it as simulator_sha256"

@@ -134,8 +134,11 @@ class Runs(unittest.TestCase):
             self.assertEqual(merged[name], first[name], name)
         self.assertEqual(merged["merged_by"], "shockgas-merge " + first["version"])
         self.assertRegex(merged["merged_date"], r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ$")
+        version = ", shockgas " + first["version"] + ")"
         self.assertEqual(merged["merged_from"].split("\n"),
-                         [path("part0.h5") + " (realizations 0 to 1)", path("part1.h5") + " (realizations 2 to 2)"])
+                         [path("part0.h5") + " (realizations 0 to 1" + version,
+                          path("part1.h5") + " (realizations 2 to 2" + version])
+        self.assertEqual(merged["simulator_sha256"], first["simulator_sha256"])
 
     def test_engine_switch_time(self):
         # The event engine runs one method throughout: NaN. The hybrid engine records its hand-over

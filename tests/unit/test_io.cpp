@@ -11,6 +11,7 @@
 #include "shockgas/ensemble.hpp"
 #include "shockgas/h5.hpp"
 #include "shockgas/observables.hpp"
+#include "shockgas/provenance.hpp"
 #include "shockgas/output.hpp"
 #include "shockgas/state.hpp"
 
@@ -140,9 +141,11 @@ TEST(Output, SchemaAndBitIdenticalReruns) {
     EXPECT_EQ(series.status, "complete");
     const auto file = shockgas::h5::File::open_read(path);
     const auto root = file.root();
-    for (const char* name : {"version", "compiler", "compiler_flags", "host", "date", "schema_version", "seed",
-                             "restitution", "velocity_threshold", "subthreshold", "particles", "engine"})
+    for (const char* name : {"version", "simulator_sha256", "compiler", "compiler_flags", "host", "date",
+                             "schema_version", "seed", "restitution", "velocity_threshold", "subthreshold", "particles",
+                             "engine"})
         EXPECT_TRUE(root.has_attribute(name)) << name;
+    EXPECT_EQ(root.attribute_string("simulator_sha256"), shockgas::build_info().simulator_sha256);
     EXPECT_EQ(root.open_group("snapshots").open_group("0").attribute_double("time"), 10.0);
     std::vector<hsize_t> dims;
     root.open_group("histograms").open_group("0").read_doubles("counts", &dims);
@@ -211,6 +214,22 @@ TEST(Output, PartsMergeIntoTheSingleRunResult) {
     EXPECT_THROW(shockgas::merge_outputs({parts[1], parts[0]}, {names[1], names[0]}), shockgas::InputError);
 }
 
+// simulator_sha256 (the simulator's sources, compiler and flags) decides whether a checkpoint or a
+// part was made by the same simulator, whatever the versions say; files written before it was
+// recorded fall back to the version.
+TEST(Provenance, TheSameSimulatorIsTheSameSourceHash) {
+    const std::string a(64, 'a'), b(64, 'b');
+    EXPECT_TRUE(shockgas::same_simulator("v1", a, "v2", a));            // a docs-only commit
+    EXPECT_FALSE(shockgas::same_simulator("v1-dirty", a, "v1-dirty", b));  // two edits of the simulator
+    EXPECT_TRUE(shockgas::same_simulator("v1", "", "v1", a));           // an older file: its version
+    EXPECT_FALSE(shockgas::same_simulator("v1", "", "v2", a));
+    EXPECT_FALSE(shockgas::same_simulator("v1", a, "v2", ""));
+    const auto& build = shockgas::build_info();
+    EXPECT_EQ(build.simulator_sha256.size(), 64u);
+    EXPECT_TRUE(shockgas::made_by_this_simulator("another version", build.simulator_sha256));
+    EXPECT_FALSE(shockgas::made_by_this_simulator(build.version, b));
+}
+
 // A merged file merged again named only the merged file, so the parts it came from
 // were lost from the provenance: each part's own merged_from now follows its line.
 TEST(Output, MergeOfMergedFilesNamesEveryPart) {
@@ -231,14 +250,16 @@ TEST(Output, MergeOfMergedFilesNamesEveryPart) {
     shockgas::write_merged_output(inner_path, shockgas::merge_outputs({parts[0], parts[1]}, {names[0], names[1]}),
                                   "test");
     const auto inner = shockgas::read_output(inner_path);
-    EXPECT_EQ(inner.merged_from, (std::vector<std::string>{names[0] + " (realizations 0 to 0)",
-                                                           names[1] + " (realizations 1 to 1)"}));
+    const std::string version = ", shockgas " + shockgas::build_info().version + ")";
+    EXPECT_EQ(inner.merged_from, (std::vector<std::string>{names[0] + " (realizations 0 to 0" + version,
+                                                           names[1] + " (realizations 1 to 1" + version}));
     EXPECT_TRUE(parts[2].merged_from.empty());
     const auto outer = shockgas::merge_outputs({inner, parts[2]}, {inner_path, names[2]});
     EXPECT_EQ(outer.merged_from,
-              (std::vector<std::string>{inner_path + " (realizations 0 to 1)", "  " + names[0] + " (realizations 0 to 0)",
-                                        "  " + names[1] + " (realizations 1 to 1)",
-                                        names[2] + " (realizations 2 to 2)"}));
+              (std::vector<std::string>{inner_path + " (realizations 0 to 1" + version,
+                                        "  " + names[0] + " (realizations 0 to 0" + version,
+                                        "  " + names[1] + " (realizations 1 to 1" + version,
+                                        names[2] + " (realizations 2 to 2" + version}));
 }
 
 // copy_realization is how merge_outputs and gather_checkpoint move a

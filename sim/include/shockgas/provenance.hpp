@@ -17,9 +17,24 @@ struct BuildInfo {
     std::string compiler_flags;  // CMAKE_CXX_FLAGS plus the build type's flags
     std::string build_type;
     std::string hdf5_version;
+    // SHA-256 over the simulator's sources (sim/src, sim/include, sim/app), the
+    // compiler and the flags (cmake/SourceHash.cmake): what decides its numbers.
+    std::string simulator_sha256;
 };
 
 const BuildInfo& build_info();
+
+// Whether two files (or a file and this build) were made by the same simulator
+// code: the same simulator_sha256, or, for files written before it was
+// recorded (2026-11-28; empty), the same version. The same code continues a
+// checkpoint bit for bit, so a commit that changes only docs, analysis or tests
+// (or a build marked -dirty by an edit there) does not throw away a run in
+// progress; and two -dirty builds of one commit with different edits to the
+// simulator are told apart, which their versions could not do.
+bool same_simulator(const std::string& version, const std::string& simulator_sha256, const std::string& other_version,
+                    const std::string& other_simulator_sha256);
+// ... and this build.
+bool made_by_this_simulator(const std::string& version, const std::string& simulator_sha256);
 
 // Schema version of the simulation output; bump on any incompatible change.
 // 2: checksummed (HDF5 1.10 format, Fletcher32 on every non-empty dataset).
@@ -29,8 +44,8 @@ const BuildInfo& build_info();
 // groups and datasets are those of 3. Readers take 1-4.
 constexpr long long output_schema_version = 4;
 
-// Writes program, version, compiler, flags, build type, HDF5 version, host and
-// the current UTC date as root attributes.
+// Writes program, version, simulator_sha256, compiler, flags, build type, HDF5
+// version, host and the current UTC date as root attributes.
 void write_provenance(h5::Group& root, const std::string& program);
 
 std::string utc_timestamp();
