@@ -15,9 +15,15 @@ set yrange [1e-5:2]
 set key top right
 set label 1 sprintf("scaling exponent β = %.3f%s (1/3 expected)\ncollapse distance at β = 1/3: %.2g", \
     collapse_beta, plus_minus(collapse_beta_sigma, '%.3f'), collapse_distance_at_one_third) at graph 0.03, graph 0.95 left font ',10'
-# Nine blocks in the order r = 0, 0.5, 0.9, each at three increasing times.
-rnames = '"r = 0" "r = 0.5" "r = 0.9"'
-plot for [b = 0:8] datadir.'/phi.dat' index b using 1:($2 > 0 ? $2 : NaN) with points lt (b / 3 + 1) pt (7 + 2 * (b % 3)) ps 0.6 \
-         title (b % 3 == 0 ? word(rnames, b / 3 + 1).', three times' : ''), \
+# Nine blocks in the order r = 0, 0.5, 0.9, each at three increasing times. A caller that passes other
+# runs (tools/provisional-fig4 leaves out an r with no finished part) names them with -e: rnames, one
+# quoted label per run in the order of the blocks; rtypes, each run's line type; ntimes, the blocks per run.
+if (!exists('rnames')) rnames = '"r = 0" "r = 0.5" "r = 0.9"'
+if (!exists('rtypes')) rtypes = '1 2 3'
+if (!exists('ntimes')) ntimes = 3
+times_note = (ntimes == 3 ? ', three times' : sprintf(', %d times', ntimes))
+plot for [b = 0:words(rnames) * ntimes - 1] datadir.'/phi.dat' index b using 1:($2 > 0 ? $2 : NaN) with points \
+         lt (word(rtypes, b / ntimes + 1) + 0) pt (7 + 2 * (b % ntimes)) ps 0.6 \
+         title (b % ntimes == 0 ? word(rnames, b / ntimes + 1).times_note : ''), \
      theorydir.'/phi.dat' using 1:2 with lines lc rgb '#000000' lw 2 title 'exact sticky gas', \
      theorydir.'/phi.dat' using 1:3 with lines lt 8 title sprintf('Gaussian, same variance κ = %.4f', exact_kappa)

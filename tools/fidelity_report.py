@@ -23,7 +23,15 @@ every run of every figure's parameter file (paper_targets/<figure>.<fidelity>.js
 realizations done, the CPU seconds spent (the finished files' and the running checkpoints'
 cpu_seconds), the realization in progress and how far it got, and, once a part of a run has
 finished, the CPU seconds its remaining parts would take at the mean of its finished ones (marked as
-an extrapolation). Safe to run beside the build: it only reads.
+an extrapolation): each part not begun at that mean, each running part at that mean less the CPU
+seconds its checkpoint has already spent (counted under "so far"; none below zero). fig_tail, which
+runs the far-tail sampler shockgas-tail and has no parameter file (paper_targets/fig_tail.cmake), has
+a row of its own: done with its tail.h5 (and that file's cpu_seconds), else the sampler's last
+progress line in BUILD_DIR/paper-tier.log (the sampler keeps no checkpoint: its CPU is counted once
+tail.h5 is written). Checkpoints a run moved aside because they were written by another code version
+(<output>.checkpoint.from-<version>, docs/checkpoints-and-mpi.md) are not counted in the table: they
+are listed under it as set aside, each with its CPU seconds and realizations, since only the old
+program can finish them. Safe to run beside the build: it only reads.
 
 Refused with one line "fidelity_report.py: error: ..." on stderr and exit status 2, rather than
 tables that are empty: a BUILD_DIR that does not exist or has no paper_targets/, a fidelity other
@@ -235,6 +243,29 @@ if readme:
     sys.exit(0)
 
 
+# The far-tail sampler's progress line in a log (sim/app/shockgas_tail.cpp), and the comment make prints
+# when fig_tail starts it (paper_targets/fig_tail.cmake).
+TAIL_PROGRESS = "shockgas-tail: progress: "
+TAIL_STARTED = "[fig_tail] far-tail sampler"
+
+
+def tail_progress_line(log):
+    """The sampler's last progress line in `log` (paper-tier's) after the last start of fig_tail's
+    sampler, "" if it started without one yet, or None if the log does not show it started."""
+    try:
+        with open(log, "rb") as handle:
+            handle.seek(0, os.SEEK_END)
+            handle.seek(max(0, handle.tell() - (8 << 20)))  # the end of a log days long is enough
+            lines = handle.read().decode("utf-8", "replace").splitlines()
+    except OSError:
+        return None
+    starts = [i for i, line in enumerate(lines) if TAIL_STARTED in line]
+    if not starts:
+        return None
+    found = [line for line in lines[starts[-1]:] if line.startswith(TAIL_PROGRESS)]
+    return found[-1][len(TAIL_PROGRESS):].strip() if found else ""
+
+
 def progress_report():
     """Where each run of a build in progress stands (--progress)."""
     import json
@@ -246,6 +277,7 @@ def progress_report():
           "(extrapolated) |")
     print("|---|---|---|---|---|---|---|")
     total_cpu = total_remaining = 0.0
+    set_aside = []
     for parameters in sorted(glob.glob(os.path.join(sources, f"*.{fidelity}.json"))):
         figure = os.path.basename(parameters)[:-len(f".{fidelity}.json")]
         for run in json.load(open(parameters, encoding="utf-8"))["runs"]:
@@ -261,7 +293,7 @@ def progress_report():
             done = sum(int(a["realizations"]) for a in finished_attrs)
             parts_done = parts if os.path.exists(merged) else len(finished)
             cpu = sum(cpu_done)
-            running = []
+            running, running_cpu = [], []
             prefix = os.path.join(folder, glob.escape(name))
             for checkpoint in sorted(glob.glob(prefix + ".running.h5.checkpoint") +
                                      glob.glob(prefix + ".part*.running.h5.checkpoint")):
@@ -270,18 +302,58 @@ def progress_report():
                 done_here = sum(1 for s in status if s in (0, 1))
                 reached = [c.time[n - 1] for s, n in zip(status, samples) if s == 4 and n > 0]
                 cpu += c.attrs["cpu_seconds"]
+                running_cpu.append(c.attrs["cpu_seconds"])
                 part = os.path.basename(checkpoint)[len(name):].split(".running")[0].lstrip(".") or name
                 running.append(f"{part}: {done_here}/{len(status)} done" +
                                (f", one at t = {max(reached):.3g}" if reached else ""))
+            # Moved aside by a run of another code version: both generations under one name.
+            aside = {path[:-len(".previous")] if path.endswith(".previous") else path
+                     for path in glob.glob(prefix + ".running.h5.checkpoint.from-*") +
+                     glob.glob(prefix + ".part*.running.h5.checkpoint.from-*")}
+            for path in sorted(aside):
+                set_aside.append(path)
             remaining = ""
             if parts_done < parts and cpu_done:
-                estimate = (parts - parts_done) * sum(cpu_done) / len(cpu_done)
+                # Parts not begun at the mean of the finished ones; a running part at that mean less the
+                # CPU its checkpoint has spent (already under "so far"), not a whole part on top of it.
+                mean = sum(cpu_done) / len(cpu_done)
+                not_begun = max(parts - parts_done - len(running_cpu), 0)
+                estimate = not_begun * mean + sum(max(mean - spent, 0.0) for spent in running_cpu)
                 total_remaining += estimate
                 remaining = f"{estimate:.0f}"
             total_cpu += cpu
             print(f"| {figure} | {name} | {parts_done}/{parts} | {done}/{realizations} | {cpu:.0f} | "
                   f"{'; '.join(running) or '—'} | {remaining or '—'} |")
-    print(f"| **all** | | | | **{total_cpu:.0f}** | | **{total_remaining:.0f}** (mean of finished parts) |")
+    # fig_tail: the far-tail sampler (paper_targets/fig_tail.cmake), no parameter file, no parts, no checkpoint.
+    if os.path.isfile(os.path.join(sources, "fig_tail.cmake")):
+        tail = os.path.join(base, "fig_tail", "tail.h5")
+        if os.path.exists(tail):
+            a = shockgas.attributes(tail)
+            total_cpu += a["cpu_seconds"]
+            chains = f"{a['chains']} chains" if "chains" in a else "—"
+            print(f"| fig_tail | tail (shockgas-tail) | 1/1 | {chains} | {a['cpu_seconds']:.0f} | — | — |")
+        else:
+            line = tail_progress_line(os.path.join(build, "paper-tier.log"))
+            now = ("—" if line is None else
+                   "sampler started, no progress line yet (paper-tier.log)" if not line else
+                   f"sampler: {line} (last progress line in paper-tier.log; no checkpoint: a stop loses it)")
+            print(f"| fig_tail | tail (shockgas-tail) | 0/1 | — | 0 | {now} | — |")
+    print(f"| **all** | | | | **{total_cpu:.0f}** | | **{total_remaining:.0f}** (finished parts' mean for each part "
+          f"not begun; for each running part, that mean less its CPU so far) |")
+    if set_aside:
+        print("\nSet aside, not counted above: checkpoints of another code version, moved aside when a run of this "
+              "one started anew (the old program finishes one with --checkpoint FILE --resume; "
+              f"docs/checkpoints-and-mpi.md), under {base}:\n")
+        for path in set_aside:
+            readable = path if os.path.exists(path) else path + ".previous"
+            try:
+                c = shockgas.read_checkpoint(readable)
+                status = list(c.realization_status)
+                what = (f"{sum(1 for s in status if s in (0, 1))}/{len(status)} realizations done, "
+                        f"{c.attrs['cpu_seconds']:.0f} CPU s")
+            except (OSError, KeyError, ValueError) as error:
+                what = f"not readable ({error})"
+            print(f"- {os.path.relpath(readable, base)} (version {path.split('.from-', 1)[1]}): {what}")
 
 
 if progress:

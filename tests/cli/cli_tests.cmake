@@ -356,18 +356,21 @@ if(SHOCKGAS_PYTHON)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/damaged_checkpoint_test.sh ${_sim} ${SHOCKGAS_PYTHON}
                    ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/damaged_checkpoint")
   set_tests_properties(cli.faults.damaged_checkpoint PROPERTIES LABELS cli TIMEOUT 300)
-  # Where a paper build in progress stands (tools/fidelity_report.py --progress).
+  # Where a paper build in progress stands (tools/fidelity_report.py --progress): a running part's spent CPU
+  # taken off its remaining estimate, a checkpoint of another version set aside, fig_tail's sampler.
   add_test(NAME cli.progress_report
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress_report_test.sh ${_sim} ${SHOCKGAS_PYTHON}
                    ${PROJECT_SOURCE_DIR}/tools/fidelity_report.py "${_cli_dir}/progress_report")
   set_tests_properties(cli.progress_report PROPERTIES LABELS cli TIMEOUT 120)
-  # A provisional Fig. 4 from the finished parts of a paper build (tools/provisional-fig4).
+  # A provisional Fig. 4 from the finished parts of a paper build (tools/provisional-fig4); with r = 0.5
+  # left out, r = 0.9's points under r = 0.9's label (the legend read back from an SVG of the same plot).
   add_test(NAME cli.provisional_fig4
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/provisional_fig4_test.sh ${_sim} $<TARGET_FILE:shockgas-merge>
                    $<TARGET_FILE:shockgas-dump> $<TARGET_FILE:shockgas-analyze> ${SHOCKGAS_PYTHON}
                    "${_cli_dir}/provisional_fig4")
   set_tests_properties(cli.provisional_fig4 PROPERTIES LABELS cli TIMEOUT 300)
-  # A build in the background: start, stop with a last checkpoint, resume (tools/paper-tier).
+  # A build in the background: start, stop with a last checkpoint, resume (tools/paper-tier); hints that
+  # name --build DIR, a second start with another target refused (exit 2).
   add_test(NAME cli.paper_tier
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/paper_tier_test.sh ${PROJECT_SOURCE_DIR}/tools/paper-tier ${_sim}
                    "${_cli_dir}/paper_tier")

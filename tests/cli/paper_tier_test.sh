@@ -2,10 +2,12 @@
 # paper_tier_test.sh TOOL SIM WORK_DIR: tools/paper-tier on a throwaway CMake project whose targets
 # stand in for the pipeline's: `quick` touches a file, `simulate` runs shockgas-sim long enough to be
 # stopped. Asserts that start runs a target in the background and records its end with rc = 0; that a
-# second start while one runs starts nothing; that stop ends every process of the build and the
-# simulation writes its last checkpoint on the way (so a later start resumes it); and that
-# paper-tier.times records each start and end; and that --jobs 2 runs two targets at once (two that
-# each wait for the other to start, so that one at a time times out).
+# second start while one runs starts nothing (and, asked for another target, says in one line with exit 2
+# that it was not added and how to add it); that every hint start and stop print names the --build DIR
+# given; that stop ends every process of the build and the simulation writes its last checkpoint on the
+# way (so a later start resumes it); and that paper-tier.times records each start and end; and that
+# --jobs 2 runs two targets at once (two that each wait for the other to start, so that one at a time
+# times out).
 set -u
 tool=$1 sim=$2 work=$3
 fail() {
@@ -46,7 +48,11 @@ wait_until_stopped() {
   return 1
 }
 
-"$tool" start --build "$build" quick || fail "start failed"
+started=$("$tool" start --build "$build" quick) || fail "start failed"
+# Every hint names the --build DIR given (without it, 'paper-tier stop' looked in the default
+# build-paper, said "not running" with exit 0, and the build went on).
+echo "$started" | grep -qF "'paper-tier stop --build $build' stops it" || fail "start's stop hint lacks --build: $started"
+echo "$started" | grep -qF "'paper-tier status --build $build' shows" || fail "start's status hint lacks --build: $started"
 # The start is on record when start returns (not later, from the background), so that a second start
 # or a status right after it sees it.
 [ "$(grep -c '^start' "$build/paper-tier.times" 2>/dev/null)" = 1 ] || fail "start returned before its start was recorded"
@@ -79,6 +85,17 @@ if [ "$(cat /proc/sys/kernel/sched_autogroup_enabled 2>/dev/null)" = 1 ]; then
 fi
 again=$("$tool" start --build "$build" simulate)
 echo "$again" | grep -q "already running" || fail "a second start did not see the first: $again"
+echo "$again" | grep -qF "'paper-tier status --build $build'" || fail "the second start's hint lacks --build: $again"
+# A start with other targets while one runs builds none of them: one line saying so and how to add
+# them, exit 2 (it said "already running", exit 0, and the new targets were silently not built).
+other=$("$tool" start --build "$build" quick simulate 2>&1 >/dev/null)
+status=$?
+[ $status = 2 ] || fail "a start with other targets while one runs: exit $status, expected 2: $other"
+[ "$(echo "$other" | wc -l)" = 1 ] || fail "more than one line: $other"
+case $other in
+  "paper-tier: error: already running in '$build' "*" with simulate: quick NOT added; "*"'paper-tier stop --build $build', then 'paper-tier start --build $build simulate quick'"*) ;;
+  *) fail "a start with other targets while one runs: $other" ;;
+esac
 [ "$(grep -c '^start' "$build/paper-tier.times")" = 3 ] || fail "a second start was recorded"
 # Wait until the simulation itself runs, then stop the whole build.
 for ((i = 0; i < 300; ++i)); do
@@ -97,7 +114,8 @@ for ((i = 0; i < 600; ++i)); do
   sleep 0.1
 done
 sleep 1
-"$tool" stop --build "$build" || fail "stop failed"
+stopped=$("$tool" stop --build "$build") || fail "stop failed"
+echo "$stopped" | grep -qF "'paper-tier start --build $build simulate' continues it" || fail "stop's hint lacks --build or the targets: $stopped"
 pgrep -g "$pid" >/dev/null && fail "processes of the build are left: $(pgrep -a -g "$pid")"
 [ -f "$build/run.h5.checkpoint" ] || fail "the stopped simulation left no checkpoint"
 tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=[1-9]' || fail "the stop was not recorded as a failed end"

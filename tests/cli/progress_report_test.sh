@@ -3,7 +3,9 @@
 # build in progress, made up of Fig. 4's run names: a finished part of r0.5 (2 realizations), a
 # running part of r0.5 caught in its checkpoint, nothing yet of r0.9. The report must count the
 # finished part, read the checkpoint's CPU time and progress, and extrapolate the rest of r0.5
-# from its finished part (the 19 other parts of Fig. 4's 20 at that part's CPU time).
+# from its finished part (the 18 parts not begun of Fig. 4's 20 at that part's CPU time, and the running
+# one at that time less what its checkpoint has spent); list a checkpoint moved aside by a run of another
+# code version; and report fig_tail (no parameter file): its sampler running, from paper-tier.log, then done.
 set -u
 sim=$1 python=$2 report=$3 work=$4
 here=$(cd "$(dirname "$0")" && pwd)
@@ -16,14 +18,44 @@ run=(-N 20000 -r 0.5 -d 1e-3 --subthreshold elastic -q)
 run_until_checkpoints 2 KILL running.stderr -- "$sim" "${run[@]}" -t 100000 -R 3 --first-realization 10 \
   --checkpoint-interval 0.1 -o r0.5.part10.running.h5
 [ -e r0.5.part10.running.h5.checkpoint ] || fail "no checkpoint of the running part: $(cat running.stderr)"
+# The CPU times, set to round numbers (1000 s for the finished part, 400 s spent by the running one) so that
+# the estimate is exact to read: 18 parts not begun at 1000 s, the running one at 1000 - 400 s. The
+# estimate was 19 x 1000 s, counting the running part whole on top of the 400 s already under "so far".
+"$python" -c 'import sys, h5py
+for path, seconds in (("r0.5.part0.h5", 1000.0), ("r0.5.part10.running.h5.checkpoint", 400.0)):
+    with h5py.File(path, "r+") as f:
+        f.attrs["cpu_seconds"] = seconds' || fail "could not set the CPU times"
+# A checkpoint of another code version moved aside (shockgas-sim keep_aside: both generations): listed,
+# not counted (it was not reported at all).
+cp r0.5.part10.running.h5.checkpoint r0.5.part20.running.h5.checkpoint.from-v1.0-3-gabc1234 &&
+  cp r0.5.part10.running.h5.checkpoint r0.5.part20.running.h5.checkpoint.from-v1.0-3-gabc1234.previous || exit 1
+# fig_tail's sampler (no parameter file, no checkpoint) as paper-tier's log shows it running: make's comment,
+# then its progress lines (it had no row at all).
+printf '%s\n' "[ 50%] [fig_tail] far-tail sampler" "shockgas-tail: progress: 10.0% of the steps  elapsed 60 s  ETA 540 s" \
+  "[ 51%] [fig4] something else" "shockgas-tail: progress: 20.0% of the steps  elapsed 120 s  ETA 480 s" \
+  >"$work/paper-tier.log"
 "$python" "$report" "$work" paper --progress >report.md || fail "the report failed: $(cat report.md)"
 cat report.md
 line=$(grep '^| fig4 | r0.5 |' report.md) || fail "no line for fig4's r0.5"
-cpu_part=$("$python" -c 'import sys; sys.path.insert(0, sys.argv[2]); import shockgas
-print(f"{shockgas.attributes(sys.argv[1])[sys.argv[3]] * 19:.0f}")' r0.5.part0.h5 "$here/../../python" cpu_seconds)
 case "$line" in
-  "| fig4 | r0.5 | 1/20 | 2/200 | "*"| part10: 0/3 done, one at t = "*" | $cpu_part |") ;;
-  *) fail "r0.5's line is not as expected (remaining CPU $cpu_part s): $line" ;;
+  "| fig4 | r0.5 | 1/20 | 2/200 | 1400 | part10: 0/3 done, one at t = "*" | 18600 |") ;;
+  *) fail "r0.5's line is not as expected (CPU 1400 s so far, 18600 s remaining): $line" ;;
 esac
 grep -q '^| fig4 | r0.9 | 0/20 | 0/200 | 0 | — | — |$' report.md || fail "r0.9 should show nothing done"
+grep -qF '| fig_tail | tail (shockgas-tail) | 0/1 | — | 0 | sampler: 20.0% of the steps  elapsed 120 s  ETA 480 s (last progress line in paper-tier.log' report.md ||
+  fail "fig_tail's running sampler is not reported"
+grep -qF -- '- fig4/r0.5.part20.running.h5.checkpoint.from-v1.0-3-gabc1234 (version v1.0-3-gabc1234): 0/3 realizations done, 400 CPU s' report.md ||
+  fail "the checkpoint set aside is not listed"
+[ "$(grep -c 'from-v1.0-3-gabc1234' report.md)" = 1 ] || fail "the set-aside checkpoint's two generations are not one entry"
+grep -q '^| \*\*all\*\* | | | | \*\*1400\*\* | | \*\*18600\*\*' report.md || fail "the totals: $(grep '^| \*\*all' report.md)"
+# Once the sampler has written tail.h5, its row is done with that file's CPU seconds.
+mkdir -p "$work/paper_targets/paper/fig_tail" &&
+  "$python" -c 'import sys, h5py; sys.path.insert(0, sys.argv[2]); import shockgas.schema
+with h5py.File(sys.argv[1], "w") as f:
+    f.attrs.update({"program": "shockgas-tail", "schema_version": max(shockgas.schema.SCHEMA_VERSIONS),
+                    "cpu_seconds": 2029.0, "chains": 4})' "$work/paper_targets/paper/fig_tail/tail.h5" \
+    "$here/../../python" || fail "could not write tail.h5"
+"$python" "$report" "$work" paper --progress >report2.md || fail "the second report failed: $(cat report2.md)"
+grep -q '^| fig_tail | tail (shockgas-tail) | 1/1 | 4 chains | 2029 | — | — |$' report2.md ||
+  fail "fig_tail done: $(grep fig_tail report2.md)"
 echo "ok"

@@ -2,7 +2,8 @@
 # provisional_fig4_test.sh SIM MERGE DUMP ANALYZE PYTHON WORK_DIR: tools/provisional-fig4 on a made-up
 # paper build of Fig. 4 (small N): r = 0 done, r = 0.5 parts 0 and 10 done, r = 0.9 only part 10 done
 # (a gap at part 0). The tool must merge r = 0.5's two parts, leave r = 0.9 out (shockgas-merge
-# refuses a gap), fit the collapse and draw the figure.
+# refuses a gap), fit the collapse and draw the figure. With r = 0.5 absent and r = 0.9 finished, the
+# legend labels r = 0.9's points r = 0.9. A part of another delta is refused with shockgas-merge's reason.
 set -u
 sim=$1 merge=$2 dump=$3 analyze=$4 python=$5 work=$6
 here=$(cd "$(dirname "$0")" && pwd)
@@ -29,6 +30,36 @@ grep -q "r = 0.9: no part from part0 on is finished; left out" "$work/report.txt
 # sanitizer build runs it well inside its timeout (with 1e-3 it took over 300 s there, 2026-11-26).
 grep -q "^scaling exponent 0\.3" "$work/report.txt" || fail "no scaling exponent near 1/3"
 [ -s "$work/look/fig4.png" ] || fail "no figure"
+# r = 0.5 with no finished part and r = 0.9 with two (the order of a build that runs r = 0.9's parts
+# first): r = 0.9's points must be drawn under its own label. fig4.gp labelled phi.dat's blocks by
+# position, so they were "r = 0.5, three times" (and 2 times per run were read as 3). The figure is drawn
+# again from what the tool passed gnuplot (a gnuplot first on PATH records it), as SVG, whose legend is text.
+tree=$work/only09
+mkdir -p "$tree/paper_targets/paper/fig4" "$work/bin" "$work/svgstyle" || exit 1
+ln -s "$work/sim" "$tree/sim" && ln -s "$work/analysis" "$tree/analysis" &&
+  ln -s "$work/paper_targets/theory" "$tree/paper_targets/theory" && ln -s "$runs/r0.h5" "$tree/paper_targets/paper/fig4/" &&
+  ln -s "$runs/r0.9.part10.h5" "$tree/paper_targets/paper/fig4/" || exit 1
+"$sim" "${common[@]}" -r 0.9 -R 10 --first-realization 0 -o "$tree/paper_targets/paper/fig4/r0.9.part0.h5" ||
+  fail "r = 0.9 part 0"
+real_gnuplot=$(command -v gnuplot) || fail "no gnuplot"
+printf '#!/bin/bash\nprintf "%%s\\0" "$@" >"%s"\nexec "%s" "$@"\n' "$work/gnuplot.args" "$real_gnuplot" >"$work/bin/gnuplot"
+chmod +x "$work/bin/gnuplot"
+PATH="$work/bin:$PATH" "$here/../../tools/provisional-fig4" "$tree" "$work/look09" >"$work/report09.txt" 2>&1 ||
+  fail "r = 0.9 alone: the tool failed: $(cat "$work/report09.txt")"
+cat "$work/report09.txt"
+grep -q "r = 0.5: no part from part0 on is finished; left out" "$work/report09.txt" || fail "r = 0.5 not left out"
+grep -q "r = 0.9: 2 parts (20 realizations): r0.9.part0.h5 r0.9.part10.h5" "$work/report09.txt" || fail "r = 0.9 not merged"
+[ -s "$work/look09/fig4.png" ] || fail "r = 0.9 alone: no figure"
+source_dir=$(cd "$here/../.." && pwd)
+printf "load '%s/figures/style.gp'\nset terminal svg size 1000,760 enhanced\nset output outbase.'.svg'\n" \
+  "$source_dir" >"$work/svgstyle/style.gp"
+mapfile -d '' -t recorded <"$work/gnuplot.args"
+[ "${recorded[0]}" = -e ] && [ "${recorded[2]}" = "$source_dir/figures/fig4.gp" ] ||
+  fail "gnuplot was not run as -e VARIABLES fig4.gp: ${recorded[*]}"
+variables=${recorded[1]/"styledir='$source_dir/figures'"/"styledir='$work/svgstyle'"}
+"$real_gnuplot" -e "$variables; outbase='$work/legend09'" "${recorded[2]}" || fail "the figure did not draw again as SVG"
+legend=$(grep -o 'r = [0-9.]*, [a-z0-9]* times' "$work/legend09.svg" | sort -u | tr '\n' ';')
+[ "$legend" = "r = 0, 2 times;r = 0.9, 2 times;" ] || fail "the legend of r = 0 and r = 0.9 (2 times each) reads: $legend"
 # A part that does not belong (another delta) stops the tool with shockgas-merge's reason, not silently.
 "$sim" "${common[@]/#1e-2/2e-2}" -r 0.9 -R 10 --first-realization 0 -o "$runs/r0.9.part0.h5" || fail "r = 0.9 part 0"
 "$here/../../tools/provisional-fig4" "$work" "$work/look2" >"$work/report2.txt" 2>&1

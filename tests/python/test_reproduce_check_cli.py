@@ -10,14 +10,24 @@ left its temporary work directory (/tmp/shockgas-check-*) behind. Each case belo
 TMPDIR set to an empty directory of its own, and asserts exit status 2, one stderr line
 "reproduce-check: error: ..." naming what is wrong, and that directory empty afterwards: a missing
 archive, a text file, a gzip file that is not a tar archive, a tar.gz cut short, a tar.gz without
-MANIFEST, one whose MANIFEST is not JSON, one whose MANIFEST lacks the fields, and a directory
-holding no archive.
+MANIFEST, one whose MANIFEST is not JSON, one whose MANIFEST lacks the fields, a directory
+holding no archive, and a --compare-with directory that does not exist (it reported every file of
+the archive MISSING, exit 1).
+
+CompareWith packs a miniature build (one results file, its figure) of a git checkout, commits once
+more in that checkout, and checks the archive against the same, unchanged build with --compare-with.
+The code version is the compared files' own `version` attribute: every file is the archived one, so
+the check must say "same" and REPRODUCED (exit 0). It read `git describe` of the checkout MANIFEST
+names, which had moved on, and reported DIFFERENT CODE VERSION and NOT REPRODUCED (exit 1). A
+compared file whose `version` is another is still named, DIFFERENT CODE VERSION, exit 1.
 """
+import glob
 import gzip
 import io
 import json
 import os
 import shutil
+import subprocess
 import sys
 import tarfile
 import unittest
@@ -25,7 +35,9 @@ import unittest
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
-sc.require("h5py", "numpy")
+h5py, _ = sc.require("h5py", "numpy")
+sys.path.insert(0, sc.script("python"))
+import shockgas.schema  # noqa: E402
 
 WORK = sc.arguments(1)
 TOOL = sc.script("tools", "reproduce-check")
@@ -96,6 +108,88 @@ class Unreadable(unittest.TestCase):
         empty = os.path.join(WORK, "empty-build")
         os.makedirs(empty, exist_ok=True)
         self.check("emptydir", empty, "no shockgas-*.tar.gz")
+
+    def test_compare_with_no_such_build(self):
+        target = archive("compare.tar.gz", {"shockgas-x/MANIFEST": json.dumps(
+            {"name": "shockgas-x", "fidelity": "quick", "figures": [], "created": "", "created_on": "", "version": "v",
+             "source": {}, "build": {"build_dir": "/b", "source_dir": "/s"}, "files": []}).encode()})
+        temporary = os.path.join(WORK, "tmp-compare")
+        os.makedirs(temporary)
+        result = sc.run([sc.PYTHON, TOOL, target, "--compare-with", os.path.join(WORK, "no-such-build")], cwd=WORK,
+                        env=dict(os.environ, TMPDIR=temporary))
+        sc.one_line_error(self, result, NAME, "--compare-with", "no-such-build", "no such directory")
+        self.assertEqual(os.listdir(temporary), [])
+        result = sc.run([sc.PYTHON, TOOL, target, "--compare-with", target], cwd=WORK, env=dict(os.environ, TMPDIR=temporary))
+        sc.one_line_error(self, result, NAME, "--compare-with", "not a directory")
+
+
+class CompareWith(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        if shutil.which("git") is None:  # pragma: no cover - depends on the machine
+            raise unittest.SkipTest("needs git")
+        cls.root = os.path.join(WORK, "compare-with")
+        shutil.rmtree(cls.root, ignore_errors=True)
+        cls.source, cls.build = os.path.join(cls.root, "source"), os.path.join(cls.root, "build")
+        os.makedirs(os.path.join(cls.source, "paper_targets"))
+        with open(os.path.join(cls.source, "paper_targets", "figx.quick.json"), "w") as handle:
+            json.dump({"runs": []}, handle)
+        cls.git("init", "--quiet")
+        cls.git("add", ".")
+        cls.git("commit", "--quiet", "-m", "one")
+        version = cls.git("describe", "--always", "--dirty", "--tags")
+        figure = os.path.join(cls.build, "paper_targets", "quick", "figx")
+        os.makedirs(figure)
+        os.makedirs(os.path.join(cls.build, "figures", "quick"))
+        cls.result = os.path.join(figure, "result.h5")
+        with h5py.File(cls.result, "w") as f:  # as the build at that commit wrote it
+            f.attrs.update({"program": "shockgas-analyze scaling", "version": version, "date": "2026-11-28",
+                            "schema_version": max(shockgas.schema.SCHEMA_VERSIONS), "beta": 0.335, "beta_sigma": 0.01})
+            f["z"] = [0.5, 1.0, 1.5]
+        for extension in ("png", "pdf"):
+            with open(os.path.join(cls.build, "figures", "quick", "figx." + extension), "wb") as handle:
+                handle.write(b"a figure\n")
+        packed = sc.run([sc.PYTHON, TOOL, "pack", "--build-dir", cls.build, "--source-dir", cls.source,
+                         "--fidelity", "quick", "--figures", "figx"], cwd=cls.root)
+        assert packed.returncode == 0, packed.stdout + packed.stderr
+        cls.archive = glob.glob(os.path.join(cls.build, "shockgas-*.tar.gz"))[0]
+        # The checkout goes on; the build stays as it was.
+        with open(os.path.join(cls.source, "later.txt"), "w") as handle:
+            handle.write("a later commit\n")
+        cls.git("add", ".")
+        cls.git("commit", "--quiet", "-m", "two")
+        cls.version = version
+
+    @classmethod
+    def git(cls, *arguments):
+        return subprocess.run(["git", "-c", "user.name=test", "-c", "user.email=test@example.org", *arguments],
+                              cwd=cls.source, check=True, capture_output=True, text=True).stdout.strip()
+
+    def check(self, *extra):
+        return sc.run([sc.PYTHON, TOOL, self.archive, "--compare-with", self.build,
+                       "--work-dir", os.path.join(self.root, "work"), *extra], cwd=self.root)
+
+    def test_an_unchanged_build_reproduces(self):
+        result = self.check()
+        described = result.stdout + result.stderr
+        self.assertEqual(result.returncode, 0, described)
+        self.assertRegex(result.stdout, rf"(?m)^code +archive {self.version}, rerun {self.version} .*: same$")
+        self.assertRegex(result.stdout, r"(?m)^OK +build/paper_targets/quick/figx/result.h5 +\(bit-identical")
+        self.assertRegex(result.stdout, r"(?m)^result +REPRODUCED$")
+        self.assertNotIn("DIFFERENT", result.stdout)
+
+    def test_a_file_of_another_version_is_named(self):
+        other = os.path.join(self.root, "other-build")
+        shutil.rmtree(other, ignore_errors=True)
+        shutil.copytree(self.build, other)
+        with h5py.File(os.path.join(other, "paper_targets", "quick", "figx", "result.h5"), "r+") as f:
+            f.attrs["version"] = "v9.9-1-gdeadbee"
+        result = sc.run([sc.PYTHON, TOOL, self.archive, "--compare-with", other,
+                         "--work-dir", os.path.join(self.root, "work-other")], cwd=self.root)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertRegex(result.stdout, rf"(?m)^code +archive {self.version}, rerun v9.9-1-gdeadbee .*: DIFFERENT "
+                                        rf"CODE VERSION \(1 of them; first build/paper_targets/quick/figx/result.h5")
+        self.assertRegex(result.stdout, r"(?m)^result +NOT REPRODUCED$")
 
 
 if __name__ == "__main__":
