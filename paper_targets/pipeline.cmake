@@ -8,7 +8,9 @@
 # merged by shockgas-merge: an interrupted build keeps the finished parts and
 # continues where it stopped. Every run also checkpoints (shockgas-sim's
 # default, every 300 s) and is started with --resume, so a killed build loses
-# at most one checkpoint interval of the run it was in.
+# at most one checkpoint interval of the run it was in; and with
+# --set-aside-other-runs, so that a run whose parameters were edited after it was
+# stopped starts anew (its old checkpoint moved aside) instead of failing the build.
 
 if(SHOCKGAS_PIPELINE_FROM_INSTALL)
   # An installed copy (cmake/installed-pipeline): no sources to hash; the runs
@@ -97,7 +99,8 @@ function(shockgas_figure_runs figure)
       _shockgas_run_to("${h5}" staged)
       add_custom_command(
         OUTPUT "${h5}"
-        COMMAND shockgas-sim ${args} --realizations ${realizations} --quiet --resume --output "${staged}"
+        COMMAND shockgas-sim ${args} --realizations ${realizations} --quiet --resume --set-aside-other-runs
+                --output "${staged}"
         COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${h5}"
         DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
         COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}: ${args_text}"
@@ -116,7 +119,7 @@ function(shockgas_figure_runs figure)
         add_custom_command(
           OUTPUT "${part}"
           COMMAND shockgas-sim ${args} --realizations ${count} --first-realization ${first} --quiet --resume
-                  --output "${staged}"
+                  --set-aside-other-runs --output "${staged}"
           COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${part}"
           DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
           COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}, realizations ${first}..+${count}"

@@ -165,6 +165,13 @@ int main(int argc, char** argv) {
                  "and flags, recorded as simulator_sha256); "
                  "the output is bit-identical to an uninterrupted run. Without a checkpoint, start from t = 0; one of a "
                  "run with other parameters is refused, naming them");
+    bool set_aside_other_runs = false;
+    app.add_flag("--set-aside-other-runs", set_aside_other_runs,
+                 "with --resume: a checkpoint of a run with other parameters is moved aside to "
+                 "CHECKPOINT.from-other-run (and its .previous), and this run starts from t = 0, instead of being "
+                 "refused; for scripts whose own record says which run a path holds (the figure pipeline passes it, "
+                 "so that editing a run's parameters reruns it)")
+        ->needs("--resume");
     double progress_interval = 60.0;
     app.add_option("--progress-interval", progress_interval,
                    "when stderr is not a terminal (a batch job's log), write a progress line every this many "
@@ -256,6 +263,12 @@ int main(int argc, char** argv) {
             // by this build, with no checkpoint left: nothing to continue, and
             // recomputing it (hours, for a paper run) would only rewrite the
             // same datasets. Without --resume a rerun replaces the output.
+            // The caller's record says this path is now this run: another run's
+            // checkpoint there is moved aside, not refused (before anything reads it).
+            if (set_aside_other_runs)
+                for (const auto& moved :
+                     shockgas::set_aside_other_runs(shockgas::job_checkpoints(base_checkpoint, session.ranks()), p))
+                    checkpoint.note(moved);
             if (checkpoint.resume)
                 already_written = shockgas::is_finished_output_of_run(
                     output, shockgas::job_checkpoints(base_checkpoint, session.ranks()), p);

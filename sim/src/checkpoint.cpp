@@ -391,8 +391,8 @@ std::vector<std::string> keep_aside(const std::string& path, const std::string& 
         if (!std::filesystem::exists(from, error)) continue;
         std::filesystem::rename(from, to, error);
         if (error)
-            throw InputError(fmt::format("cannot move the other build's checkpoint '{}' aside to '{}': {}; move or "
-                                         "remove it, then run again",
+            throw InputError(fmt::format("cannot move the checkpoint '{}' aside to '{}': {}; move or remove it, then "
+                                         "run again",
                                          from, to, error.message()));
         kept.push_back(to);
     }
@@ -400,6 +400,32 @@ std::vector<std::string> keep_aside(const std::string& path, const std::string& 
 }
 
 }  // namespace
+
+std::vector<std::string> set_aside_other_runs(const std::vector<std::string>& files, const SimulationParameters& run) {
+    std::vector<std::string> notes;
+    for (const std::string& name : files) {
+        // The newest readable generation says whose run the file holds.
+        for (const std::string& file : checkpoint_generations(name)) {
+            if (!std::filesystem::exists(file)) continue;
+            Checkpoint checkpoint;
+            try {
+                checkpoint = read_checkpoint(file);
+            } catch (const std::exception&) {
+                continue;  // damaged: the loader passes over it with a warning
+            }
+            if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) break;  // the loader's
+            const std::string differences = run_differences(checkpoint, run, true);
+            if (differences.empty()) break;
+            const std::vector<std::string> kept = keep_aside(name, "other-run");
+            notes.push_back(fmt::format("checkpoint '{}' belongs to a run with other parameters ({} in the "
+                                        "checkpoint): moved aside to '{}'{}, starting this run from t = 0",
+                                        name, differences, kept.front(),
+                                        kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
+            break;
+        }
+    }
+    return notes;
+}
 
 std::optional<Checkpoint> load_checkpoint(const std::string& path, const SimulationParameters& parameters,
                                           const std::vector<double>& sample_times, const Note& note,

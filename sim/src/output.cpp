@@ -1,5 +1,6 @@
 #include "shockgas/output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -453,13 +454,28 @@ std::vector<std::pair<std::string, std::string>> physics_parameters(const Simula
 
 }  // namespace
 
+namespace {
+
+// A value as a message shows it: a long list of times (600 snapshot times made
+// a refusal of 3 KB) is cut after its first values, with its length.
+std::string shown(const std::string& value) {
+    constexpr std::size_t longest = 60;
+    if (value.empty()) return "(none)";
+    if (value.size() <= longest) return value;
+    const std::size_t cut = value.rfind(',', longest);
+    const auto values = std::count(value.begin(), value.end(), ',') + 1;
+    return fmt::format("{},... ({} values)", value.substr(0, cut == std::string::npos ? longest : cut), values);
+}
+
+}  // namespace
+
 std::string parameter_differences(const SimulationParameters& a, const SimulationParameters& b) {
     const auto first = physics_parameters(a), second = physics_parameters(b);
     std::vector<std::string> differences;
     for (std::size_t i = 0; i < first.size(); ++i)
         if (first[i].second != second[i].second)
-            differences.push_back(fmt::format("{} {} vs {}", first[i].first, second[i].second.empty() ? "(none)" : second[i].second,
-                                              first[i].second.empty() ? "(none)" : first[i].second));
+            differences.push_back(
+                fmt::format("{} {} vs {}", first[i].first, shown(second[i].second), shown(first[i].second)));
     return fmt::format("{}", fmt::join(differences, ", "));
 }
 

@@ -138,6 +138,8 @@ set_tests_properties(cli.burgers_provenance PROPERTIES FIXTURES_REQUIRED burgers
 shockgas_cli_error(restitution_above_one "restitution" -N 10 -r 1.5)
 shockgas_cli_error(restitution_negative "restitution" -N 10 -r -0.1)
 shockgas_cli_error(threshold_negative "threshold" -N 10 -d -1e-3)
+# Setting another run's checkpoint aside is a way of resuming: alone it is refused.
+shockgas_cli_error(set_aside_without_resume "--set-aside-other-runs requires --resume" -N 10 --set-aside-other-runs)
 shockgas_cli_error(too_few_particles "particles N must be at least 2" -N 1)
 shockgas_cli_error(t_max_zero "t_max" -N 10 -t 0)
 shockgas_cli_error(t_max_negative "t_max" -N 10 -t -5)
@@ -389,6 +391,7 @@ foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries l
 endforeach()
 if(NOT SHOCKGAS_PYTHON)  # these compare outputs (and resume_other_build and resume_complete_output edit files) with Python
   set_tests_properties(cli.faults.file_size_checkpoint cli.faults.hangup cli.faults.resume_other_build
+                       cli.faults.resume_other_parameters
                        cli.faults.resume_same_simulator cli.faults.resume_complete_output PROPERTIES DISABLED TRUE)
 endif()
 # A budget below one realization (100000 particles: about 41 MiB with checkpoints) is refused,

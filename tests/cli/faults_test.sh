@@ -138,6 +138,20 @@ resume_other_parameters)
   cmp -s kept.checkpoint ck3.h5.checkpoint && cmp -s kept.previous ck3.h5.checkpoint.previous ||
     fail "the refused run changed the checkpoints"
   cmp -s kept.h5 ck3.h5 || fail "the refused run wrote an output"
+  # With --set-aside-other-runs (the figure pipeline's, whose parameter file says which run a path
+  # holds) the other run's checkpoint is moved aside, untouched, and this run starts anew: editing a
+  # stopped run's parameters failed the pipeline's build until 2026-11-28.
+  cp kept.checkpoint sa.h5.checkpoint && cp kept.previous sa.h5.checkpoint.previous && cp kept.h5 sa.h5 ||
+    fail "could not copy the checkpoints"
+  "$sim" "${args[@]}" -t 500 --checkpoint-interval 0 -o reference500.h5 2>reference500.err || fail "the reference run failed"
+  "$sim" "${args[@]}" -t 500 --checkpoint-interval 0 --resume --set-aside-other-runs -o sa.h5 2>set_aside.err ||
+    fail "--resume --set-aside-other-runs over another run's checkpoint failed"
+  grep -q "checkpoint 'sa.h5.checkpoint' belongs to a run with other parameters (t-max 500 vs 1000 in the checkpoint): moved aside to 'sa.h5.checkpoint.from-other-run' and 'sa.h5.checkpoint.from-other-run.previous', starting this run from t = 0" set_aside.err ||
+    fail "the run did not say that it moved the other run's checkpoint aside"
+  cmp -s kept.checkpoint sa.h5.checkpoint.from-other-run && cmp -s kept.previous sa.h5.checkpoint.from-other-run.previous ||
+    fail "the other run's checkpoint was not kept unchanged"
+  [ ! -e sa.h5.checkpoint ] || fail "the finished run left a checkpoint"
+  "$python" "$same" reference500.h5 sa.h5 >same.out 2>&1 || { cat same.out; fail "the run started anew differs from a fresh one"; }
   "$sim" "${args[@]}" -t 1000 --checkpoint-interval 0 --resume -o ck3.h5 2>resumed.err || fail "the right --resume failed"
   grep -q "resuming from 'ck3.h5.checkpoint'" resumed.err || fail "the right --resume did not use the checkpoint"
   ;;

@@ -214,6 +214,19 @@ TEST(Output, PartsMergeIntoTheSingleRunResult) {
     EXPECT_THROW(shockgas::merge_outputs({parts[1], parts[0]}, {names[1], names[0]}), shockgas::InputError);
 }
 
+// A refusal naming a long list (600 snapshot times) ran to 3 KB (user review, 2026-11-28): a
+// value longer than 60 characters is cut after its first values, with its length.
+TEST(Output, ParameterDifferencesCutLongLists) {
+    shockgas::SimulationParameters a, b;
+    for (int k = 1; k <= 600; ++k) a.snapshot_times.push_back(k);
+    b.t_max = 500;
+    const std::string differences = shockgas::parameter_differences(a, b);
+    EXPECT_LT(differences.size(), 200u) << differences;
+    EXPECT_NE(differences.find("snapshot-times (none) vs 1,2,3,"), std::string::npos) << differences;
+    EXPECT_NE(differences.find(",... (600 values)"), std::string::npos) << differences;
+    EXPECT_NE(differences.find("t-max 500 vs "), std::string::npos) << differences;
+}
+
 // simulator_sha256 (the simulator's sources, compiler and flags) decides whether a checkpoint or a
 // part was made by the same simulator, whatever the versions say; files written before it was
 // recorded fall back to the version.

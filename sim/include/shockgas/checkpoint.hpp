@@ -51,6 +51,14 @@ void check_checkpoint_of_run(const std::string& file, const Checkpoint& checkpoi
 // by this code version: what a job about to gather from them checks first
 // (shockgas-sim's rank 0, before the ranks start).
 void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run);
+// For --resume --set-aside-other-runs: every readable checkpoint among `files`
+// (both generations) that belongs to a run with other parameters, by this
+// simulator, is moved aside to '<file>.from-other-run' (and its '.previous'),
+// instead of being refused, so that the run starts anew where its own record
+// (the figure pipeline's parameter file) says it is another run; returns one
+// note per file moved, naming what differed. Damaged files and other
+// simulators' checkpoints are left to the loader, which says what it does.
+std::vector<std::string> set_aside_other_runs(const std::vector<std::string>& files, const SimulationParameters& run);
 
 // A run without --resume, before any work: throws InputError if a generation
 // of `files` (the run's checkpoint path and every file a --resume of it would
