@@ -2,6 +2,8 @@
 # paper_targets/<figure>.<fidelity>.json:
 #   {"runs": [{"name": "r0.9", "label": "r = 0.9", "parts": 1,
 #              "options": {"particles": 20000, "restitution": 0.9, ...}}, ...]}
+# "label" describes the run for a reader of the file (the legends themselves are
+# written in figures/*.gp, which know what each curve is); it is not used here.
 # "options" are shockgas-sim's long options, passed through unchanged, so the
 # parameter file is the complete record of every run. "parts" > 1 splits the
 # realizations into separately stored parts (shockgas-sim --first-realization)
@@ -51,7 +53,6 @@ endfunction()
 # configured fidelity. Sets in the caller's scope:
 #   <figure>_RUNS            run names, in file order
 #   <figure>_<name>_H5       the run's output file
-#   <figure>_<name>_LABEL    its legend label
 #   <figure>_PARAMETER_FILE  the JSON file
 function(shockgas_figure_runs figure)
   set(parameter_file "${CMAKE_CURRENT_SOURCE_DIR}/${figure}.${SHOCKGAS_FIDELITY}.json")
@@ -67,10 +68,6 @@ function(shockgas_figure_runs figure)
   set(names)
   foreach(i RANGE ${last_run})
     string(JSON name GET "${json}" runs ${i} name)
-    string(JSON label ERROR_VARIABLE no_label GET "${json}" runs ${i} label)
-    if(no_label)
-      set(label "${name}")
-    endif()
     string(JSON parts ERROR_VARIABLE no_parts GET "${json}" runs ${i} parts)
     if(no_parts)
       set(parts 1)
@@ -136,7 +133,6 @@ function(shockgas_figure_runs figure)
     endif()
     list(APPEND names "${name}")
     set(${figure}_${name}_H5 "${h5}" PARENT_SCOPE)
-    set(${figure}_${name}_LABEL "${label}" PARENT_SCOPE)
   endforeach()
   set(${figure}_RUNS "${names}" PARENT_SCOPE)
   set(${figure}_PARAMETER_FILE "${parameter_file}" PARENT_SCOPE)
@@ -160,7 +156,11 @@ function(shockgas_plot figure)
     COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] plotting ${figure}.png and ${figure}.pdf"
     VERBATIM)
   add_custom_target(${figure} DEPENDS ${outputs})
-  add_dependencies(${figure} shockgas_sim_stamp shockgas-analyze shockgas-dump)
+  # The theory's rule (paper_targets/CMakeLists.txt) is attached to every figure whose steps read
+  # its files; built first through its own target, it is up to date before any of them looks, so
+  # two figures built in parallel never run it twice at once (CMake's advice for an output that
+  # several targets depend on).
+  add_dependencies(${figure} shockgas_sim_stamp shockgas-analyze shockgas-dump shockgas_theory)
   set_property(GLOBAL APPEND PROPERTY SHOCKGAS_FIGURES ${figure})
 endfunction()
 
