@@ -416,6 +416,12 @@ def main(argv=None):
     ap.add_argument("--D", type=float, default=D_SHOCKGAS,
                     help="momentum variance per unit length (rho <v^2>); 1/3 for v ~ U[-1,1]")
     args = ap.parse_args(argv)
+    # D sets every scale (EB2: M* = (D rho t^2)^(1/3), V* = D^(1/3) t^(-1/3), c = 1/(6D)): at 0 they
+    # divide by zero, below 0 they are complex, NaN or infinite they fill the tables with NaN. Refused
+    # before anything is made or written.
+    if not (np.isfinite(args.D) and args.D > 0):
+        ap.error("--D %r: the momentum variance per unit length of the initial velocities, rho <v^2>, must be "
+                 "finite and > 0 (1/3 for v ~ U[-1, 1] at unit spacing, the default)" % args.D)
     # An --out-dir that cannot be made or written in is refused before the work (seconds of
     # quadrature), in one line; so is one that fails when written (a full disk).
     why = output_directory_problem(args.out_dir)

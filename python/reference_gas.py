@@ -274,12 +274,10 @@ def read_initial_condition(path):
     """(position, velocity, mass or None, ring_length) from a shockgas-sim --init file."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import shockgas  # the project's one HDF5 reader
-    with shockgas.open_file(path, check_schema=False) as handle:
-        position = [float(u) for u in handle["position"][()]]
-        velocity = [float(u) for u in handle["velocity"][()]]
-        mass = [float(u) for u in handle["mass"][()]] if "mass" in handle else None
-        ring_length = float(handle.attrs["ring_length"])
-    return position, velocity, mass, ring_length
+    position, velocity, mass, ring_length = shockgas.read_initial_condition(path)
+    # Plain floats: the decimal arithmetic (--digits) converts each exactly.
+    return ([float(u) for u in position], [float(u) for u in velocity],
+            None if mass is None else [float(u) for u in mass], ring_length)
 
 
 def main(argv=None):
@@ -303,14 +301,14 @@ def main(argv=None):
                         help="a shockgas-sim output of this init file (-R 1): take its r, delta, mechanism, "
                              "collapse speed and sample times, and print its values beside the reference's")
     args = parser.parse_args(argv)
+    extra = check_arguments(args)
     try:
         position, velocity, mass, ring_length = read_initial_condition(args.init)
-    except KeyError:
-        raise UsageError("%s: not an initial condition for shockgas-sim --init (it needs the datasets position and "
-                         "velocity and the root attribute ring_length)" % args.init) from None
     except FileNotFoundError as error:  # the shockgas module's message names the path
         raise UsageError(str(error)) from None
-    except (OSError, ValueError) as error:
+    except ValueError as error:  # read_initial_condition's own reason (a missing dataset, a bad value)
+        raise UsageError("%s: %s" % (args.init, error)) from None
+    except OSError as error:
         raise UsageError("%s: not a readable initial condition (%s)" % (args.init, error)) from None
     run = None
     if args.compare:
@@ -338,10 +336,12 @@ def main(argv=None):
         args.subthreshold, args.collapse_speed = run.attrs["subthreshold"], run.attrs["collapse_speed"]
         times = [float(u) for u in run.time]
     else:
-        extra = [float(u) for u in args.sample_times.split(",") if u.strip()]
         times = sorted(set(log_grid(args.t_max, args.samples_per_decade) + extra))
-    result = simulate(position, velocity, mass, ring_length, args.restitution, args.threshold,
-                      args.subthreshold, args.collapse_speed, times, args.max_events, args.digits)
+    try:
+        result = simulate(position, velocity, mass, ring_length, args.restitution, args.threshold,
+                          args.subthreshold, args.collapse_speed, times, args.max_events, args.digits)
+    except ValueError as error:  # a start simulate refuses (unsorted, outside [0, L), ...), in one line
+        raise UsageError("%s: %s" % (args.init, error)) from None
     print("# reference_gas: N = %d, L = %r, r = %r, delta = %r, %s sub-threshold collisions, %s; %s after %d "
           "events (%s)" % (len(position), ring_length, args.restitution, args.threshold, args.subthreshold,
                            "doubles" if args.digits is None else "%d digits" % args.digits, result.status,
@@ -370,6 +370,51 @@ def main(argv=None):
 
 class UsageError(Exception):
     """A user's mistake: one line "reference_gas.py: error: ..." on stderr, exit status 2."""
+
+
+# The bounds shockgas-sim puts on --samples-per-decade (sim/src/parameters.cpp, validate).
+SAMPLES_PER_DECADE_RANGE = (1, 1000)
+
+
+def check_arguments(args):
+    """Refuses (UsageError) a command-line value that simulate() would refuse with a traceback, or
+    would run on to print rows that mean nothing (a negative --t-max, --max-events below 1), before
+    any file is read; the rules are shockgas-sim's where it has the option (sim/src/parameters.cpp).
+    Returns --sample-times as a list of floats."""
+    if not 0.0 <= args.restitution <= 1.0:
+        raise UsageError("-r/--restitution %r: the restitution coefficient r lies in [0, 1]" % args.restitution)
+    if not (math.isfinite(args.threshold) and args.threshold >= 0.0):
+        raise UsageError("-d/--threshold %r: the velocity threshold delta is finite and >= 0" % args.threshold)
+    if not args.collapse_speed >= 0.0:
+        raise UsageError("--collapse-speed %r: a speed >= 0" % args.collapse_speed)
+    if args.threshold > 0.0 and args.collapse_speed > args.threshold:
+        raise UsageError("--collapse-speed %r exceeds the threshold delta = %r: every inelastic collision is then "
+                         "at least delta, and a collapse would be declared falsely (shockgas-sim refuses it too)"
+                         % (args.collapse_speed, args.threshold))
+    if not (math.isfinite(args.t_max) and args.t_max > 0.0):
+        raise UsageError("-t/--t-max %r: the run starts at t = 0 and needs a finite t_max > 0" % args.t_max)
+    low, high = SAMPLES_PER_DECADE_RANGE
+    if not low <= args.samples_per_decade <= high:
+        raise UsageError("--samples-per-decade %d: between %d and %d (as shockgas-sim)" % (args.samples_per_decade,
+                                                                                           low, high))
+    if args.max_events is not None and args.max_events < 1:
+        raise UsageError("--max-events %d: at least 1 (leave it out for no limit)" % args.max_events)
+    if args.digits is not None and not 1 <= args.digits <= decimal.MAX_PREC:
+        raise UsageError("--digits %d: decimal arithmetic needs 1 significant digit or more (40 is the test's), "
+                         "at most %d" % (args.digits, decimal.MAX_PREC))
+    extra = []
+    for text in args.sample_times.split(","):
+        if not text.strip():
+            continue
+        try:
+            t = float(text)
+        except ValueError:
+            raise UsageError("--sample-times: %r is not a number (times are comma separated, such as 0.5,2.5)"
+                             % text.strip()) from None
+        if not (math.isfinite(t) and 0.0 <= t <= args.t_max):
+            raise UsageError("--sample-times: %s lies outside [0, t_max = %r]" % (text.strip(), args.t_max))
+        extra.append(t)
+    return extra
 
 
 if __name__ == "__main__":

@@ -208,8 +208,8 @@ def main(argv=None):
         c, p = cpp[key], py[key]
         if c != c or p != p:  # n/a: one realization has no jackknife sigma and no weights for chi2
             good = (c != c) and (p != p)
-            note = ("n/a on both sides (%d realization: no jackknife, no weights)" % py["realizations"] if good else
-                    "n/a on one side only")
+            note = ("n/a on both sides (%d realization%s: no jackknife, no weights)"
+                    % (py["realizations"], "" if py["realizations"] == 1 else "s") if good else "n/a on one side only")
             print("%-15s C++ %s  scipy %s  %s %s" % (key, fmt(c), fmt(p), note, "ok" if good else "FAIL"))
         else:
             rel = abs(p - c) / abs(c) if c != 0 else abs(p - c)

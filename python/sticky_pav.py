@@ -64,6 +64,11 @@ bars off it (the cluster count approaches nu slowly), the first bin, m < 0.1, mo
 without it); with many realizations finite-t corrections begin to show in Phi too (chi2/bins 0.8 to
 1.8 with 40). The mass bins depend on t, so each time has its own.
 
+--init FILE runs one start given as text, a line 'x v [m]' per particle ('#' comments, an optional
+'# L = <ring length>' line), or as shockgas-sim's HDF5 --init file (shockgas.read_initial_condition);
+every x must lie on the ring [0, L). Positions outside [0, L) and a file holding no particle are
+refused by name.
+
 A user's mistake is one line "sticky_pav.py: error: ..." on stderr and exit status 2
 (python/shockgas/cli.py; where the shockgas module is out of reach, argparse's usage block comes
 above that line). That includes an output (--clusters-out, --json, --hist-dir) that cannot be
@@ -77,6 +82,7 @@ import json
 import os
 import sys
 import time
+import warnings
 
 try:
     import numpy as np
@@ -123,7 +129,23 @@ def generate_initial(N, seed, L=None, vmax=1.0):
 
 def read_initial(path, L=None):
     """Whitespace columns 'x v [m]' ('#' comments).  L from argument or a '# L = <value>' line,
-    else N * (mean spacing)."""
+    else N * (mean spacing). Or shockgas-sim's HDF5 --init format (shockgas.read_initial_condition),
+    whose ring_length is L (an argument L that differs is a ValueError). A file holding no particle
+    line (empty, or comments alone) and a ring length that is not finite and > 0 are ValueError."""
+    try:
+        import h5py
+    except ImportError:  # no HDF5 reader here: say so for an HDF5 file (its signature), read text otherwise
+        with open(path, "rb") as fh:
+            if fh.read(8) == b"\x89HDF\r\n\x1a\n":
+                raise ValueError("an HDF5 file: reading it needs h5py (Debian's python3-h5py)") from None
+        h5py = None
+    if h5py is not None and h5py.is_hdf5(path):
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import shockgas  # the project's one reader of --init files
+        x, v, m, ring_length = shockgas.read_initial_condition(path)
+        if L is not None and float(L) != ring_length:
+            raise ValueError("--L %r, but the file's ring_length is %r" % (float(L), ring_length))
+        return x, v, np.ones(len(x)) if m is None else m, ring_length
     Lh = None
     with open(path) as fh:
         for line in fh:
@@ -132,13 +154,21 @@ def read_initial(path, L=None):
                 key, _, val = s.lstrip("#").partition("=")
                 if key.strip() == "L":
                     Lh = float(val.split()[0])
-    data = np.loadtxt(path, comments="#", ndmin=2)
+    with warnings.catch_warnings():  # no data is said below, in the one error line, not as a warning above it
+        warnings.filterwarnings("ignore", message="loadtxt: input contained no data", category=UserWarning)
+        data = np.loadtxt(path, comments="#", ndmin=2)
+    if data.size == 0:
+        raise ValueError("no particles: no line 'x v [m]', only blank lines or '#' comments")
+    if data.shape[1] < 2:
+        raise ValueError("one column: each line is 'x v [m]'")
     x, v = data[:, 0].copy(), data[:, 1].copy()
     m = data[:, 2].copy() if data.shape[1] > 2 else np.ones(len(x))
     order = np.argsort(x, kind="stable")
     x, v, m = x[order], v[order], m[order]
     if L is None:
         L = Lh if Lh is not None else len(x) * float(np.mean(np.diff(x))) if len(x) > 1 else 1.0
+    if not (np.isfinite(L) and L > 0):
+        raise ValueError("ring length L = %r: it must be finite and > 0" % L)
     return x, v, m, float(L)
 
 
@@ -496,8 +526,10 @@ def main(argv=None):
     ap.add_argument("--times", type=float, nargs="+",
                     default=[100, 215.443469, 464.158883, 1000, 2154.43469, 4641.58883, 10000])
     ap.add_argument("--copies", type=int, default=1, help="periodic copies on each side")
-    ap.add_argument("--init", help="read initial condition 'x v [m]' from this file instead (one realization)")
-    ap.add_argument("--L", type=float, help="ring length for --init")
+    ap.add_argument("--init", help="one start instead (one realization): a text file of lines 'x v [m]', or "
+                                   "shockgas-sim's HDF5 --init file; every x in [0, L)")
+    ap.add_argument("--L", type=float, help="ring length for a text --init (default: its '# L = ' line, else N "
+                                            "times the mean spacing; an HDF5 file's is its ring_length)")
     ap.add_argument("--clusters-out", help="with --init: write clusters 't mass position velocity' here")
     ap.add_argument("--compare", action="store_true", help="compare with exact_ballistic kappa, nu")
     ap.add_argument("--json", help="write the comparison table as JSON here")
@@ -520,8 +552,16 @@ def solve(args):
             x, v, m, L = read_initial(args.init, args.L)
         except (OSError, ValueError, IndexError) as error:
             raise InputError("%s: not a readable initial condition 'x v [m]' (%s)" % (args.init, error)) from None
-        if len(x) < 2 or not (np.all(np.isfinite(x)) and np.all(np.isfinite(v)) and np.all(m > 0)):
-            raise InputError("%s: needs N >= 2 particles with finite x and v and masses > 0" % args.init)
+        if len(x) < 2 or not (np.all(np.isfinite(x)) and np.all(np.isfinite(v)) and np.all(np.isfinite(m) & (m > 0))):
+            raise InputError("%s: needs N >= 2 particles with finite x and v and finite masses > 0" % args.init)
+        # The ring is [0, L): a particle outside it would be unrolled into the wrong periodic copy, and
+        # drop out of the clusters (as reference_gas.py and shockgas-sim, refused rather than wrapped).
+        outside = np.flatnonzero((x < 0) | (x >= L))
+        if outside.size:
+            raise InputError("%s: x = %r%s lies outside the ring [0, L = %r)%s" % (
+                args.init, float(x[outside[0]]), " (and %d more)" % (outside.size - 1) if outside.size > 1 else "", L,
+                "" if args.L is not None else " (L from the file's '# L =' line or N times the mean spacing; "
+                                             "give --L)"))
         res = sticky_ring(x, v, m, L, sorted(args.times), copies=args.copies)
         if not args.clusters_out:
             write_clusters(sys.stdout, res)

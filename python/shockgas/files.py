@@ -368,3 +368,21 @@ def write_initial_condition(path, position, velocity, mass=None, ring_length=Non
             if mass is not None:
                 handle["mass"] = mass
         _refuse_to_replace(path, overwrite)  # again: something may have appeared meanwhile
+
+
+def read_initial_condition(path):
+    """(position, velocity, mass or None, ring_length) of a start written for `shockgas-sim --init`
+    (write_initial_condition's format: datasets position, velocity, optional mass, attribute
+    ring_length), as float arrays and a float; checked as write_initial_condition checks what it
+    writes (ValueError naming the first bad value)."""
+    with open_file(path, check_schema=False) as handle:
+        try:
+            position = np.asarray(handle["position"][()], dtype=float)
+            velocity = np.asarray(handle["velocity"][()], dtype=float)
+            mass = np.asarray(handle["mass"][()], dtype=float) if "mass" in handle else None
+            ring_length = float(handle.attrs["ring_length"])
+        except KeyError as missing:
+            raise ValueError(f"not an initial condition for shockgas-sim --init (no {missing}; it needs the "
+                             f"datasets position and velocity and the root attribute ring_length)") from None
+    _check_initial_condition(position, velocity, mass, ring_length)
+    return position, velocity, mass, ring_length

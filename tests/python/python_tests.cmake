@@ -75,8 +75,8 @@ add_test(NAME python.compare_engine_ensembles
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_compare_engine_ensembles_cli.py
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/compare_engine_ensembles")
 set_tests_properties(python.compare_engine_ensembles PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
-# python/refit_check.py: the run beside the results, checked against the recorded provenance; one
-# realization (sigma n/a); bad inputs (~1 s).
+# python/refit_check.py: the run beside the results, checked against the recorded provenance; one or two
+# realizations (sigma n/a, the count in the note); bad inputs (~1 s).
 add_test(NAME python.refit_check_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_refit_check_cli.py
                  $<TARGET_FILE:shockgas-sim> $<TARGET_FILE:shockgas-analyze> "${_py_work}/refit_check_inputs")
@@ -95,19 +95,22 @@ add_test(NAME python.fidelity_report_inputs
 set_tests_properties(python.fidelity_report_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
 # python/sticky_pav.py: histograms at small t, --hist-dir's chi2 with two realizations (counting errors),
 # fits of too few times or realizations or of a time without spread, --compare's jackknife sigma against the
-# spread over 100 ensembles, outputs that cannot be written (~19 s).
+# spread over 100 ensembles, outputs that cannot be written, --init files it does not read (HDF5, no
+# particles) and positions off the ring [0, L) (~22 s).
 add_test(NAME python.sticky_pav_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_sticky_pav_cli.py
                  "${_py_work}/sticky_pav_inputs")
 set_tests_properties(python.sticky_pav_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
-# python/reference_gas.py: --compare checks the run's init_file_sha256; a missing module in one line (< 1 s).
+# python/reference_gas.py: --compare checks the run's init_file_sha256; bad option values (r, delta, t_max,
+# --sample-times, --max-events, --digits, ...) and a start simulate() refuses, one line each before any row; a
+# missing module in one line (~10 s, one interpreter per refusal).
 add_test(NAME python.reference_gas_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_reference_gas_cli.py
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/reference_gas_inputs")
 set_tests_properties(python.reference_gas_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
 # Every Python command-line script (python/*.py, tools/*.py, tools/reproduce-check): an unknown option,
 # a missing argument, a bad number or choice is one line "<script>: error: ...", exit 2, through
-# shockgas.cli.ArgumentParser; --help is argparse's (~4 s, imports only).
+# shockgas.cli.ArgumentParser; exact_ballistic.py --D not finite and > 0; --help is argparse's (~8 s, imports only).
 add_test(NAME python.script_refusals
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_script_refusals_cli.py
                  "${_py_work}/script_refusals")

@@ -7,6 +7,12 @@
     SHA-256 (init_file_sha256). A start differing in one velocity, and a run made from no init file,
     are refused (exit 2, one line); before, they were compared and showed differences that were no
     engine's fault. The run's own start is compared (exit 0, the reference's T beside the run's).
+  * A bad value on the command line (r outside [0, 1], delta < 0 or NaN, --digits 0, --sample-times abc,
+    a time outside [0, t_max], t_max <= 0, --max-events < 1, ...) is one line naming the option, exit 2,
+    nothing on stdout, before the init file is read: before, -r 1.5, -d -1, --digits 0 and
+    --sample-times abc ended in a ValueError traceback (exit 1), -t -5 printed a row at t = -5 and
+    --max-events -3 rows of NaN (exit 0), --sample-times nan never ended. A start that simulate()
+    refuses (positions not sorted) is one line naming the file, not simulate()'s traceback.
   * A python3 without h5py: one line naming the missing module and /usr/bin/python3, exit 2 (it
     was a ModuleNotFoundError traceback). Run here with a stand-in h5py on PYTHONPATH that fails to
     import, as a machine without python3-h5py does.
@@ -14,6 +20,7 @@
     whatever python3 is first on the PATH.
 """
 import os
+import subprocess
 import sys
 import unittest
 
@@ -21,7 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import script_checks as sc  # noqa: E402
 
 try:
-    import h5py  # noqa: F401
+    import h5py
     import numpy  # noqa: F401
 
     sys.path.insert(0, sc.script("python"))
@@ -78,6 +85,71 @@ class Compare(unittest.TestCase):
         sc.one_line_error(self, sc.run([sc.PYTHON, TOOL, path("no_such.h5")], cwd=WORK), NAME, "no such file")
         sc.one_line_error(self, sc.run([sc.PYTHON, TOOL, path("run.h5")], cwd=WORK), NAME,
                           "not an initial condition")
+
+
+# Each bad command line (options after the init file) and words its one error line must hold; run with
+# a timeout, as --sample-times nan ran forever.
+BAD_ARGUMENTS = [
+    (["-r", "1.5"], ["--restitution", "1.5", "[0, 1]"]),
+    (["-r", "nan"], ["--restitution", "nan"]),
+    (["-d", "-1"], ["--threshold", "-1.0", ">= 0"]),
+    (["-d", "nan"], ["--threshold", "nan"]),
+    (["--digits", "0"], ["--digits 0"]),
+    (["--sample-times", "abc"], ["--sample-times", "'abc' is not a number"]),
+    (["--sample-times", "1,nan"], ["--sample-times", "nan", "outside"]),
+    (["-t", "10", "--sample-times", "20"], ["--sample-times", "20", "outside [0, t_max = 10.0]"]),
+    (["-t", "-5"], ["--t-max", "-5.0", "> 0"]),
+    (["-t", "inf"], ["--t-max", "inf"]),
+    (["--max-events", "-3"], ["--max-events -3", "at least 1"]),
+    (["--max-events", "0"], ["--max-events 0"]),
+    (["--samples-per-decade", "0"], ["--samples-per-decade 0"]),
+    (["--collapse-speed", "-1"], ["--collapse-speed", "-1.0"]),
+    (["-d", "0.01", "--collapse-speed", "0.1"], ["--collapse-speed", "exceeds the threshold"]),
+]
+# Far above what a refusal takes (the imports, < 1 s), far below ctest's TIMEOUT.
+REFUSAL_SECONDS = 30
+# A 4-particle start whose positions are not sorted (as shockgas.write_initial_condition refuses to
+# write, so written with h5py).
+UNSORTED_POSITIONS = [0.0, 3.0, 1.5, 4.2]
+
+
+class Arguments(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        os.makedirs(WORK, exist_ok=True)
+        cls.start = path("arguments_start.h5")
+        shockgas.write_initial_condition(cls.start, [0.0, 1.5, 3.0, 4.2], [0.5, -0.2, 0.3, -0.6], ring_length=5.0,
+                                         overwrite=True)
+
+    def refuse(self, arguments, words, start=None):
+        try:
+            result = subprocess.run([sc.PYTHON, TOOL, start or self.start, *arguments], cwd=WORK, capture_output=True,
+                                    text=True, timeout=REFUSAL_SECONDS)
+        except subprocess.TimeoutExpired:
+            self.fail("%s: still running after %d s" % (" ".join(arguments), REFUSAL_SECONDS))
+        sc.one_line_error(self, result, NAME, *words)
+        self.assertEqual(result.stdout, "", arguments)  # no header, no rows: nothing half done
+
+    def test_bad_values_are_one_line(self):
+        for arguments, words in BAD_ARGUMENTS:
+            with self.subTest(arguments=arguments):
+                self.refuse(arguments, words)
+
+    def test_a_start_simulate_refuses_is_one_line(self):
+        unsorted = path("unsorted_start.h5")
+        with h5py.File(unsorted, "w") as handle:
+            handle.attrs["ring_length"] = 5.0
+            handle["position"] = UNSORTED_POSITIONS
+            handle["velocity"] = [0.5, -0.2, 0.3, -0.6]
+        # Read through shockgas.read_initial_condition, which checks a start as shockgas-sim does.
+        self.refuse([], ["unsorted_start.h5", "positions are not sorted", "position[2] = 1.5"], start=unsorted)
+
+    def test_good_values_still_run(self):
+        result = sc.run([sc.PYTHON, TOOL, self.start, "-r", "0", "-d", "0", "-t", "5", "--sample-times", "0,2.5,5",
+                         "--max-events", "1", "--digits", "20"], cwd=WORK)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = [line.split() for line in result.stdout.splitlines() if line and line[0].isdigit()]
+        self.assertIn(["2.5"], [row[:1] for row in rows])
 
 
 class Interpreter(unittest.TestCase):

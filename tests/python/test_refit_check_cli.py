@@ -13,7 +13,7 @@ that one and reported a C++-versus-scipy mismatch that was its own. Here:
     refused because its seed differs from the recorded one; --run naming the wrong run too: exit 2;
   * one realization: the C++ gives exponent_sigma NaN ("+- n/a"); the refit compares the exponent
     and chi2/dof and reports sigma as n/a on both sides (it died with "array must not contain infs
-    or NaNs");
+    or NaNs"); two the same, the note saying "(2 realizations: ...", not "(2 realization: ...";
   * a run file given as results, a missing file, results of another subcommand: exit 2, one line.
 """
 import os
@@ -100,6 +100,12 @@ class TooFewToWeigh(unittest.TestCase):
         self.assertRegex(result.stdout, r"exponent +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
         self.assertRegex(result.stdout, r"exponent_sigma +C\+\+ n/a +scipy n/a .* ok")
         self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ n/a +scipy n/a .* ok")
+        # The n/a notes count the realizations in words that agree with the number ("(2 realization:"
+        # was printed for two).
+        counted = "%d realization%s:" % (realizations, "" if realizations == 1 else "s")
+        for key in ("exponent_sigma", "chi2_per_dof"):
+            line = next(line for line in result.stdout.splitlines() if line.startswith(key))
+            self.assertIn("n/a on both sides (%s" % counted, line)
 
     def test_one_realization(self):
         self.expect_unweighted_on_both_sides(1)

@@ -13,6 +13,11 @@ the argparse ones also a missing argument, a bad number and a bad choice where t
 parses its words by hand, refused --help as an unknown option; it prints its help now, in argparse's
 form, wherever -h or --help stands. Nothing is run: every command is refused, or answered, before
 any file is read.
+
+exact_ballistic.py --D, the momentum variance per unit length of the initial velocities: 0 ended in a
+ZeroDivisionError traceback, -1 in a TypeError about complex numbers after writing phi.dat, NaN and
+infinity wrote constants.gp with exact_kappa = nan (or inf) and exit 0. Each is now one line naming
+--D, exit 2, and --out-dir is not made.
 """
 import os
 import sys
@@ -38,6 +43,9 @@ SCRIPTS = [
     ("tools", "fidelity_report.py", []),
     ("tools", "reproduce-check", ["archive.tar.gz"]),
 ]
+# exact_ballistic.py --D values that are no variance (given as --D=VALUE, as argparse reads "-inf"
+# as an option otherwise).
+BAD_D = ["0", "-1", "nan", "inf", "-inf"]
 # fidelity_report.py parses its few words itself (its refusals were one line already); its --help, which
 # it refused as an unknown option, has argparse's form.
 ARGPARSE_SCRIPTS = [(folder, name) for folder, name, _ in SCRIPTS if name != "fidelity_report.py"]
@@ -76,6 +84,14 @@ class OtherRefusals(unittest.TestCase):
                           "invalid int value")
         sc.one_line_error(self, run("tools", "reproduce-check", "archive.tar.gz", "--jobs", "all"), "reproduce-check",
                           "--jobs", "invalid int value")
+
+    def test_exact_ballistic_d_must_be_finite_and_positive(self):
+        out_dir = os.path.join(WORK, "theory_bad_d")
+        for value in BAD_D:
+            with self.subTest(D=value):
+                result = run("python", "exact_ballistic.py", "--out-dir", out_dir, "--D=" + value)
+                sc.one_line_error(self, result, "exact_ballistic.py", "--D", "finite and > 0")
+                self.assertFalse(os.path.exists(out_dir), "--D %s made %s" % (value, out_dir))
 
     def test_bad_choice(self):
         sc.one_line_error(self, run("python", "reference_gas.py", "start.h5", "--subthreshold", "bouncy"),
