@@ -440,9 +440,14 @@ def write_theory(out_dir, D):
     the constants."""
     const = compute_constants(D)
     kappa = const["kappa"]
+    # Phi depends on z only through z / D^(1/3) (EB8), so the tables' z ranges, chosen for the paper's
+    # D = 1/3, scale with (3D)^(1/3): the same points of the scaled function for every D (exactly 1 at
+    # D = 1/3). With fixed ranges a D below about 0.3 ran phi_tail.dat's Phi into underflow (log Phi
+    # = -inf, the local exponent NaN).
+    z_scale = (3.0 * D) ** (1.0 / 3.0)
 
     # Phi(z)
-    z = np.linspace(-4.0, 4.0, 321)
+    z = z_scale * np.linspace(-4.0, 4.0, 321)
     ph = phi(z, D)
     gauss = np.exp(-z * z / (2 * kappa)) / np.sqrt(2 * np.pi * kappa)
     var_from_table = np.trapz(z * z * ph, z)
@@ -457,7 +462,7 @@ def write_theory(out_dir, D):
 
     # far tail of Phi with its local exponent gamma_loc = d ln(-ln(z^2 Phi / A)) / d ln z (A the EB9
     # prefactor), the curve the far-tail sampler is held against (docs/far-tail.md)
-    zt = np.arange(1.0, 7.0 + 1e-9, 0.05)
+    zt = z_scale * np.arange(1.0, 7.0 + 1e-9, 0.05)
     lpt = np.log(phi(zt, D))
     A_tail = 2.0 ** (11.0 / 6.0) * D ** (1.0 / 3.0) / AIP1
     local = np.gradient(np.log(-(lpt + 2.0 * np.log(zt) - np.log(A_tail))), np.log(zt))
@@ -490,8 +495,10 @@ def write_theory(out_dir, D):
         tail_constant_c=const["tail_constant_c"],
         tail_form="Phi(z) ~ A z^-2 exp(-c z^3 - B z), c = 1/(6D), B = |a1|/(2D)^(1/3) = %.6f, A = 2^(11/6) D^(1/3)/Ai'(a1) = %.6f"
                   % (ALPHA1 / (2 * D) ** (1 / 3), 2 ** (11 / 6) * D ** (1 / 3) / AIP1),
-        effective_c_fit_logPhi_vs_z3={"z in [1,2.5]": _effective_tail_fit(D, 1.0, 2.5),
-                                     "z in [2,3.5]": _effective_tail_fit(D, 2.0, 3.5)},
+        # The windows [1, 2.5] and [2, 3.5] at the paper's D, scaled with (3D)^(1/3) as the tables are.
+        effective_c_fit_logPhi_vs_z3={"z in [%g,%g]" % (z_scale * lo, z_scale * hi):
+                                      _effective_tail_fit(D, z_scale * lo, z_scale * hi)
+                                      for lo, hi in ((1.0, 2.5), (2.0, 3.5))},
         definitions=dict(
             T="T(t) = sum_c M_c V_c^2 / N - (sum_c M_c V_c / N)^2 ~ kappa t^(-2/3)",
             n="clusters per particle n(t) ~ nu t^(-2/3)",

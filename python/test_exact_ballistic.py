@@ -258,6 +258,34 @@ def _():
             % (T_r, T_e, n_r, n_e, n_pred))
 
 
+# The tables' z ranges scale with (3D)^(1/3) (Phi depends on z / D^(1/3), EB8): at the paper's D = 1/3
+# they are the fixed ranges; with fixed ranges a D below about 0.3 underflowed phi_tail.dat (log Phi
+# = -inf, local exponent NaN, 2026-11-28). Every value written must be finite (but the EB9 asymptote
+# at z = 0, z^-2), and the effective tail constant must scale as 1/D exactly as c = 1/(6D) does.
+TOL_SCALED_FIT = 1e-6   # the same points of the scaled function: only rounding separates the fits
+
+
+@check("tables at D = 0.01 and 30: finite, and the tail fit scales as 1/D")
+def _():
+    import json
+    import tempfile
+    effective = {}
+    for D in (0.01, 1.0 / 3.0, 30.0):
+        with tempfile.TemporaryDirectory() as out_dir:
+            eb.write_theory(out_dir, D)
+            for name in ("phi.dat", "phi_tail.dat", "mass_distribution.dat"):
+                table = np.loadtxt(os.path.join(out_dir, name))
+                if name == "phi.dat":
+                    table = table[table[:, 0] != 0.0]  # the asymptote z^-2 is infinite at z = 0
+                assert np.all(np.isfinite(table)), (D, name)
+            with open(os.path.join(out_dir, "constants.json")) as fh:
+                fits = json.load(fh)["effective_c_fit_logPhi_vs_z3"]
+            effective[D] = [fits[key] * 6.0 * D for key in sorted(fits)]
+    for D in (0.01, 30.0):
+        assert np.allclose(effective[D], effective[1.0 / 3.0], rtol=TOL_SCALED_FIT, atol=0), effective
+    return "6 D c_eff = %s at every D" % ", ".join("%.6f" % c for c in effective[1.0 / 3.0])
+
+
 if __name__ == "__main__":
     npass = sum(1 for _, ok in RESULTS if ok)
     nfail = len(RESULTS) - npass
