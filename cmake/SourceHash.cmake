@@ -1,6 +1,9 @@
 # shockgas_source_hash(<hash_var> <listing_var> SOURCE_DIR DIRECTORIES COMPILER_INFO):
-# SHA-256 over COMPILER_INFO and every file under DIRECTORIES (a CMake list),
-# each file's own SHA-256 and path relative to SOURCE_DIR, sorted. Used at build
+# SHA-256 over COMPILER_INFO and every file under DIRECTORIES (a CMake list of
+# directories and single files), each file's own SHA-256 and path relative to
+# SOURCE_DIR, sorted. Hidden files and editors' leftovers (.name, name~, *.orig,
+# *.rej, *.swp) are not sources: an editor's swap file beside checkpoint.cpp
+# would otherwise make every run in progress another simulator's. Used at build
 # time (cmake -P) by SourceStamp.cmake, which the figure pipeline's simulations
 # depend on, and by BuildInfo.cmake, which compiles the same hash into the
 # programs as simulator_sha256: one computation, so the stamp that decides
@@ -10,10 +13,14 @@
 function(shockgas_source_hash hash_var listing_var source_dir directories compiler_info)
   set(content "${compiler_info}\n")
   foreach(dir IN LISTS directories)
-    if(NOT IS_DIRECTORY "${dir}")
-      message(FATAL_ERROR "shockgas_source_hash: no directory '${dir}'")
+    if(IS_DIRECTORY "${dir}")
+      file(GLOB_RECURSE files LIST_DIRECTORIES false "${dir}/*")
+    elseif(EXISTS "${dir}")
+      set(files "${dir}")
+    else()
+      message(FATAL_ERROR "shockgas_source_hash: no directory or file '${dir}'")
     endif()
-    file(GLOB_RECURSE files LIST_DIRECTORIES false "${dir}/*")
+    list(FILTER files EXCLUDE REGEX "/\\.[^/]*$|~$|\\.(orig|rej|swp|swo)$")
     list(SORT files)
     foreach(f IN LISTS files)
       file(SHA256 "${f}" hash)

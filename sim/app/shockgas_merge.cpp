@@ -30,9 +30,11 @@ int main(int argc, char** argv) {
             // simulator_sha256), so it must have the simulator that made the parts;
             // merged_from names each part's own version.
             if (!shockgas::made_by_this_simulator(parts.back().version, parts.back().simulator_sha256))
-                throw shockgas::InputError(fmt::format("'{}' was made by version {}, this is {}, whose simulator "
-                                                       "differs: merge with a build of the simulator that ran the parts",
-                                                       input, parts.back().version, shockgas::build_info().version));
+                throw shockgas::InputError(fmt::format(
+                    "'{}' was made by {}, this is {}, another simulator: merge with a build of the simulator that ran "
+                    "the parts",
+                    input, shockgas::build_description(parts.back().version, parts.back().simulator_sha256),
+                    shockgas::this_build_description()));
         }
         const auto merged = shockgas::merge_outputs(parts, inputs);
         // The parts' provenance (program, version, the first part's date and host), and

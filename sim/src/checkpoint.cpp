@@ -302,10 +302,10 @@ std::vector<std::string> check_no_interrupted_run(const std::vector<std::string>
     const std::string remove = both_generations(bases);
     const std::string at = fmt::format("{}, saved {}", checkpoint_progress(checkpoint), saved_at(file));
     if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256))
-        throw InputError(fmt::format("'{}' holds an interrupted run of shockgas {} ({}), which only a build of that "
-                                     "simulator can continue (this is {}, whose simulator differs): remove {} to start "
-                                     "anew",
-                                     file, checkpoint.version, at, build_info().version, remove));
+        throw InputError(fmt::format("'{}' holds an interrupted run of {} ({}), which only a build of that "
+                                     "simulator can continue (this is {}, another simulator): remove {} to start anew",
+                                     file, build_description(checkpoint.version, checkpoint.simulator_sha256), at,
+                                     this_build_description(), remove));
     if (const std::string differences = run_differences(checkpoint, run, true); !differences.empty())
         throw InputError(fmt::format("'{}' holds an interrupted run with other parameters ({} in the checkpoint; {}): "
                                      "remove {} to start anew, or choose another -o/--checkpoint",
@@ -399,6 +399,14 @@ std::vector<std::string> keep_aside(const std::string& path, const std::string& 
     return kept;
 }
 
+// The name under which another simulator's checkpoint is kept: its version and,
+// where recorded, the start of its simulator_sha256 (a version can name two
+// simulators: two -dirty builds).
+std::string aside_tag(const Checkpoint& checkpoint) {
+    if (checkpoint.simulator_sha256.empty()) return checkpoint.version;
+    return checkpoint.version + "-" + checkpoint.simulator_sha256.substr(0, 8);
+}
+
 }  // namespace
 
 std::vector<std::string> set_aside_other_runs(const std::vector<std::string>& files, const SimulationParameters& run) {
@@ -413,12 +421,15 @@ std::vector<std::string> set_aside_other_runs(const std::vector<std::string>& fi
             } catch (const std::exception&) {
                 continue;  // damaged: the loader passes over it with a warning
             }
-            if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) break;  // the loader's
+            // Another simulator's is moved aside by the loader, whatever its run.
+            if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) break;
             const std::string differences = run_differences(checkpoint, run, true);
             if (differences.empty()) break;
+            // A running process's checkpoint is never moved: refused as the lock refuses it.
+            const CheckpointLock running(checkpoint_base(file));
             const std::vector<std::string> kept = keep_aside(name, "other-run");
             notes.push_back(fmt::format("checkpoint '{}' belongs to a run with other parameters ({} in the "
-                                        "checkpoint): moved aside to '{}'{}, starting this run from t = 0",
+                                        "checkpoint): moved aside to '{}'{}; this run does not continue it",
                                         name, differences, kept.front(),
                                         kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
             break;
@@ -444,6 +455,23 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
             damaged.push_back(damage_of(candidate, error));
             continue;
         }
+        // Another simulator continues nothing bit for bit, whatever run the
+        // checkpoint holds (so this comes before the comparison of parameters,
+        // whose refusal would say to give its parameters, which would not
+        // continue it either): the run starts anew; but the hours in the old
+        // checkpoint are moved aside, not overwritten by this run's first
+        // checkpoint, so that a build of the simulator that wrote them can
+        // still finish them.
+        if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) {
+            const std::vector<std::string> kept = keep_aside(path, aside_tag(checkpoint));
+            say(fmt::format("checkpoint '{}' was written by {}, this is {}, another simulator: starting from t = 0; "
+                            "kept it as '{}'{} (a build of that simulator can continue it there with --checkpoint; "
+                            "remove it when done)",
+                            candidate, build_description(checkpoint.version, checkpoint.simulator_sha256),
+                            this_build_description(), kept.front(),
+                            kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
+            return std::nullopt;
+        }
         // Another run: refused, before any work (the run would overwrite
         // it). Another block of this run: for gather_checkpoint.
         check_checkpoint_of_run(candidate, checkpoint, whole_run != nullptr ? *whole_run : parameters);
@@ -452,19 +480,6 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
             say(fmt::format("checkpoint '{}' holds realizations {} of this run, not this block's {}; starting them "
                             "from t = 0",
                             candidate, realization_range(checkpoint.parameters), realization_range(parameters)));
-            return std::nullopt;
-        }
-        if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) {
-            // Another simulator continues nothing bit for bit, so the run starts
-            // anew; but the hours in the old checkpoint are moved aside, not
-            // overwritten by this run's first checkpoint, so that a build of the
-            // simulator that wrote them can still finish them.
-            const std::vector<std::string> kept = keep_aside(path, checkpoint.version);
-            say(fmt::format("checkpoint '{}' was written by shockgas {}, this is {}, whose simulator differs: starting "
-                            "from t = 0; kept it as '{}'{} (a build of {} can continue it there with --checkpoint; "
-                            "remove it when done)",
-                            candidate, checkpoint.version, build_info().version, kept.front(),
-                            kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string(), checkpoint.version));
             return std::nullopt;
         }
         if (const std::string problem = layout_problem(checkpoint, parameters, sample_times); !problem.empty()) {
@@ -477,9 +492,10 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
             say(fmt::format("'{}' is missing (killed while replacing it); resuming from the previous checkpoint '{}'",
                             path, candidate));
         if (checkpoint.version != build_info().version)
-            say(fmt::format("checkpoint '{}' was written by shockgas {}, this is {}: the same simulator (sources, "
-                            "compiler and flags), so it is continued",
-                            candidate, checkpoint.version, build_info().version));
+            say(fmt::format("checkpoint '{}' was written by {}, this is {}: the same simulator (sources, compiler "
+                            "and flags), so it is continued",
+                            candidate, build_description(checkpoint.version, checkpoint.simulator_sha256),
+                            this_build_description()));
         return checkpoint;
     }
     if (damaged.size() == 1)

@@ -156,6 +156,9 @@ void write_merged_output(const std::string& path, const OutputFile& merged, cons
         // date and host say when and where the run was made (docs/cli-and-output.md); the merge
         // wrote its own time there until 2026-11-27, and nothing said the file was merged.
         // A part read from a file without them (none is written so) keeps the merge's.
+        // The version that ran the first part, as its date and host (parts of other
+        // versions of the same simulator are named in merged_from).
+        if (!merged.version.empty()) root.set_attribute("version", merged.version);
         if (!merged.date.empty()) root.set_attribute("date", merged.date);
         if (!merged.host.empty()) root.set_attribute("host", merged.host);
         root.set_attribute("merged_by", program + " " + build_info().version);
@@ -456,15 +459,30 @@ std::vector<std::pair<std::string, std::string>> physics_parameters(const Simula
 
 namespace {
 
-// A value as a message shows it: a long list of times (600 snapshot times made
-// a refusal of 3 KB) is cut after its first values, with its length.
-std::string shown(const std::string& value) {
+// A value as a message shows it beside the value it differs from. A long list of
+// numbers (600 snapshot times made a refusal of 3 KB) is shown by its length and the
+// first entry in which the two differ; anything else (a path, a hash) whole.
+std::string shown(const std::string& value, const std::string& other) {
     constexpr std::size_t longest = 60;
     if (value.empty()) return "(none)";
-    if (value.size() <= longest) return value;
-    const std::size_t cut = value.rfind(',', longest);
-    const auto values = std::count(value.begin(), value.end(), ',') + 1;
-    return fmt::format("{},... ({} values)", value.substr(0, cut == std::string::npos ? longest : cut), values);
+    const bool list_of_numbers = value.find(',') != std::string::npos &&
+                                 value.find_first_not_of("0123456789.eE+-,") == std::string::npos;
+    if (value.size() <= longest || !list_of_numbers) return value;
+    const auto entries = [](const std::string& list) {
+        std::vector<std::string> out;
+        std::size_t start = 0;
+        for (std::size_t comma; (comma = list.find(',', start)) != std::string::npos; start = comma + 1)
+            out.push_back(list.substr(start, comma - start));
+        out.push_back(list.substr(start));
+        return out;
+    };
+    const auto mine = entries(value), theirs = other.empty() ? std::vector<std::string>{} : entries(other);
+    std::size_t k = 0;
+    while (k < mine.size() && k < theirs.size() && mine[k] == theirs[k]) ++k;
+    std::string text = fmt::format("{} values from {}", mine.size(), mine.front());
+    if (k < mine.size() && k > 0) text += fmt::format(", value {} = {}", k + 1, mine[k]);
+    if (k == mine.size() && k < theirs.size()) text += fmt::format(", none after value {}", k);
+    return "(" + text + ")";
 }
 
 }  // namespace
@@ -474,8 +492,8 @@ std::string parameter_differences(const SimulationParameters& a, const Simulatio
     std::vector<std::string> differences;
     for (std::size_t i = 0; i < first.size(); ++i)
         if (first[i].second != second[i].second)
-            differences.push_back(
-                fmt::format("{} {} vs {}", first[i].first, shown(second[i].second), shown(first[i].second)));
+            differences.push_back(fmt::format("{} {} vs {}", first[i].first, shown(second[i].second, first[i].second),
+                                              shown(first[i].second, second[i].second)));
     return fmt::format("{}", fmt::join(differences, ", "));
 }
 
@@ -521,8 +539,9 @@ OutputFile merge_outputs(const std::vector<OutputFile>& parts, const std::vector
             throw InputError(fmt::format("merge: '{}' used engine {}, '{}' used {}", name, part.result.engine, names[0],
                                          r.engine));
         if (!same_simulator(part.version, part.simulator_sha256, merged.version, merged.simulator_sha256))
-            throw InputError(fmt::format("merge: '{}' was made by version {}, '{}' by {}, whose simulators differ", name,
-                                         part.version, names[0], merged.version));
+            throw InputError(fmt::format("merge: '{}' was made by {}, '{}' by {}, another simulator", name,
+                                         build_description(part.version, part.simulator_sha256), names[0],
+                                         build_description(merged.version, merged.simulator_sha256)));
         if (part.parameters.first_realization != next_realization)
             throw InputError(fmt::format("merge: '{}' starts at realization {}, expected {}", name,
                                          part.parameters.first_realization, next_realization));

@@ -33,6 +33,15 @@ bool made_by_this_simulator(const std::string& version, const std::string& simul
     return same_simulator(version, simulator_sha256, build_info().version, build_info().simulator_sha256);
 }
 
+std::string build_description(const std::string& version, const std::string& simulator_sha256) {
+    if (simulator_sha256.empty()) return "shockgas " + version;
+    return "shockgas " + version + " (simulator " + simulator_sha256.substr(0, 12) + ")";
+}
+
+std::string this_build_description() {
+    return build_description(build_info().version, build_info().simulator_sha256);
+}
+
 std::string provenance_comment(const std::string& program, const std::string& source, bool dated) {
     std::string text = "# " + program + " " + build_info().version;
     if (!source.empty()) text += ", from " + source;

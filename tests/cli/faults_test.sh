@@ -146,12 +146,41 @@ resume_other_parameters)
   "$sim" "${args[@]}" -t 500 --checkpoint-interval 0 -o reference500.h5 2>reference500.err || fail "the reference run failed"
   "$sim" "${args[@]}" -t 500 --checkpoint-interval 0 --resume --set-aside-other-runs -o sa.h5 2>set_aside.err ||
     fail "--resume --set-aside-other-runs over another run's checkpoint failed"
-  grep -q "checkpoint 'sa.h5.checkpoint' belongs to a run with other parameters (t-max 500 vs 1000 in the checkpoint): moved aside to 'sa.h5.checkpoint.from-other-run' and 'sa.h5.checkpoint.from-other-run.previous', starting this run from t = 0" set_aside.err ||
+  grep -q "checkpoint 'sa.h5.checkpoint' belongs to a run with other parameters (t-max 500 vs 1000 in the checkpoint): moved aside to 'sa.h5.checkpoint.from-other-run' and 'sa.h5.checkpoint.from-other-run.previous'; this run does not continue it" set_aside.err ||
     fail "the run did not say that it moved the other run's checkpoint aside"
   cmp -s kept.checkpoint sa.h5.checkpoint.from-other-run && cmp -s kept.previous sa.h5.checkpoint.from-other-run.previous ||
     fail "the other run's checkpoint was not kept unchanged"
   [ ! -e sa.h5.checkpoint ] || fail "the finished run left a checkpoint"
   "$python" "$same" reference500.h5 sa.h5 >same.out 2>&1 || { cat same.out; fail "the run started anew differs from a fresh one"; }
+  # Another simulator's checkpoint of another run is moved aside as another simulator's (no build
+  # of this one continues it, whatever parameters are given), not refused: with and without the
+  # flag. Until the review of 2026-11-28 it was refused, saying to give its parameters.
+  for flag in "" --set-aside-other-runs; do
+    cp kept.checkpoint os.h5.checkpoint && cp kept.previous os.h5.checkpoint.previous || fail "could not copy"
+    rm -f os.h5.checkpoint.from-*
+    "$python" -c "
+import sys, h5py
+for name in sys.argv[1:]:
+    with h5py.File(name, 'r+') as f:
+        f.attrs['version'] = 'oldbuild/1'
+        del f.attrs['simulator_sha256']
+" os.h5.checkpoint os.h5.checkpoint.previous || fail "could not mark the checkpoints as an older build's"
+    "$sim" "${args[@]}" -t 50 --checkpoint-interval 0 --resume $flag -o os.h5 2>other_simulator.err ||
+      { cat other_simulator.err; fail "another simulator's checkpoint of another run was refused ($flag)"; }
+    grep -q "was written by shockgas oldbuild/1, this is .*, another simulator: starting from t = 0; kept it as 'os.h5.checkpoint.from-oldbuild_1'" other_simulator.err ||
+      { cat other_simulator.err; fail "another simulator's checkpoint was not kept aside ($flag)"; }
+  done
+  # A running process's checkpoint is never moved aside: refused as its lock refuses it.
+  "$sim" "${args[@]}" -t 1000000 --checkpoint-interval 0.1 -o busy.h5 2>busy.err &
+  busy=$!
+  for _ in $(seq 1 600); do [ -e busy.h5.checkpoint ] && break; sleep 0.02; done
+  [ -e busy.h5.checkpoint ] || { kill -INT "$busy"; wait "$busy"; fail "the running run wrote no checkpoint"; }
+  "$sim" "${args[@]}" -t 50 --checkpoint-interval 0 --resume --set-aside-other-runs -o busy.h5 2>busy_aside.err
+  status=$?
+  kill -INT "$busy"; wait "$busy"
+  [ "$status" -eq 2 ] || fail "setting aside a running process's checkpoint was not refused (exit $status)"
+  grep -q "in use by another running shockgas-sim" busy_aside.err || { cat busy_aside.err; fail "the refusal does not name the lock"; }
+  ! ls busy.h5.checkpoint.from-* >/dev/null 2>&1 || fail "a running process's checkpoint was moved aside"
   "$sim" "${args[@]}" -t 1000 --checkpoint-interval 0 --resume -o ck3.h5 2>resumed.err || fail "the right --resume failed"
   grep -q "resuming from 'ck3.h5.checkpoint'" resumed.err || fail "the right --resume did not use the checkpoint"
   ;;
@@ -186,9 +215,10 @@ for name in sys.argv[1:]:
   cp ob.h5.checkpoint kept.checkpoint
   cp ob.h5.checkpoint.previous kept.previous
   "$sim" "${args[@]}" --checkpoint-interval 0.1 --resume -o ob.h5 2>resumed.err || fail "the --resume failed"
-  grep -q "checkpoint 'ob.h5.checkpoint' was written by shockgas oldbuild/1, .*: starting from t = 0; kept it as 'ob.h5.checkpoint.from-oldbuild_1' and 'ob.h5.checkpoint.from-oldbuild_1.previous'" resumed.err ||
+  grep -q "checkpoint 'ob.h5.checkpoint' was written by shockgas oldbuild/1 (simulator 000000000000), this is shockgas .* (simulator [0-9a-f]\{12\}), another simulator: starting from t = 0; kept it as 'ob.h5.checkpoint.from-oldbuild_1-00000000' and 'ob.h5.checkpoint.from-oldbuild_1-00000000.previous'" resumed.err ||
     fail "the run did not say where it kept the other build's checkpoint"
-  cmp -s kept.checkpoint ob.h5.checkpoint.from-oldbuild_1 && cmp -s kept.previous ob.h5.checkpoint.from-oldbuild_1.previous ||
+  cmp -s kept.checkpoint ob.h5.checkpoint.from-oldbuild_1-00000000 &&
+    cmp -s kept.previous ob.h5.checkpoint.from-oldbuild_1-00000000.previous ||
     fail "the other build's checkpoint was not kept unchanged"
   [ ! -e ob.h5.checkpoint ] || fail "the finished run left its own checkpoint"
   "$python" "$same" reference.h5 ob.h5 >same.out 2>&1 || { cat same.out; fail "the run started anew differs from the uninterrupted one"; }
@@ -210,7 +240,7 @@ for name in sys.argv[1:]:
         f.attrs['version'] = 'docsonly/1'
 " ss.h5.checkpoint ss.h5.checkpoint.previous || fail "could not mark the checkpoints as another version's"
   "$sim" "${args[@]}" --checkpoint-interval 0 --resume -o ss.h5 2>resumed.err || fail "the --resume failed"
-  grep -q "checkpoint 'ss.h5.checkpoint' was written by shockgas docsonly/1, this is .*: the same simulator (sources, compiler and flags), so it is continued" resumed.err ||
+  grep -q "checkpoint 'ss.h5.checkpoint' was written by shockgas docsonly/1 (simulator [0-9a-f]\{12\}), this is .*: the same simulator (sources, compiler and flags), so it is continued" resumed.err ||
     { cat resumed.err; fail "the run did not say that it continued another version's checkpoint"; }
   grep -q "resuming from 'ss.h5.checkpoint'" resumed.err || { cat resumed.err; fail "the run did not resume"; }
   ! ls ss.h5.checkpoint.from-* >/dev/null 2>&1 || fail "the same simulator's checkpoint was moved aside"

@@ -32,4 +32,18 @@ work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
 recorded=$(sed -n 's/^run_simulator_sha256 = "\([0-9a-f]*\)"$/\1/p' "$work/root.gp")
 stamp=$(cat "$build/shockgas-sim.stamp")
 [ "$recorded" = "$stamp" ] || { echo "FAIL: the run records simulator_sha256 '$recorded', the stamp is '$stamp'"; exit 1; }
-echo "ok: the stamp covers all $count simulator sources, and the programs record it as simulator_sha256"
+# An editor's leftovers beside the sources (a swap file, a backup) are not sources:
+# they must not change the hash, or opening checkpoint.cpp in vim across a
+# paper-tier stop and start would make every run in progress another simulator's.
+# Checked on a copy, with the stamp's own script.
+mkdir -p "$work/copy/sim" && cp -r sim/src sim/include sim/app "$work/copy/sim/" || { echo "FAIL: copy"; exit 1; }
+stamp_of_copy() {
+  cmake -DSOURCE_DIR="$work/copy" "-DDIRECTORIES=$work/copy/sim/src|$work/copy/sim/include|$work/copy/sim/app" \
+        -DCOMPILER_INFO=test -DSTAMP="$work/copy.stamp" -P "$source/cmake/SourceStamp.cmake" && cat "$work/copy.stamp"
+}
+clean=$(stamp_of_copy) || { echo "FAIL: hashing the copy"; exit 1; }
+touch "$work/copy/sim/src/.checkpoint.cpp.swp" "$work/copy/sim/src/checkpoint.cpp~" "$work/copy/sim/src/output.cpp.orig"
+[ "$(stamp_of_copy)" = "$clean" ] || { echo "FAIL: editor leftovers changed the hash"; exit 1; }
+echo "// a change" >>"$work/copy/sim/src/checkpoint.cpp"
+[ "$(stamp_of_copy)" != "$clean" ] || { echo "FAIL: a changed source did not change the hash"; exit 1; }
+echo "ok: the stamp covers all $count simulator sources and no editor leftovers, and the programs record it as simulator_sha256"

@@ -215,16 +215,38 @@ TEST(Output, PartsMergeIntoTheSingleRunResult) {
 }
 
 // A refusal naming a long list (600 snapshot times) ran to 3 KB (user review, 2026-11-28): a
-// value longer than 60 characters is cut after its first values, with its length.
-TEST(Output, ParameterDifferencesCutLongLists) {
+// list longer than 60 characters is shown by its length and the first entry in which the two
+// differ; other values (paths, hashes) whole, however long.
+TEST(Output, ParameterDifferencesShowLongListsByWhereTheyDiffer) {
     shockgas::SimulationParameters a, b;
     for (int k = 1; k <= 600; ++k) a.snapshot_times.push_back(k);
     b.t_max = 500;
-    const std::string differences = shockgas::parameter_differences(a, b);
+    std::string differences = shockgas::parameter_differences(a, b);
     EXPECT_LT(differences.size(), 200u) << differences;
-    EXPECT_NE(differences.find("snapshot-times (none) vs 1,2,3,"), std::string::npos) << differences;
-    EXPECT_NE(differences.find(",... (600 values)"), std::string::npos) << differences;
+    EXPECT_NE(differences.find("snapshot-times (none) vs (600 values from 1)"), std::string::npos) << differences;
     EXPECT_NE(differences.find("t-max 500 vs "), std::string::npos) << differences;
+    // Two lists that differ in their last entry: the entry shown, not two identical prefixes.
+    b = a;
+    b.snapshot_times.back() = 605;
+    differences = shockgas::parameter_differences(a, b);
+    EXPECT_NE(differences.find("snapshot-times (600 values from 1, value 600 = 605) vs (600 values from 1, value 600 "
+                               "= 600)"),
+              std::string::npos)
+        << differences;
+    // One list a prefix of the other.
+    b = a;
+    b.snapshot_times.pop_back();
+    differences = shockgas::parameter_differences(a, b);
+    EXPECT_NE(differences.find("(599 values from 1, none after value 599) vs (600 values from 1, value 600 = 600)"),
+              std::string::npos)
+        << differences;
+    // A long path is shown whole.
+    a = shockgas::SimulationParameters{};
+    b = a;
+    a.init_file = "/a/rather/long/directory/name/for/the/initial/conditions/of/this/study/start_a.h5";
+    b.init_file = "/a/rather/long/directory/name/for/the/initial/conditions/of/this/study/start_b.h5";
+    differences = shockgas::parameter_differences(a, b);
+    EXPECT_NE(differences.find(b.init_file + " vs " + a.init_file), std::string::npos) << differences;
 }
 
 // simulator_sha256 (the simulator's sources, compiler and flags) decides whether a checkpoint or a
@@ -267,6 +289,18 @@ TEST(Output, MergeOfMergedFilesNamesEveryPart) {
     EXPECT_EQ(inner.merged_from, (std::vector<std::string>{names[0] + " (realizations 0 to 0" + version,
                                                            names[1] + " (realizations 1 to 1" + version}));
     EXPECT_TRUE(parts[2].merged_from.empty());
+    // Parts of two versions of the same simulator merge; the file's version is the first part's
+    // (as its date and host), each part's is in merged_from (the merge wrote its own until 2026-11-28).
+    {
+        auto first = parts[0];
+        first.version = "docsonly/1";
+        const auto mixed_path = temp_path("nested_mixed.h5");
+        shockgas::write_merged_output(mixed_path, shockgas::merge_outputs({first, parts[1]}, {names[0], names[1]}),
+                                      "test");
+        const auto mixed = shockgas::read_output(mixed_path);
+        EXPECT_EQ(mixed.version, "docsonly/1");
+        EXPECT_EQ(mixed.merged_from.front(), names[0] + " (realizations 0 to 0, shockgas docsonly/1)");
+    }
     const auto outer = shockgas::merge_outputs({inner, parts[2]}, {inner_path, names[2]});
     EXPECT_EQ(outer.merged_from,
               (std::vector<std::string>{inner_path + " (realizations 0 to 1" + version,

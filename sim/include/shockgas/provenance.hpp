@@ -35,6 +35,11 @@ bool same_simulator(const std::string& version, const std::string& simulator_sha
                     const std::string& other_simulator_sha256);
 // ... and this build.
 bool made_by_this_simulator(const std::string& version, const std::string& simulator_sha256);
+// How messages name a build: "shockgas <version> (simulator <first 12 hex digits>)", or
+// "shockgas <version>" for a file without the hash. The version alone can be the same for
+// two simulators (two -dirty builds, or one with an editor's file beside the sources).
+std::string build_description(const std::string& version, const std::string& simulator_sha256);
+std::string this_build_description();
 
 // Schema version of the simulation output; bump on any incompatible change.
 // 2: checksummed (HDF5 1.10 format, Fletcher32 on every non-empty dataset).
