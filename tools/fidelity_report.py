@@ -43,6 +43,7 @@ without a file or with one that does not exist, and unknown options. -h or --hel
 import glob
 import math
 import os
+import re
 import signal
 import sys
 
@@ -306,7 +307,8 @@ def progress_report():
                 part = os.path.basename(checkpoint)[len(name):].split(".running")[0].lstrip(".") or name
                 running.append(f"{part}: {done_here}/{len(status)} done" +
                                (f", one at t = {max(reached):.3g}" if reached else ""))
-            # Moved aside by a run of another code version: both generations under one name.
+            # Moved aside by a run of another code version (.from-<version>) or of edited parameters
+            # (.from-other-run): both generations under one name.
             aside = {path[:-len(".previous")] if path.endswith(".previous") else path
                      for path in glob.glob(prefix + ".running.h5.checkpoint.from-*") +
                      glob.glob(prefix + ".part*.running.h5.checkpoint.from-*")}
@@ -340,20 +342,46 @@ def progress_report():
             print(f"| fig_tail | tail (shockgas-tail) | 0/1 | — | 0 | {now} | — |")
     print(f"| **all** | | | | **{total_cpu:.0f}** | | **{total_remaining:.0f}** (finished parts' mean for each part "
           f"not begun; for each running part, that mean less its CPU so far) |")
-    if set_aside:
+    # shockgas-sim names a checkpoint it moves aside NAME.from-<version tag> (another simulator) or
+    # NAME.from-other-run (--set-aside-other-runs: the run's parameters were edited), with ".<k>" added
+    # when that name is taken (sim/src/checkpoint.cpp keep_aside).
+    other_runs = [path for path in set_aside if re.fullmatch(r"other-run(\.\d+)?", path.split(".from-", 1)[1])]
+    other_versions = [path for path in set_aside if path not in other_runs]
+
+    def describe(path):
+        """(the path to show, realizations and CPU s of its newest readable generation, bytes on disk)."""
+        readable = path if os.path.exists(path) else path + ".previous"
+        size = sum(os.path.getsize(p) for p in (path, path + ".previous") if os.path.exists(p))
+        try:
+            c = shockgas.read_checkpoint(readable)
+            status = list(c.realization_status)
+            what = (f"{sum(1 for s in status if s in (0, 1))}/{len(status)} realizations done, "
+                    f"{c.attrs['cpu_seconds']:.0f} CPU s")
+        except (OSError, KeyError, ValueError) as error:
+            what = f"not readable ({error})"
+        return readable, what, size
+
+    if other_versions:
         print("\nSet aside, not counted above: checkpoints of another code version, moved aside when a run of this "
               "one started anew (the old program finishes one with --checkpoint FILE --resume; "
               f"docs/checkpoints-and-mpi.md), under {base}:\n")
-        for path in set_aside:
-            readable = path if os.path.exists(path) else path + ".previous"
-            try:
-                c = shockgas.read_checkpoint(readable)
-                status = list(c.realization_status)
-                what = (f"{sum(1 for s in status if s in (0, 1))}/{len(status)} realizations done, "
-                        f"{c.attrs['cpu_seconds']:.0f} CPU s")
-            except (OSError, KeyError, ValueError) as error:
-                what = f"not readable ({error})"
+        for path in other_versions:
+            readable, what, _ = describe(path)
             print(f"- {os.path.relpath(readable, base)} (version {path.split('.from-', 1)[1]}): {what}")
+    if other_runs:
+        total = 0
+        print("\nSet aside, not counted above: checkpoints of runs whose parameters were edited since (moved aside "
+              "by shockgas-sim --set-aside-other-runs when the build reran the run as it is now; "
+              "docs/checkpoints-and-mpi.md). No build continues one as this run: remove them when no longer "
+              f"wanted. Under {base}:\n")
+        for path in other_runs:
+            readable, what, size = describe(path)
+            total += size
+            files = " and ".join(os.path.relpath(p, base) for p in (path, path + ".previous") if os.path.exists(p))
+            print(f"- {os.path.relpath(readable, base)} (another run's parameters): {what}; "
+                  f"{size / 1e6:.1f} MB on disk ({files})")
+        if len(other_runs) > 1:
+            print(f"\n{total / 1e6:.1f} MB on disk in all.")
 
 
 if progress:

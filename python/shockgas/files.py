@@ -26,7 +26,7 @@ import os
 import h5py
 import numpy as np
 
-from ._h5 import Group, decode_attributes, open_file, read_group
+from ._h5 import Group, decode, decode_attributes, open_file, read_group
 from .cli import atomic_output_path
 from .schema import SchemaError, check_schema_version
 
@@ -370,19 +370,60 @@ def write_initial_condition(path, position, velocity, mass=None, ring_length=Non
         _refuse_to_replace(path, overwrite)  # again: something may have appeared meanwhile
 
 
+def _describe(value):
+    """An attribute's value in a message: a string as such, else its type."""
+    if value.dtype.kind in "SUO":
+        text = decode(value[()] if value.shape == () else value.reshape(-1)[0]) if value.size else ""
+        return f"a string ({str(text)[:40]!r})" if value.size == 1 else f"{value.size} strings"
+    return f"of type {value.dtype}"
+
+
+def _initial_item(handle, name):
+    """The one-dimensional numeric dataset `name` of a start as a float array, else ValueError saying why."""
+    item = handle.get(name)
+    if not isinstance(item, h5py.Dataset):
+        what = "a group" if isinstance(item, h5py.Group) else f"a {type(item).__name__}"
+        raise ValueError(f"{name} is {what}, not a dataset; it must be a one-dimensional dataset of N numbers")
+    if item.shape is None or len(item.shape) != 1:
+        shape = "empty (no dataspace)" if item.shape is None else f"of shape {item.shape}"
+        raise ValueError(f"{name} is a dataset {shape}; it must be one-dimensional (N numbers)")
+    if item.dtype.kind not in "iuf":
+        raise ValueError(f"{name} holds {item.dtype} values, not numbers")
+    return np.asarray(item[()], dtype=float)
+
+
 def read_initial_condition(path):
     """(position, velocity, mass or None, ring_length) of a start written for `shockgas-sim --init`
     (write_initial_condition's format: datasets position, velocity, optional mass, attribute
     ring_length), as float arrays and a float; checked as write_initial_condition checks what it
-    writes (ValueError naming the first bad value)."""
+    writes (ValueError naming the first bad value). A malformed file is a ValueError too, saying what
+    is wrong: position, velocity or mass not a one-dimensional numeric dataset (a group, a 2-D or
+    scalar dataset, strings), ring_length not a single number (an array, a string)."""
     with open_file(path, check_schema=False) as handle:
+        missing = [name for name in ("position", "velocity") if name not in handle]
+        if "ring_length" not in handle.attrs:
+            missing.append("ring_length")
+        if missing:
+            raise ValueError(f"not an initial condition for shockgas-sim --init (no {', '.join(missing)}; it needs "
+                             f"the datasets position and velocity and the root attribute ring_length)")
         try:
-            position = np.asarray(handle["position"][()], dtype=float)
-            velocity = np.asarray(handle["velocity"][()], dtype=float)
-            mass = np.asarray(handle["mass"][()], dtype=float) if "mass" in handle else None
-            ring_length = float(handle.attrs["ring_length"])
-        except KeyError as missing:
-            raise ValueError(f"not an initial condition for shockgas-sim --init (no {missing}; it needs the "
-                             f"datasets position and velocity and the root attribute ring_length)") from None
+            position = _initial_item(handle, "position")
+            velocity = _initial_item(handle, "velocity")
+            mass = _initial_item(handle, "mass") if "mass" in handle else None
+        except ValueError as error:
+            raise ValueError(f"not an initial condition for shockgas-sim --init: {error}") from None
+        try:
+            value = np.asarray(handle.attrs["ring_length"])
+        except (OSError, TypeError, ValueError) as error:  # a type h5py cannot read
+            raise ValueError(f"not an initial condition for shockgas-sim --init: the root attribute ring_length "
+                             f"cannot be read ({error}); it must be a single number") from None
+        if value.dtype.kind not in "iuf":
+            raise ValueError(f"not an initial condition for shockgas-sim --init: the root attribute ring_length is "
+                             f"{_describe(value)}, not a number; it must be a single number (the ring length L)")
+        if value.size != 1:
+            raise ValueError(f"not an initial condition for shockgas-sim --init: the root attribute ring_length holds "
+                             f"{value.size} values (shape {value.shape}); it must be a single number (the ring "
+                             f"length L)")
+        ring_length = float(value.reshape(()))
     _check_initial_condition(position, velocity, mass, ring_length)
     return position, velocity, mass, ring_length

@@ -3,7 +3,8 @@
 # stand in for the pipeline's: `quick` touches a file, `simulate` runs shockgas-sim long enough to be
 # stopped. Asserts that start runs a target in the background and records its end with rc = 0; that a
 # second start while one runs starts nothing (and, asked for another target, says in one line with exit 2
-# that it was not added and how to add it); that every hint start and stop print names the --build DIR
+# that it was not added and how to add it, but asked for a target the running one builds, such as fig1
+# while `figures` runs, that there is nothing to do, exit 0); that every hint start and stop print names the --build DIR
 # given; that stop ends every process of the build and the simulation writes its last checkpoint on the
 # way (so a later start resumes it); and that paper-tier.times records each start and end; and that
 # --jobs 2 runs two targets at once (two that each wait for the other to start, so that one at a time
@@ -25,6 +26,12 @@ add_custom_target(quick COMMAND ${CMAKE_COMMAND} -E touch ${CMAKE_BINARY_DIR}/qu
 add_custom_target(side_a COMMAND sh ${CMAKE_SOURCE_DIR}/meet.sh ${CMAKE_BINARY_DIR} a b)
 add_custom_target(side_b COMMAND sh ${CMAKE_SOURCE_DIR}/meet.sh ${CMAKE_BINARY_DIR} b a)
 add_custom_target(side_by_side DEPENDS side_a side_b)
+# The pipeline's `figures` builds fig1 (and the other figure targets): here fig1 runs until told to end
+# (the file release appears), for up to 60 s.
+add_custom_target(fig1 COMMAND sh -c "touch fig1.started; i=0; while [ ! -f release ] && [ $i -lt 600 ]; do i=$((i + 1)); sleep 0.1; done"
+                  WORKING_DIRECTORY ${CMAKE_BINARY_DIR} VERBATIM)
+add_custom_target(figures)
+add_dependencies(figures fig1)
 # Long enough (N = 20000 to t = 1e6 with the event engine: minutes) to be stopped while it runs.
 add_custom_target(simulate COMMAND ${SIM} -N 20000 -t 1e6 -R 1 -q --resume --checkpoint-interval 3600
                   --output ${CMAKE_BINARY_DIR}/run.h5)
@@ -68,6 +75,29 @@ tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=0$' || fail "side by s
 bad_jobs=$("$tool" start --build "$build" --jobs 0 quick 2>&1) && fail "--jobs 0 was accepted"
 echo "$bad_jobs" | grep -q "at least 1" || fail "--jobs 0: $bad_jobs"
 
+# While `figures` runs, a start of fig1, which it builds, is nothing to do (exit 0): start compared the
+# names alone and said "fig1 NOT added", exit 2. A target it does not build is still refused.
+"$tool" start --build "$build" figures >/dev/null || fail "start of figures failed"
+for ((i = 0; i < 300; ++i)); do
+  [ -f "$build/fig1.started" ] && break
+  sleep 0.1
+done
+[ -f "$build/fig1.started" ] || fail "figures did not start fig1"
+covered=$("$tool" start --build "$build" fig1 2>&1)
+status=$?
+[ $status = 0 ] || fail "start fig1 while figures runs: exit $status, expected 0: $covered"
+echo "$covered" | grep -q "already running in '$build' .* with figures" || fail "start fig1 while figures runs: $covered"
+uncovered=$("$tool" start --build "$build" fig1 quick 2>&1 >/dev/null)
+status=$?
+[ $status = 2 ] || fail "start of a target figures does not build: exit $status, expected 2: $uncovered"
+case $uncovered in
+  *" with figures: quick NOT added; "*) ;;
+  *) fail "start fig1 quick while figures runs: $uncovered" ;;
+esac
+touch "$build/release"
+wait_until_stopped || fail "figures still runs after 60 s"
+tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=0$' || fail "figures: no end with rc=0"
+
 own_autogroup=$(cat /proc/$$/autogroup 2>/dev/null)
 "$tool" start --build "$build" simulate || fail "start of the simulation failed"
 status=$("$tool" status --build "$build")
@@ -96,7 +126,7 @@ case $other in
   "paper-tier: error: already running in '$build' "*" with simulate: quick NOT added; "*"'paper-tier stop --build $build', then 'paper-tier start --build $build simulate quick'"*) ;;
   *) fail "a start with other targets while one runs: $other" ;;
 esac
-[ "$(grep -c '^start' "$build/paper-tier.times")" = 3 ] || fail "a second start was recorded"
+[ "$(grep -c '^start' "$build/paper-tier.times")" = 4 ] || fail "a second start was recorded"
 # Wait until the simulation itself runs, then stop the whole build.
 for ((i = 0; i < 300; ++i)); do
   pgrep -g "$pid" -f "run.h5" >/dev/null && break

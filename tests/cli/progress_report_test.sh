@@ -5,7 +5,8 @@
 # finished part, read the checkpoint's CPU time and progress, and extrapolate the rest of r0.5
 # from its finished part (the 18 parts not begun of Fig. 4's 20 at that part's CPU time, and the running
 # one at that time less what its checkpoint has spent); list a checkpoint moved aside by a run of another
-# code version; and report fig_tail (no parameter file): its sampler running, from paper-tier.log, then done.
+# code version, and apart from it one moved aside as another run's (--set-aside-other-runs: parameters
+# edited), with its size on disk; and report fig_tail (no parameter file): its sampler running, from paper-tier.log, then done.
 set -u
 sim=$1 python=$2 report=$3 work=$4
 here=$(cd "$(dirname "$0")" && pwd)
@@ -29,6 +30,13 @@ for path, seconds in (("r0.5.part0.h5", 1000.0), ("r0.5.part10.running.h5.checkp
 # not counted (it was not reported at all).
 cp r0.5.part10.running.h5.checkpoint r0.5.part20.running.h5.checkpoint.from-v1.0-3-gabc1234 &&
   cp r0.5.part10.running.h5.checkpoint r0.5.part20.running.h5.checkpoint.from-v1.0-3-gabc1234.previous || exit 1
+# A checkpoint of a run whose parameters were edited, moved aside by --set-aside-other-runs (both
+# generations): listed apart, as another run's, with its size on disk. It was listed as "another code
+# version ... the old program finishes one" with "(version other-run)".
+cp r0.5.part10.running.h5.checkpoint r0.9.running.h5.checkpoint.from-other-run &&
+  cp r0.5.part10.running.h5.checkpoint r0.9.running.h5.checkpoint.from-other-run.previous || exit 1
+aside_mb=$("$python" -c 'import os, sys; print(f"{sum(os.path.getsize(p) for p in sys.argv[1:]) / 1e6:.1f}")' \
+  r0.9.running.h5.checkpoint.from-other-run r0.9.running.h5.checkpoint.from-other-run.previous)
 # fig_tail's sampler (no parameter file, no checkpoint) as paper-tier's log shows it running: make's comment,
 # then its progress lines (it had no row at all).
 printf '%s\n' "[ 50%] [fig_tail] far-tail sampler" "shockgas-tail: progress: 10.0% of the steps  elapsed 60 s  ETA 540 s" \
@@ -47,6 +55,12 @@ grep -qF '| fig_tail | tail (shockgas-tail) | 0/1 | — | 0 | sampler: 20.0% of 
 grep -qF -- '- fig4/r0.5.part20.running.h5.checkpoint.from-v1.0-3-gabc1234 (version v1.0-3-gabc1234): 0/3 realizations done, 400 CPU s' report.md ||
   fail "the checkpoint set aside is not listed"
 [ "$(grep -c 'from-v1.0-3-gabc1234' report.md)" = 1 ] || fail "the set-aside checkpoint's two generations are not one entry"
+grep -qF -- "- fig4/r0.9.running.h5.checkpoint.from-other-run (another run's parameters): 0/3 realizations done, 400 CPU s; $aside_mb MB on disk (fig4/r0.9.running.h5.checkpoint.from-other-run and fig4/r0.9.running.h5.checkpoint.from-other-run.previous)" report.md ||
+  fail "the checkpoint of another run is not listed as one"
+grep -q "parameters were edited since .*--set-aside-other-runs.*No build continues one as this run: remove them when no longer wanted" report.md ||
+  fail "the checkpoint of another run is not explained as one"
+grep -q "version other-run" report.md && fail "the checkpoint of another run is listed as another code version's"
+[ "$(grep -c 'from-other-run' report.md)" = 1 ] || fail "the other run's checkpoint is not one entry"
 grep -q '^| \*\*all\*\* | | | | \*\*1400\*\* | | \*\*18600\*\*' report.md || fail "the totals: $(grep '^| \*\*all' report.md)"
 # Once the sampler has written tail.h5, its row is done with that file's CPU seconds.
 mkdir -p "$work/paper_targets/paper/fig_tail" &&

@@ -83,7 +83,9 @@ add_test(NAME python.refit_check_inputs
 set_tests_properties(python.refit_check_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
 # tools/reproduce-check: unreadable archives and a --compare-with that is no directory are exit 2, one line,
 # no temporary left; --compare-with takes the code version from the compared files, so a build compared
-# with its own archive reproduces after its checkout moved on (~14 s: packs a miniature build).
+# with its own archive reproduces after its checkout moved on, and a file of another version of the same
+# simulator (the same simulator_sha256) reproduces; simulator_sha256 is provenance, not data (~14 s: packs
+# a miniature build).
 add_test(NAME python.reproduce_check_unreadable
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_reproduce_check_cli.py
                  "${_py_work}/reproduce_check_unreadable")

@@ -56,3 +56,39 @@ def one_line_error(test, result, name, *words):
     for word in words:
         test.assertIn(word, lines[0], described)
     return lines[0]
+
+
+# HDF5 starts of the --init format gone wrong, each with the words its one error line must hold: it was
+# a TypeError traceback (ring_length an array, position a group) or a message naming none of them (2-D).
+MALFORMED_STARTS = [
+    ("ring_length_array", ["ring_length holds 2 values", "single number"]),
+    ("ring_length_string", ["ring_length is a string", "single number"]),
+    ("position_group", ["position is a group, not a dataset"]),
+    ("position_2d", ["position is a dataset of shape (2, 2)", "one-dimensional"]),
+    ("velocity_2d", ["velocity is a dataset of shape (4, 1)", "one-dimensional"]),
+    ("mass_scalar", ["mass is a dataset of shape ()", "one-dimensional"]),
+    ("position_strings", ["position holds", "not numbers"]),
+]
+
+
+def write_malformed_start(handle, name):
+    """Writes the start MALFORMED_STARTS names into the open h5py file `handle`: a good one, then one item spoiled."""
+    handle.attrs["ring_length"] = 5.0
+    handle["position"] = [0.0, 1.5, 3.0, 4.2]
+    handle["velocity"] = [0.5, -0.2, 0.3, -0.6]
+    item = name.split("_")[0] if not name.startswith("ring_length") else "ring_length"
+    if item == "ring_length":
+        handle.attrs["ring_length"] = [5.0, 6.0] if name.endswith("array") else "five"
+        return
+    if item in handle:
+        del handle[item]
+    if name == "position_group":
+        handle.create_group("position").create_dataset("x", data=[0.0, 1.5, 3.0, 4.2])
+    elif name == "position_2d":
+        handle["position"] = [[0.0, 1.5], [3.0, 4.2]]
+    elif name == "velocity_2d":
+        handle["velocity"] = [[0.5], [-0.2], [0.3], [-0.6]]
+    elif name == "mass_scalar":
+        handle["mass"] = 1.0
+    elif name == "position_strings":
+        handle["position"] = [b"0", b"1.5", b"3", b"4.2"]

@@ -12,7 +12,10 @@
     nothing on stdout, before the init file is read: before, -r 1.5, -d -1, --digits 0 and
     --sample-times abc ended in a ValueError traceback (exit 1), -t -5 printed a row at t = -5 and
     --max-events -3 rows of NaN (exit 0), --sample-times nan never ended. A start that simulate()
-    refuses (positions not sorted) is one line naming the file, not simulate()'s traceback.
+    refuses (positions not sorted) is one line naming the file, not simulate()'s traceback. So is a
+    malformed start (ring_length an array or a string, position a group, a 2-D or scalar dataset,
+    strings; script_checks.MALFORMED_STARTS): ring_length an array and position a group were
+    TypeError tracebacks from shockgas.read_initial_condition.
   * A python3 without h5py: one line naming the missing module and /usr/bin/python3, exit 2 (it
     was a ModuleNotFoundError traceback). Run here with a stand-in h5py on PYTHONPATH that fails to
     import, as a machine without python3-h5py does.
@@ -86,6 +89,17 @@ class Compare(unittest.TestCase):
         sc.one_line_error(self, sc.run([sc.PYTHON, TOOL, path("run.h5")], cwd=WORK), NAME,
                           "not an initial condition")
 
+
+    def test_malformed_starts_are_one_line(self):
+        # shockgas.read_initial_condition raised TypeError (a traceback here) for a ring_length holding an
+        # array and for a position stored as a group; each is one line naming the item now.
+        for name, words in sc.MALFORMED_STARTS:
+            with self.subTest(start=name):
+                with h5py.File(path(name + ".h5"), "w") as handle:
+                    sc.write_malformed_start(handle, name)
+                result = sc.run([sc.PYTHON, TOOL, path(name + ".h5")], cwd=WORK)
+                sc.one_line_error(self, result, NAME, name + ".h5", *words)
+                self.assertEqual(result.stdout, "")
 
 # Each bad command line (options after the init file) and words its one error line must hold; run with
 # a timeout, as --sample-times nan ran forever.

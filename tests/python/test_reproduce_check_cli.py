@@ -19,7 +19,13 @@ more in that checkout, and checks the archive against the same, unchanged build 
 The code version is the compared files' own `version` attribute: every file is the archived one, so
 the check must say "same" and REPRODUCED (exit 0). It read `git describe` of the checkout MANIFEST
 names, which had moved on, and reported DIFFERENT CODE VERSION and NOT REPRODUCED (exit 1). A
-compared file whose `version` is another is still named, DIFFERENT CODE VERSION, exit 1.
+compared file of another simulator (another `version` and simulator_sha256, or the same version and
+another simulator_sha256) is still named, DIFFERENT CODE VERSION, exit 1; so is one of another version
+without simulator_sha256 (written before 2026-11-28). A bit-identical file of another version of the
+same simulator (the same simulator_sha256) reproduces: "same simulator", naming both versions, exit 0
+(it was DIFFERENT CODE VERSION, exit 1). simulator_sha256 and input_simulator_sha256 are provenance,
+never compared as data: a result whose input_simulator_sha256 alone differs reproduces (it was
+DIFFERENT, naming the attribute).
 """
 import glob
 import gzip
@@ -42,6 +48,8 @@ import shockgas.schema  # noqa: E402
 WORK = sc.arguments(1)
 TOOL = sc.script("tools", "reproduce-check")
 NAME = "reproduce-check"
+# The simulator_sha256 of the miniature build's files, and another simulator's.
+SIMULATOR, OTHER_SIMULATOR = "a" * 64, "b" * 64
 
 
 def archive(name, members):
@@ -144,6 +152,8 @@ class CompareWith(unittest.TestCase):
         cls.result = os.path.join(figure, "result.h5")
         with h5py.File(cls.result, "w") as f:  # as the build at that commit wrote it
             f.attrs.update({"program": "shockgas-analyze scaling", "version": version, "date": "2026-11-28",
+                            "simulator_sha256": SIMULATOR, "input_simulator_sha256": SIMULATOR,
+                            "input_version": version,
                             "schema_version": max(shockgas.schema.SCHEMA_VERSIONS), "beta": 0.335, "beta_sigma": 0.01})
             f["z"] = [0.5, 1.0, 1.5]
         for extension in ("png", "pdf"):
@@ -178,18 +188,65 @@ class CompareWith(unittest.TestCase):
         self.assertRegex(result.stdout, r"(?m)^result +REPRODUCED$")
         self.assertNotIn("DIFFERENT", result.stdout)
 
-    def test_a_file_of_another_version_is_named(self):
-        other = os.path.join(self.root, "other-build")
+    def compare_with_changed(self, name, **attributes):
+        """The check against a copy of the build whose result.h5 has `attributes` set (None: removed)."""
+        other = os.path.join(self.root, name)
         shutil.rmtree(other, ignore_errors=True)
         shutil.copytree(self.build, other)
         with h5py.File(os.path.join(other, "paper_targets", "quick", "figx", "result.h5"), "r+") as f:
-            f.attrs["version"] = "v9.9-1-gdeadbee"
-        result = sc.run([sc.PYTHON, TOOL, self.archive, "--compare-with", other,
-                         "--work-dir", os.path.join(self.root, "work-other")], cwd=self.root)
+            for key, value in attributes.items():
+                if value is None:
+                    del f.attrs[key]
+                else:
+                    f.attrs[key] = value
+        return sc.run([sc.PYTHON, TOOL, self.archive, "--compare-with", other,
+                       "--work-dir", os.path.join(self.root, "work-" + name)], cwd=self.root)
+
+    def test_a_file_of_another_simulator_is_named(self):
+        # Another version and another simulator_sha256: another simulator.
+        result = self.compare_with_changed("other-build", version="v9.9-1-gdeadbee", simulator_sha256=OTHER_SIMULATOR)
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
         self.assertRegex(result.stdout, rf"(?m)^code +archive {self.version}, rerun v9.9-1-gdeadbee .*: DIFFERENT "
-                                        rf"CODE VERSION \(1 of them; first build/paper_targets/quick/figx/result.h5")
+                                        rf"CODE VERSION \(1 of them; first build/paper_targets/quick/figx/result.h5: "
+                                        rf"archived {self.version}, compared v9.9-1-gdeadbee: another simulator_sha256")
         self.assertRegex(result.stdout, r"(?m)^result +NOT REPRODUCED$")
+        # The same version, another simulator_sha256 (two edits of an uncommitted tree), same toolchain.
+        result = self.compare_with_changed("edited-build", simulator_sha256=OTHER_SIMULATOR)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertRegex(result.stdout, r"(?m)^code .*: DIFFERENT CODE VERSION .*another simulator_sha256")
+
+    def test_a_file_of_another_version_without_a_simulator_hash_is_named(self):
+        # A file written before simulator_sha256 (removed here): its version decides, as before.
+        result = self.compare_with_changed("old-build", version="v9.9-1-gdeadbee", simulator_sha256=None)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertRegex(result.stdout, rf"(?m)^code +archive {self.version}, rerun v9.9-1-gdeadbee .*: DIFFERENT "
+                                        rf"CODE VERSION \(1 of them; first build/paper_targets/quick/figx/result.h5: "
+                                        rf"archived {self.version}, compared v9.9-1-gdeadbee: another version\)")
+        self.assertRegex(result.stdout, r"(?m)^result +NOT REPRODUCED$")
+
+    def test_another_version_of_the_same_simulator_reproduces(self):
+        # A bit-identical file made by another version of the same simulator (the same simulator_sha256: a
+        # commit that changed no simulator source). It was DIFFERENT CODE VERSION, NOT REPRODUCED.
+        result = self.compare_with_changed("same-simulator-build", version="v9.9-1-gdeadbee")
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertRegex(result.stdout, rf"(?m)^code +archive {self.version}, rerun v9.9-1-gdeadbee .*: same simulator "
+                                        rf"\(1 of them .*first build/paper_targets/quick/figx/result.h5: archived "
+                                        rf"{self.version}, compared v9.9-1-gdeadbee\)$")
+        self.assertRegex(result.stdout, rf"(?m)^OK +build/paper_targets/quick/figx/result.h5 +\(bit-identical datasets "
+                                        rf"and attributes; made by {self.version}, rerun by v9.9-1-gdeadbee, the same "
+                                        rf"simulator")
+        self.assertRegex(result.stdout, r"(?m)^result +REPRODUCED$")
+        self.assertNotIn("DIFFERENT", result.stdout)
+
+    def test_the_simulator_hash_is_provenance_not_data(self):
+        # A result whose input came from another simulator (input_simulator_sha256), its own numbers
+        # bit-identical: the attribute is provenance, not compared as data (it was "DIFFERENT ... attribute
+        # input_simulator_sha256: archive 'aaa...', rerun 'bbb...'").
+        result = self.compare_with_changed("input-build", input_simulator_sha256=OTHER_SIMULATOR)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertRegex(result.stdout, r"(?m)^OK +build/paper_targets/quick/figx/result.h5 +\(bit-identical")
+        self.assertNotIn("simulator_sha256", result.stdout)
+        self.assertRegex(result.stdout, r"(?m)^result +REPRODUCED$")
 
 
 if __name__ == "__main__":

@@ -45,7 +45,9 @@ python; about 17 s of CPU, most of it the exact theory's constants, computed by 
     the same clusters as the same start written as text. Positions outside [0, L) (0..9 with --L 5) were unrolled into the wrong periodic copies and
     their particles missing from the clusters printed (exit 0): now refused, naming the first. An
     empty --init file (or comments alone) printed numpy's "input contained no data" warning above
-    the error line: now the error line alone.
+    the error line: now the error line alone. An HDF5 start whose ring_length is an array, whose
+    position is a group (TypeError tracebacks from shockgas.read_initial_condition) or a 2-D dataset:
+    one line naming the item and what is wrong with it, exit 2 (script_checks.MALFORMED_STARTS).
 """
 import contextlib
 import io
@@ -416,6 +418,20 @@ class InitFile(unittest.TestCase):
         # Its ring length is the file's: another --L is refused, naming both.
         sc.one_line_error(self, pav("--init", start, "--L", 6, "--times", 1), NAME, "--L 6.0",
                           "ring_length is 5.0")
+
+    def test_a_malformed_hdf5_start_is_one_line(self):
+        try:
+            import h5py
+        except ImportError as error:  # pragma: no cover - h5py missing: this test alone cannot make its files
+            self.skipTest("needs h5py to write an HDF5 init file (%s)" % error)
+        for name, words in sc.MALFORMED_STARTS:
+            with self.subTest(start=name):
+                start = os.path.join(self.dir, name + ".h5")
+                with h5py.File(start, "w") as handle:
+                    sc.write_malformed_start(handle, name)
+                result = pav("--init", start, "--times", 1)
+                sc.one_line_error(self, result, NAME, name + ".h5", *words)
+                self.assertEqual(result.stdout, "")
 
     def test_positions_outside_the_ring(self):
         init = self.write("outside.txt", particles(OUTSIDE_PARTICLES))
