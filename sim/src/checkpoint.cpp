@@ -335,16 +335,27 @@ std::vector<std::string> job_checkpoints(const std::string& base, int ranks) {
     return files;
 }
 
+namespace {
+
+// Each generation of the checkpoint `name` that exists and can be read, newest
+// first. Damaged ones are left out: the loader passes over them with a warning.
+std::vector<std::pair<std::string, Checkpoint>> readable_generations(const std::string& name) {
+    std::vector<std::pair<std::string, Checkpoint>> out;
+    for (const std::string& file : checkpoint_generations(name)) {
+        if (!std::filesystem::exists(file)) continue;
+        try {
+            out.emplace_back(file, read_checkpoint(file));
+        } catch (const std::exception&) {
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
 void check_resume_checkpoints(const std::vector<std::string>& files, const SimulationParameters& run) {
     for (const std::string& name : files)
-        for (const std::string& file : checkpoint_generations(name)) {
-            if (!std::filesystem::exists(file)) continue;
-            Checkpoint checkpoint;
-            try {
-                checkpoint = read_checkpoint(file);
-            } catch (const std::exception&) {
-                continue;  // damaged: passed over with a warning when the run loads it
-            }
+        for (const auto& [file, checkpoint] : readable_generations(name)) {
             if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256))
                 continue;  // ignored with a note when loaded
             check_checkpoint_of_run(file, checkpoint, run);
@@ -413,27 +424,20 @@ std::vector<std::string> set_aside_other_runs(const std::vector<std::string>& fi
     std::vector<std::string> notes;
     for (const std::string& name : files) {
         // The newest readable generation says whose run the file holds.
-        for (const std::string& file : checkpoint_generations(name)) {
-            if (!std::filesystem::exists(file)) continue;
-            Checkpoint checkpoint;
-            try {
-                checkpoint = read_checkpoint(file);
-            } catch (const std::exception&) {
-                continue;  // damaged: the loader passes over it with a warning
-            }
-            // Another simulator's is moved aside by the loader, whatever its run.
-            if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) break;
-            const std::string differences = run_differences(checkpoint, run, true);
-            if (differences.empty()) break;
-            // A running process's checkpoint is never moved: refused as the lock refuses it.
-            const CheckpointLock running(checkpoint_base(file));
-            const std::vector<std::string> kept = keep_aside(name, "other-run");
-            notes.push_back(fmt::format("checkpoint '{}' belongs to a run with other parameters ({} in the "
-                                        "checkpoint): moved aside to '{}'{}; this run does not continue it",
-                                        name, differences, kept.front(),
-                                        kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
-            break;
-        }
+        const auto generations = readable_generations(name);
+        if (generations.empty()) continue;
+        const auto& [file, checkpoint] = generations.front();
+        // Another simulator's is moved aside by the loader, whatever its run.
+        if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) continue;
+        const std::string differences = run_differences(checkpoint, run, true);
+        if (differences.empty()) continue;
+        // A running process's checkpoint is never moved: refused as the lock refuses it.
+        const CheckpointLock running(checkpoint_base(file));
+        const std::vector<std::string> kept = keep_aside(name, "other-run");
+        notes.push_back(fmt::format("checkpoint '{}' belongs to a run with other parameters ({} in the checkpoint): "
+                                    "moved aside to '{}'{}; this run does not continue it",
+                                    name, differences, kept.front(),
+                                    kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
     }
     return notes;
 }
