@@ -10,17 +10,14 @@ set(SHOCKGAS_ARCHIVE_MAX_RAW_MB 50 CACHE STRING
 
 function(shockgas_add_archive target)
   cmake_parse_arguments(ARG "" "SUFFIX" "FIGURES;DEPENDS" ${ARGN})
-  string(TOUPPER "${CMAKE_BUILD_TYPE}" build_type_upper)
-  set(flags "${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${build_type_upper}}")
-  string(STRIP "${flags}" flags)
   string(REPLACE ";" "," figures "${ARG_FIGURES}")
   add_custom_target(${target}
     COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/tools/reproduce-check pack
             --build-dir ${CMAKE_BINARY_DIR} --source-dir ${PROJECT_SOURCE_DIR}
             --fidelity ${SHOCKGAS_FIDELITY} --figures ${figures} --suffix=${ARG_SUFFIX}
             --max-raw-mb ${SHOCKGAS_ARCHIVE_MAX_RAW_MB}
-            --toolchain "compiler=${CMAKE_CXX_COMPILER_ID} ${CMAKE_CXX_COMPILER_VERSION}"
-                        "compiler_flags=${flags}" "build_type=${CMAKE_BUILD_TYPE}"
+            --toolchain "compiler=${SHOCKGAS_COMPILER}"
+                        "compiler_flags=${SHOCKGAS_COMPILER_FLAGS}" "build_type=${CMAKE_BUILD_TYPE}"
                         "cxx_compiler=${CMAKE_CXX_COMPILER}" "hdf5_version=${HDF5_VERSION}"
                         "gsl_version=${GSL_VERSION}" "gnuplot=${GNUPLOT_EXECUTABLE}"
                         "cmake_version=${CMAKE_VERSION}" "python=${SHOCKGAS_PYTHON}"

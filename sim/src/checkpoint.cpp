@@ -216,13 +216,21 @@ std::string damage_of(const std::string& file, const std::exception& error) {
     return what.find(file) != std::string::npos ? what : fmt::format("checkpoint '{}' is damaged: {}", file, what);
 }
 
+// "'a'", "'a' and 'b'", "'a', 'b' and 'c'": file names in a message.
+std::string quoted_list(const std::vector<std::string>& files) {
+    std::vector<std::string> names;
+    for (const std::string& file : files) names.push_back(fmt::format("'{}'", file));
+    if (names.size() == 1) return names.front();
+    return fmt::format("{} and {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
+}
+
 // "'a' and 'a.previous'", "'a', 'a.previous', 'b' and 'b.previous'": both
 // generations of each checkpoint, for a message saying what to remove.
 std::string both_generations(const std::vector<std::string>& bases) {
-    std::vector<std::string> names;
+    std::vector<std::string> files;
     for (const std::string& base : bases)
-        for (const std::string& file : checkpoint_generations(base)) names.push_back(fmt::format("'{}'", file));
-    return fmt::format("{} and {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
+        for (const std::string& file : checkpoint_generations(base)) files.push_back(file);
+    return quoted_list(files);
 }
 
 // What makes checkpoint another run's than `run` ("t-max 500 vs 1000"), empty
@@ -339,9 +347,13 @@ namespace {
 
 // Each generation of the checkpoint `name` that exists and can be read, newest
 // first. Damaged ones are left out: the loader passes over them with a warning.
-std::vector<std::pair<std::string, Checkpoint>> readable_generations(const std::string& name) {
+// At most `wanted` of them: the newest alone says whose run a file holds, and a
+// checkpoint can be tens of MB.
+std::vector<std::pair<std::string, Checkpoint>> readable_generations(const std::string& name,
+                                                                    std::size_t wanted = 2) {
     std::vector<std::pair<std::string, Checkpoint>> out;
     for (const std::string& file : checkpoint_generations(name)) {
+        if (out.size() == wanted) break;
         if (!std::filesystem::exists(file)) continue;
         try {
             out.emplace_back(file, read_checkpoint(file));
@@ -424,7 +436,7 @@ std::vector<std::string> set_aside_other_runs(const std::vector<std::string>& fi
     std::vector<std::string> notes;
     for (const std::string& name : files) {
         // The newest readable generation says whose run the file holds.
-        const auto generations = readable_generations(name);
+        const auto generations = readable_generations(name, 1);
         if (generations.empty()) continue;
         const auto& [file, checkpoint] = generations.front();
         // Another simulator's is moved aside by the loader, whatever its run.
@@ -435,9 +447,8 @@ std::vector<std::string> set_aside_other_runs(const std::vector<std::string>& fi
         const CheckpointLock running(checkpoint_base(file));
         const std::vector<std::string> kept = keep_aside(name, "other-run");
         notes.push_back(fmt::format("checkpoint '{}' belongs to a run with other parameters ({} in the checkpoint): "
-                                    "moved aside to '{}'{}; this run does not continue it",
-                                    name, differences, kept.front(),
-                                    kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
+                                    "moved aside to {}; this run does not continue it",
+                                    name, differences, quoted_list(kept)));
     }
     return notes;
 }
@@ -469,11 +480,10 @@ std::optional<Checkpoint> load_checkpoint(const std::string& path, const Simulat
         if (!made_by_this_simulator(checkpoint.version, checkpoint.simulator_sha256)) {
             const std::vector<std::string> kept = keep_aside(path, aside_tag(checkpoint));
             say(fmt::format("checkpoint '{}' was written by {}, this is {}, another simulator: starting from t = 0; "
-                            "kept it as '{}'{} (a build of that simulator can continue it there with --checkpoint; "
+                            "kept it as {} (a build of that simulator can continue it there with --checkpoint; "
                             "remove it when done)",
                             candidate, build_description(checkpoint.version, checkpoint.simulator_sha256),
-                            this_build_description(), kept.front(),
-                            kept.size() > 1 ? fmt::format(" and '{}'", kept[1]) : std::string()));
+                            this_build_description(), quoted_list(kept)));
             return std::nullopt;
         }
         // Another run: refused, before any work (the run would overwrite

@@ -17,8 +17,9 @@ struct BuildInfo {
     std::string compiler_flags;  // CMAKE_CXX_FLAGS plus the build type's flags
     std::string build_type;
     std::string hdf5_version;
-    // SHA-256 over the simulator's sources (sim/src, sim/include, sim/app), the
-    // compiler and the flags (cmake/SourceHash.cmake): what decides its numbers.
+    // SHA-256 over the simulator's sources (sim/src, sim/include, sim/app,
+    // sim/CMakeLists.txt) and how they are built (SHOCKGAS_SIM_COMPILER_INFO in the
+    // top-level CMakeLists.txt; cmake/SourceHash.cmake): what decides its numbers.
     std::string simulator_sha256;
 };
 
