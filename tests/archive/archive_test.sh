@@ -82,15 +82,18 @@ expect 1 "^MISSING +build/paper_targets/quick/fig3/worldlines.dat" "$work/missin
 expect 1 "^FOREIGN +build/paper_targets/quick/fig3/notes.txt" "$work/missing-foreign.log"
 
 echo "== 4. another code version recorded in the archive"
-# Another simulator (another version and simulator_sha256): the same numbers, but another code.
-alter version '
-import json
+# The archive says another version made it: MANIFEST and the run's own attribute.
+another_version='
+import json, h5py
 m = json.load(open("MANIFEST"))
 m["version"] = "v0.0-1-gdeadbee"
 json.dump(m, open("MANIFEST", "w"), indent=1)
-import h5py
 with h5py.File("build/paper_targets/quick/fig3/worldlines.h5", "r+") as f:
     f.attrs["version"] = "v0.0-1-gdeadbee"
+'
+# Another simulator (another version and simulator_sha256): the same numbers, but another code.
+alter version "$another_version"'
+with h5py.File("build/paper_targets/quick/fig3/worldlines.h5", "r+") as f:
     f.attrs["simulator_sha256"] = "0" * 64
 '"$rehash"
 check "$work/version.log" "$copy" "${again[@]}" --work-dir "$work/version.work"
@@ -98,15 +101,7 @@ expect 1 "^code +archive v0.0-1-gdeadbee, rerun .*: DIFFERENT CODE VERSION" "$wo
 expect 1 "worldlines.h5 +\(bit-identical datasets and attributes; made by v0.0-1-gdeadbee, rerun by " "$work/version.log"
 # Another version of the same simulator (the same simulator_sha256: a commit outside sim/) made the
 # same file: reproduced (until 2026-11-28 the version alone decided, and this was a failure).
-alter same_simulator '
-import json
-m = json.load(open("MANIFEST"))
-m["version"] = "v0.0-1-gdeadbee"
-json.dump(m, open("MANIFEST", "w"), indent=1)
-import h5py
-with h5py.File("build/paper_targets/quick/fig3/worldlines.h5", "r+") as f:
-    f.attrs["version"] = "v0.0-1-gdeadbee"
-'"$rehash"
+alter same_simulator "$another_version$rehash"
 check "$work/same_simulator.log" "$copy" "${again[@]}" --work-dir "$work/same_simulator.work"
 expect 0 "^code +archive v0.0-1-gdeadbee, rerun .*: same simulator" "$work/same_simulator.log"
 
