@@ -190,6 +190,11 @@ ComparisonTotals compare_paths(PassThroughEngine::Paths paths, Crossed crossed) 
         crossed);
 }
 
+// Cases of the 54 in which steps stopped early at a burst before the horizon
+// when nearly every step does (a tiny burst_crossings_factor): measured 24 on
+// 2026-11-28; the floor fails if the path stops being taken.
+constexpr int minimum_cases_with_early_stops = 15;
+
 // The comparison must have substance: many samples and collisions before
 // the horizons (measured 2026-11-23; a regression that made the horizon come
 // at once would otherwise pass silently).
@@ -216,6 +221,20 @@ TEST(PassThroughEngine, InStepsOnlyAgreesWithTheReferenceLoopUntilTheChaosHorizo
         [](const PassThroughEngine& engine, double) { return engine.spares_taken() > 0; });
     EXPECT_GE(totals.crossed, minimum_cases_with_spares);
     expect_substance(totals, "steps only");
+}
+
+TEST(PassThroughEngine, StoppingStepsAtBurstsAgreesWithTheReferenceLoopUntilTheChaosHorizon) {
+    // A budget of about one visit: a step stops at its first bend whose looks
+    // visit a line, sorts its block to that time and hands it to a kinetic list.
+    const ComparisonTotals totals = compare_with_the_reference_loop(
+        [](const InitialCondition& start, const CollisionModel& model, std::uint64_t) {
+            auto engine = pass_through(start, model, PassThroughEngine::Paths::mixed);
+            engine->set_burst_crossings_factor(1e-3);
+            return engine;
+        },
+        [](const PassThroughEngine& engine, double) { return engine.steps_stopped_at_a_burst() > 0; });
+    EXPECT_GE(totals.crossed, minimum_cases_with_early_stops);
+    expect_substance(totals, "steps stopped at bursts");
 }
 
 TEST(PassThroughEngine, AsKineticListsOnlyAgreesWithTheReferenceLoopUntilTheChaosHorizon) {

@@ -43,9 +43,11 @@
 // a block whose lines' inelastic share last window (their heat) is at least
 // kinetic_share starts as a kinetic list; a block in steps turns into one after
 // a step whose scans visited more than kinetic_visits_per_crossing lines per
-// crossing. A ring with no cut and hot lines gets a window short enough for its
-// widest gap to be a cut. Cuts are local (find_cuts): a gap is uncrossable if
-// the lines on its two sides, with their own velocity bounds, cannot close it.
+// crossing, or in the middle of a step whose looks exceed a budget (the step
+// stops at its last crossing: burst_crossings_factor). A ring with no cut and
+// hot lines gets a window short enough for its widest gap to be a cut. Cuts
+// are local (find_cuts): a gap is uncrossable if the lines on its two sides,
+// with their own velocity bounds, cannot close it.
 //
 // Because a pair's lines are straight between their last sort and the next
 // one, and their relative motion in a step is below L, each swap is exactly one
@@ -160,13 +162,27 @@ public:
     // shock (measured 2026-11-25: see docs/passthrough-engine.md, "Bursts:
     // blocks as kinetic lists").
     static constexpr double kinetic_visits_per_crossing = 8.0;
+    // A burst can also begin inside a step, and then the step's looks visit
+    // the compressed shock at every bend until the step ends. So a step stops
+    // early, at the crossing it has just run, once its looks (after the
+    // step's first scan) have visited more lines than kinetic_visits_per_crossing
+    // times this factor times the crossings the step was sized for, and the
+    // block goes on as a kinetic list (measured 2026-11-28 at r = 0.9,
+    // delta = 1e-4, where such steps took 70% of all visits: see
+    // docs/passthrough-engine.md, "Bursts that begin inside a step").
+    static constexpr double burst_crossings_factor = 4.0;
     // Which ways a block may run: both, chosen as above (the default), or one
     // only (tests, to cover each path, and the benchmark).
     enum class Paths { mixed, steps_only, kinetic_only };
     void set_paths(Paths paths) { paths_ = paths; }
-    // Blocks run as kinetic lists and in steps so far (diagnostics).
+    // burst_crossings_factor in place of the constant (tests: a tiny one stops
+    // nearly every step at its first bend, to cover that path).
+    void set_burst_crossings_factor(double factor) { burst_factor_ = factor; }
+    // Blocks run as kinetic lists and in steps so far, and steps stopped early
+    // at a burst (diagnostics).
     std::uint64_t kinetic_runs() const { return kinetic_runs_; }
     std::uint64_t step_runs() const { return step_runs_; }
+    std::uint64_t steps_stopped_at_a_burst() const { return steps_stopped_; }
 
 private:
     struct Line {
@@ -254,7 +270,7 @@ private:
     // ran in (1 at the start, where every collision is inelastic).
     std::vector<double> heat_;
     void run_block(std::int64_t lo, std::int64_t hi, bool ring, double start, double end);
-    void run_step(double step_start, double step_end);
+    double run_step(double step_start, double step_end, double visit_budget);
     void scan_step_candidates(double step_start, double step_end);
     void scan_line_candidates(std::int64_t index, double t, double step_end);
     // The meeting time of (behind, ahead), `gap` apart at t, if they cross
@@ -338,7 +354,9 @@ private:
     std::uint64_t visits_ = 0;  // lines visited by scans: the steps' work
     std::uint64_t kinetic_runs_ = 0;
     std::uint64_t step_runs_ = 0;
+    std::uint64_t steps_stopped_ = 0;
     Paths paths_ = Paths::mixed;
+    double burst_factor_ = burst_crossings_factor;
     std::optional<CollapseReport> no_collapse_;
 };
 

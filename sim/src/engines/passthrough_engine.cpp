@@ -346,23 +346,32 @@ void PassThroughEngine::run_block_steps(std::int64_t lo, std::int64_t hi, bool r
     const double extent = std::max(unwrapped_position(hi, start) - unwrapped_position(lo, start),
                                    ring_length_ / static_cast<double>(line_.size()));
     const double lines = static_cast<double>(hi - lo + 1);
-    double step = crossings_per_step_target * extent / (lines * spread);
+    double target = crossings_per_step_target;  // crossings per line the step is sized for
+    double step = target * extent / (lines * spread);
     const double longest = ring ? ring_step_fraction * ring_length_ / spread : end - start;
+    const bool may_turn_kinetic = !ring && paths_ != Paths::steps_only;
     for (double t = start; t < end;) {
         step = std::min(step, longest);
         const double step_end = t + step < end ? t + step : end;
         const std::uint64_t before = collisions_;
         const std::uint64_t inelastic_before = inelastic_;
         const std::uint64_t visits_before = visits_;
-        run_step(t, step_end);
+        const double visit_budget =
+            may_turn_kinetic ? kinetic_visits_per_crossing * burst_factor_ * std::max(target * lines, 16.0)
+                             : never;
+        const double stopped = run_step(t, step_end, visit_budget);
+        if (stopped < step_end) {  // a burst began inside the step: the lines are in order at `stopped`
+            run_block_kinetic(lo, hi, stopped, end);
+            return;
+        }
         const std::uint64_t crossings = collisions_ - before;
         const std::uint64_t inelastic = inelastic_ - inelastic_before;
-        step = adapted_length(step, step_end - t, crossings, lines, step_target(crossings, inelastic));
+        target = step_target(crossings, inelastic);
+        step = adapted_length(step, step_end - t, crossings, lines, target);
         t = step_end;
         // A burst: the rest of the window as a kinetic list (the lines are in
         // order at the step's end).
-        if (!ring && t < end && crossings >= 16 &&
-            paths_ != Paths::steps_only &&
+        if (may_turn_kinetic && t < end && crossings >= 16 &&
             static_cast<double>(visits_ - visits_before) > kinetic_visits_per_crossing * static_cast<double>(crossings)) {
             run_block_kinetic(lo, hi, t, end);
             return;
@@ -464,15 +473,37 @@ void PassThroughEngine::reset_chunk_bounds(std::int64_t lo, std::int64_t hi) {
     }
 }
 
-// One step [step_start, step_end] of the current block.
-void PassThroughEngine::run_step(double step_start, double step_end) {
+// One step [step_start, step_end] of the current block. Returns the time it
+// ended: step_end, or, if the looks after the step's first scan visited more
+// than visit_budget lines (a burst: burst_crossings_factor in the header), the
+// time of the crossing it ran last, with every inelastic crossing before it
+// run and the block sorted by position at that time (one swap per crossing,
+// as at a step's end), so that a kinetic list can take the block from there.
+double PassThroughEngine::run_step(double step_start, double step_end, double visit_budget) {
     step_start_ = step_start;
     step_end_ = step_end;
     reset_chunk_bounds(block_lo_, block_hi_);
     scan_step_candidates(step_start, step_end);
+    const std::uint64_t visits_after_scan = visits_;
+    double last_run = step_start;  // the time of the last candidate taken off the heap
     while (!heap_.empty()) {
+        if (static_cast<double>(visits_ - visits_after_scan) > visit_budget) {
+            // Candidates still on the heap are not before the last one run
+            // (they come in time order), so none is lost: the kinetic list
+            // finds each again, and a pair crossed by rounding meets at once.
+            const double now = last_run;
+            heap_ = {};
+            std::int64_t lo = block_lo_;
+            std::int64_t hi = block_hi_;
+            sort_stretch(lo, hi, now, true);  // a block is never crossed at its ends in the window
+            write_back(buffer_, lo);
+            ++steps_;
+            ++steps_stopped_;
+            return now;
+        }
         const Candidate candidate = heap_.top();
         heap_.pop();
+        last_run = candidate.time;
         const Line& behind = line_[static_cast<std::size_t>(where_[candidate.behind])];
         const Line& ahead = line_[static_cast<std::size_t>(where_[candidate.ahead])];
         const bool behind_current = behind.version == candidate.behind_version;
@@ -519,6 +550,7 @@ void PassThroughEngine::run_step(double step_start, double step_end) {
         write_back(buffer_, lo);
     }
     ++steps_;
+    return step_end;
 }
 
 // Indices [lo, hi] (axis), which no line crosses into or out of in the step,
