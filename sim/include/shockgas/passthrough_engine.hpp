@@ -164,12 +164,13 @@ public:
     static constexpr double kinetic_visits_per_crossing = 8.0;
     // A burst can also begin inside a step, and then the step's looks visit
     // the compressed shock at every bend until the step ends. So a step stops
-    // early, at the crossing it has just run, once its looks (after the
-    // step's first scan) have visited more lines than kinetic_visits_per_crossing
-    // times this factor times the crossings the step was sized for, and the
-    // block goes on as a kinetic list (measured 2026-11-28 at r = 0.9,
-    // delta = 1e-4, where such steps took 70% of all visits: see
-    // docs/passthrough-engine.md, "Bursts that begin inside a step").
+    // early, at the time of the last candidate it took off its heap, once its
+    // looks (after the step's first scan) have visited more lines than
+    // kinetic_visits_per_crossing times this factor times the crossings the
+    // step was sized for, and the block goes on as a kinetic list (never a
+    // whole ring with no cut). Measured 2026-11-28 at r = 0.9, delta = 1e-4,
+    // where such steps took 70% of all visits: docs/passthrough-engine.md,
+    // "Bursts that begin inside a step".
     static constexpr double burst_crossings_factor = 4.0;
     // Which ways a block may run: both, chosen as above (the default), or one
     // only (tests, to cover each path, and the benchmark).

@@ -476,9 +476,10 @@ void PassThroughEngine::reset_chunk_bounds(std::int64_t lo, std::int64_t hi) {
 // One step [step_start, step_end] of the current block. Returns the time it
 // ended: step_end, or, if the looks after the step's first scan visited more
 // than visit_budget lines (a burst: burst_crossings_factor in the header), the
-// time of the crossing it ran last, with every inelastic crossing before it
-// run and the block sorted by position at that time (one swap per crossing,
-// as at a step's end), so that a kinetic list can take the block from there.
+// time of the last candidate taken off the heap (before step_end), with every
+// inelastic crossing before that time run and the block sorted by position at
+// that time (one swap per crossing, as at a step's end), so that a kinetic list
+// can take the block from there.
 double PassThroughEngine::run_step(double step_start, double step_end, double visit_budget) {
     step_start_ = step_start;
     step_end_ = step_end;
@@ -487,10 +488,13 @@ double PassThroughEngine::run_step(double step_start, double step_end, double vi
     const std::uint64_t visits_after_scan = visits_;
     double last_run = step_start;  // the time of the last candidate taken off the heap
     while (!heap_.empty()) {
-        if (static_cast<double>(visits_ - visits_after_scan) > visit_budget) {
-            // Candidates still on the heap are not before the last one run
-            // (they come in time order), so none is lost: the kinetic list
-            // finds each again, and a pair crossed by rounding meets at once.
+        // (Not at step_end itself: there the step ends as usual, and the
+        // crossings due at that time are run before it ends.)
+        if (static_cast<double>(visits_ - visits_after_scan) > visit_budget && last_run < step_end) {
+            // Candidates still on the heap are not before the last one taken
+            // off it (they come in time order), so none is lost: the kinetic
+            // list finds each again, and a pair crossed by rounding or due at
+            // exactly this time meets at once.
             const double now = last_run;
             heap_ = {};
             std::int64_t lo = block_lo_;
