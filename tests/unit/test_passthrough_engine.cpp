@@ -191,8 +191,11 @@ ComparisonTotals compare_paths(PassThroughEngine::Paths paths, Crossed crossed) 
 }
 
 // Cases of the 54 in which steps stopped early at a burst before the horizon
-// when nearly every step does (a tiny burst_crossings_factor): measured 24 on
-// 2026-11-28; the floor fails if the path stops being taken.
+// when nearly every step does (burst_crossings_factor 1e-3: a budget of 8e-3
+// visits per planned crossing, so a step stops at its first bend whose looks
+// visit lines): measured 24 on 2026-11-28; the floor fails if the path stops
+// being taken.
+constexpr double factor_for_first_bend_stops = 1e-3;
 constexpr int minimum_cases_with_early_stops = 15;
 // The same with a budget of 8 * 0.05 = 0.4 visits per planned crossing (at
 // least 6.4, so after a few bends): measured 10 of 54 cases on 2026-11-28.
@@ -240,10 +243,9 @@ ComparisonTotals compare_stopping_steps(double factor) {
 }
 
 TEST(PassThroughEngine, StoppingStepsAtBurstsAgreesWithTheReferenceLoopUntilTheChaosHorizon) {
-    // A budget of at most a few visits (8e-3 times the step's planned crossings,
-    // at least 16 of them): a step stops at its first bend whose looks visit lines, sorts
-    // its block to that time and hands it to a kinetic list.
-    const ComparisonTotals first_bend = compare_stopping_steps(1e-3);
+    // A step stops at its first bend whose looks visit lines, sorts its block to
+    // that time and hands it to a kinetic list.
+    const ComparisonTotals first_bend = compare_stopping_steps(factor_for_first_bend_stops);
     EXPECT_GE(first_bend.crossed, minimum_cases_with_early_stops);
     expect_substance(first_bend, "steps stopped at their first bends");
     // A budget several times larger, so that steps also stop after a few bends.
