@@ -139,6 +139,8 @@ AnalysisInvocation invocation_of(const CLI::App& subcommand, int argc, char** ar
 
 struct RunParameters {
     double restitution, velocity_threshold, particles, t_max;
+    std::string init_file;                            // a start read from a file (--init), else empty
+    VelocityLaw velocity_law = VelocityLaw::uniform;  // the drawn start's law (files before the laws: the paper's)
 };
 RunParameters run_parameters(const std::string& path) {
     const auto file = h5::File::open_read(path);
@@ -146,8 +148,13 @@ RunParameters run_parameters(const std::string& path) {
     // A far-tail sampler file passes check_inputs (far-tail reads it): named here for what it is, not by
     // the first attribute it lacks ("missing attribute /restitution").
     check_simulation_output(root, path);
-    return {root.attribute_double("restitution"), root.attribute_double("velocity_threshold"),
-            static_cast<double>(root.attribute_integer("particles")), root.attribute_double("t_max")};
+    RunParameters run{root.attribute_double("restitution"), root.attribute_double("velocity_threshold"),
+                      static_cast<double>(root.attribute_integer("particles")), root.attribute_double("t_max"),
+                      "", VelocityLaw::uniform};
+    if (root.has_attribute("init_file")) run.init_file = root.attribute_string("init_file");
+    if (run.init_file.empty() && root.has_attribute("velocity_distribution"))
+        run.velocity_law = velocity_law_from_string(root.attribute_string("velocity_distribution"));
+    return run;
 }
 
 std::string restitution_label(double restitution) {
@@ -261,7 +268,19 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
                    const std::string& output, const std::string& data, const CrossoverRule& fit_rule,
                    bool derived_haff_constant) {
     std::vector<double> inelasticity;
-    for (const auto& input : inputs) inelasticity.push_back((1.0 - run_parameters(input).restitution) / 2.0);
+    std::vector<VelocityLaw> velocity_law;
+    for (const auto& input : inputs) {
+        const RunParameters run = run_parameters(input);
+        // t_dissip is read at T0/2 and Haff's law has T0 = 1/3, the drawn starts' (both laws have variance
+        // 1/3); a start from a file has its own T0 and its own Haff constant.
+        if (!run.init_file.empty())
+            throw InputError(fmt::format("'{}' starts from the initial-condition file '{}': crossover assumes a drawn "
+                                         "start (T0 = 1/3, velocities uniform on [-1, 1] or Gaussian), whose T0 and "
+                                         "Haff constant it knows",
+                                         input, run.init_file));
+        inelasticity.push_back((1.0 - run.restitution) / 2.0);
+        velocity_law.push_back(run.velocity_law);
+    }
     require_distinct(inelasticity, inputs, "eps", "fitting the crossovers");
     std::vector<Estimate> t_dissip, t_stick, temperature, reference_stick;
     ResultsFile results(output, invocation, inputs);
@@ -277,7 +296,7 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
     for (std::size_t k = 0; k < inputs.size(); ++k) {
         const double eps = inelasticity[k];
         CrossoverRule rule = fit_rule;
-        if (derived_haff_constant) rule.haff_rate = derived_haff_rate(eps);
+        if (derived_haff_constant) rule.haff_rate = derived_haff_rate(eps, velocity_law[k]);
         const auto crossovers = on_input(inputs[k], [&] {
             return find_crossovers(read_temperature_run(inputs[k]).history, rule);
         });
@@ -707,7 +726,7 @@ void run_compare(const AnalysisInvocation& invocation, const std::string& refere
                 counts.empty() ? Measured::missing(fmt::format("no realization recorded its collisions at t = {:g}",
                                                                run.history.time.back()))
                                : Measured{mean_and_standard_error(counts).value, ""};
-            return std::pair{compare_temperatures(run.history, reference), mean_count};
+            return std::pair{compare_temperatures(run.history, reference, Realizations::paired), mean_count};
         });
         const auto file = h5::File::open_read(inputs[i]);
         const auto root = file.root();
@@ -725,6 +744,10 @@ void run_compare(const AnalysisInvocation& invocation, const std::string& refere
         group.set_attribute("time_of_max", comparison.time_of_max);
         group.set_attribute("departure_time", comparison.departure_time);  // inf: never departs
         if (!comparison.sigma_note.empty()) group.set_attribute("deviation_sigma_note", comparison.sigma_note);
+        // The runs share their initial states (checked above), so the deviation's sigma is the paired one.
+        group.set_attribute("deviation_sigma", "paired: delete-one-pair jackknife of sum T / sum T_ref");
+        group.set_attribute("realizations_compared", static_cast<std::int64_t>(comparison.realizations_compared));
+        if (!comparison.pairing_note.empty()) group.set_attribute("pairing_note", comparison.pairing_note);
         group.set_attribute("t_valid", t_valid);
         fmt::print("{:<40} delta {:<8g} {:<7} {} coll/particle {:8.2f} s CPU  max |dT/T| {:.3g} at t = {:g}, {} "
                    "(delta^-3 = {})\n",
@@ -739,6 +762,7 @@ void run_compare(const AnalysisInvocation& invocation, const std::string& refere
         if (deviation_curves) {
             deviation_curves->comment(inputs[i]);
             if (!comparison.sigma_note.empty()) deviation_curves->comment("sigma nan: " + comparison.sigma_note);
+            if (!comparison.pairing_note.empty()) deviation_curves->comment(comparison.pairing_note);
             for (std::size_t k = 0; k < comparison.time.size(); ++k)
                 deviation_curves->row(
                     {comparison.time[k], comparison.relative_deviation[k], comparison.relative_sigma[k]});

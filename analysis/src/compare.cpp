@@ -1,5 +1,6 @@
 #include "shockgas/analysis/compare.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -14,23 +15,74 @@
 
 namespace shockgas::analysis {
 
+namespace {
+
+// <T>/<T_ref> at sample k (run) and j (reference) and its standard error.
+struct Ratio {
+    double value;
+    double sigma;  // NaN: no standard error (one realization)
+};
+
+// Paired realizations 0..n-1: the ratio of the sums and its delete-one-pair
+// jackknife error, sigma^2 = (n-1)/n sum_i (ratio_(i) - mean_i ratio_(i))^2
+// (Efron & Tibshirani 1993, Eq. 11.5).
+Ratio paired_ratio(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference, std::size_t j,
+                   std::size_t n) {
+    double sum = 0.0, reference_sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        sum += run.at(i, k);
+        reference_sum += reference.at(i, j);
+    }
+    const double value = sum / reference_sum;
+    if (n < 2) return {value, std::numeric_limits<double>::quiet_NaN()};
+    std::vector<double> replicas(n);
+    double replica_mean = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        replicas[i] = (sum - run.at(i, k)) / (reference_sum - reference.at(i, j));
+        replica_mean += replicas[i] / static_cast<double>(n);
+    }
+    double squares = 0.0;
+    for (double replica : replicas) squares += (replica - replica_mean) * (replica - replica_mean);
+    return {value, std::sqrt(static_cast<double>(n - 1) / static_cast<double>(n) * squares)};
+}
+
+// Independent ensembles: the ratio of the means, its error by first-order
+// propagation of both standard errors.
+Ratio independent_ratio(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference,
+                        std::size_t j) {
+    const double mean = run.mean(k), reference_mean = reference.mean(j);
+    const double value = mean / reference_mean;
+    const double relative_error =
+        std::hypot(run.standard_error(k) / mean, reference.standard_error(j) / reference_mean);
+    return {value, std::isfinite(relative_error) ? std::abs(value) * relative_error
+                                                 : std::numeric_limits<double>::quiet_NaN()};
+}
+
+}  // namespace
+
 TemperatureComparison compare_temperatures(const TemperatureHistory& run, const TemperatureHistory& reference,
-                                           double k_sigma, double floor) {
+                                           Realizations realizations, double k_sigma, double floor) {
     TemperatureComparison out;
+    const bool paired = realizations == Realizations::paired;
+    const std::size_t common = std::min(run.realizations, reference.realizations);
+    if (paired) {
+        out.realizations_compared = common;
+        if (run.realizations != reference.realizations)
+            out.pairing_note = fmt::format("compared over realizations 0..{} (paired, the same initial states in both "
+                                           "runs); the run has {}, the reference {}",
+                                           common - 1, run.realizations, reference.realizations);
+    }
     std::vector<bool> beyond;
     for (std::size_t k = 0; k < run.time.size(); ++k) {
         std::size_t j = 0;
         while (j < reference.time.size() && reference.time[j] != run.time[k]) ++j;
         if (j == reference.time.size()) continue;
-        const double mean = run.mean(k), reference_mean = reference.mean(j);
-        const double ratio = mean / reference_mean;
-        const double relative_error = std::hypot(run.standard_error(k) / mean,
-                                                 reference.standard_error(j) / reference_mean);
-        // One realization in either run: no standard error, not a zero one.
-        const double sigma = std::isfinite(relative_error) ? std::abs(ratio) * relative_error
-                                                           : std::numeric_limits<double>::quiet_NaN();
-        if (!std::isfinite(relative_error))
-            out.sigma_note = "a run of one realization has no standard error; departure judged by the " +
+        const auto [ratio, sigma] =
+            paired ? paired_ratio(run, k, reference, j, common) : independent_ratio(run, k, reference, j);
+        // One realization (in common): no standard error, not a zero one.
+        if (std::isnan(sigma))
+            out.sigma_note = std::string(paired ? "one realization in common" : "a run of one realization") +
+                             " has no standard error; departure judged by the " +
                              std::to_string(static_cast<int>(std::lround(100.0 * floor))) + "% floor alone";
         const double deviation = ratio - 1.0;
         out.time.push_back(run.time[k]);

@@ -422,8 +422,9 @@ Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRul
     return result;
 }
 
-double derived_haff_rate(double inelasticity) {
-    return exact::haff_constant_uniform * inelasticity * (1.0 - inelasticity) * std::sqrt(uniform_initial_temperature);
+double derived_haff_rate(double inelasticity, VelocityLaw law) {
+    const double constant = law == VelocityLaw::uniform ? exact::haff_constant_uniform : haff_constant_gaussian;
+    return constant * inelasticity * (1.0 - inelasticity) * std::sqrt(uniform_initial_temperature);
 }
 
 namespace {

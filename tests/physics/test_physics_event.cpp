@@ -152,4 +152,30 @@ TEST(PhysicsEvent, EarlyCoolingFollowsHaffsLawWithDerivedConstant) {
     EXPECT_NEAR(measured_a, haff_constant_uniform, haff_relative_tolerance * haff_constant_uniform);
 }
 
+// The same law from the Gaussian start of the same T0 = 1/3: g = v1 - v2 is
+// normal with variance 2 T0, <|g|^3> = 8 T0^(3/2) / sqrt(pi), so C = 8/sqrt(pi)
+// and A = 4/sqrt(pi) = 2.2568, the constant shockgas-analyze crossover
+// --haff-constant derived uses for such runs. The Gaussian's tail changes
+// shape faster than the uniform law: at eps t = 0.1 (the test above) A comes
+// out 1.1% low, so this test takes eps t = 0.025, where it is 0.64% low here
+// and 0.51-0.58% low with N = 4e5 and seeds 21, 22, 23
+// (measured 2026-11-28): the shape change and the lattice start, with little
+// noise. The same 1% covers that, and the uniform start's constant (-7.9%)
+// would fail.
+const double haff_constant_gaussian = 4.0 / std::sqrt(3.14159265358979323846);
+
+TEST(PhysicsEvent, EarlyCoolingFromAGaussianStartFollowsHaffsLawWithItsConstant) {
+    const double restitution = 0.9995, eps = (1 - restitution) / 2, t = 100.0;
+    const auto initial =
+        generate_initial_condition(100000, 100000.0, 21, 0, {PositionLaw::lattice, VelocityLaw::gaussian});
+    const double t0 = velocity_moments(initial.velocity, initial.mass).temperature;
+    EventEngine engine(initial, {restitution, 0.0, Subthreshold::elastic}, {});
+    ASSERT_TRUE(engine.advance_to(t));
+    ClusterState state;
+    engine.clusters(state);
+    const double temperature = velocity_moments(state.velocity, state.mass).temperature;
+    const double measured_a = (std::sqrt(t0 / temperature) - 1.0) / (eps * (1 - eps) * std::sqrt(t0) * t);
+    EXPECT_NEAR(measured_a, haff_constant_gaussian, haff_relative_tolerance * haff_constant_gaussian);
+}
+
 }  // namespace

@@ -13,7 +13,7 @@ Each kind of file is made here with small runs (about 2 s of CPU in all) and rea
   * analysis results carry their input's attributes; a drift record its columns; a shockgas-tail
     output is read as a Tail (read and kind_of once refused it: "no kind this module knows");
   * a checkpoint's repr names it a Checkpoint, not a Run;
-  * an initial condition written by write_initial_condition is run by shockgas-sim --init; what
+  * an initial condition written by write_initial_condition is run by shockgas-sim --init (and refused by crossover); what
     shockgas-sim's init reader refuses is refused when written (ValueError, no file left); an
     existing file is replaced only with overwrite=True, a shockgas run or results never; a write
     that fails leaves neither the destination nor a temporary;
@@ -248,6 +248,12 @@ class OtherKinds(unittest.TestCase):
         started = shockgas.read_run(path("from_start.h5"))
         self.assertEqual(started.attrs["particles"], n)
         self.assertEqual(started.attrs["ring_length"], 2.0 * n)
+        # crossover knows T0 and Haff's constant of the drawn starts only: such a run is refused, named.
+        refused = subprocess.run([ANALYZE, "crossover", path("from_start.h5"), path("from_start.h5"), "-o",
+                                  path("init_crossover.h5")], cwd=WORK, capture_output=True, text=True)
+        self.assertEqual(refused.returncode, 2, refused.stderr)
+        self.assertIn("starts from the initial-condition file", refused.stderr)
+        self.assertFalse(os.path.exists(path("init_crossover.h5")))
 
     def leftovers(self):
         return sorted(name for name in os.listdir(WORK) if ".tmp." in name)

@@ -15,6 +15,7 @@
 namespace {
 
 using shockgas::analysis::compare_temperatures;
+using shockgas::analysis::Realizations;
 using shockgas::analysis::TemperatureHistory;
 
 // Two realizations of T = t^(-2/3) with a relative spread of 1e-3 between them.
@@ -30,7 +31,7 @@ TemperatureHistory history(const std::vector<double>& time, double late_factor, 
 TEST(Compare, IdenticalRunsNeverDepart) {
     const std::vector<double> time{1, 10, 100, 1000};
     const auto a = history(time, 1.0, 0);
-    const auto comparison = compare_temperatures(a, a);
+    const auto comparison = compare_temperatures(a, a, Realizations::paired);
     EXPECT_EQ(comparison.max_abs_deviation, 0.0);
     EXPECT_TRUE(std::isinf(comparison.departure_time));
 }
@@ -39,13 +40,13 @@ TEST(Compare, FindsTheDepartureAndTheLargestDeviation) {
     const std::vector<double> time{1, 10, 100, 1000, 10000};
     const auto reference = history(time, 1.0, 0);
     const auto run = history(time, 1.1, 2);  // 10% high from t = 100 on
-    const auto comparison = compare_temperatures(run, reference);
+    const auto comparison = compare_temperatures(run, reference, Realizations::independent);
     EXPECT_NEAR(comparison.max_abs_deviation, 0.1, 1e-12);
     EXPECT_EQ(comparison.departure_time, 100.0);
     ASSERT_EQ(comparison.relative_deviation.size(), time.size());
     EXPECT_NEAR(comparison.relative_deviation[0], 0.0, 1e-12);
     // A deviation below the 2% floor does not count as departing.
-    const auto close = compare_temperatures(history(time, 1.01, 2), reference);
+    const auto close = compare_temperatures(history(time, 1.01, 2), reference, Realizations::independent);
     EXPECT_TRUE(std::isinf(close.departure_time));
 }
 
@@ -54,7 +55,7 @@ TEST(Compare, RunsWithoutACommonTimeAreNotInAgreement) {
     // sample time: nothing was compared.
     const auto reference = history({1, 10, 100}, 1.0, 0);
     const auto run = history({0.5, 0.9}, 1.0, 0);
-    EXPECT_THROW(compare_temperatures(run, reference), shockgas::analysis::InsufficientData);
+    EXPECT_THROW(compare_temperatures(run, reference, Realizations::paired), shockgas::analysis::InsufficientData);
 }
 
 TEST(Compare, OneRealizationHasNoSigmaNotAZeroOne) {
@@ -62,13 +63,86 @@ TEST(Compare, OneRealizationHasNoSigmaNotAZeroOne) {
     std::vector<double> temperature;
     for (double t : time) temperature.push_back(std::pow(t, -2.0 / 3.0) * 1.01);
     const auto single = TemperatureHistory::from(time, 1, temperature);
-    const auto comparison = compare_temperatures(single, history(time, 1.0, 0));
+    const auto comparison = compare_temperatures(single, history(time, 1.0, 0), Realizations::independent);
     for (double sigma : comparison.relative_sigma) EXPECT_TRUE(std::isnan(sigma));
     EXPECT_FALSE(comparison.sigma_note.empty());
     // 1% off: inside the 2% floor, which alone judges the departure then.
     EXPECT_TRUE(std::isinf(comparison.departure_time));
     EXPECT_NEAR(comparison.max_abs_deviation, 0.01, 1e-3);
     EXPECT_EQ(comparison.time_of_max, 1.0);
+}
+
+TEST(Compare, OneRealizationInCommonHasNoPairedSigma) {
+    const std::vector<double> time{1, 10, 100};
+    const auto single = TemperatureHistory::from(time, 1, {1.0, 0.5, 0.25});
+    const auto comparison = compare_temperatures(single, history(time, 1.0, 0), Realizations::paired);
+    for (double sigma : comparison.relative_sigma) EXPECT_TRUE(std::isnan(sigma));
+    EXPECT_FALSE(comparison.sigma_note.empty());
+    EXPECT_EQ(comparison.realizations_compared, 1u);
+    EXPECT_NE(comparison.pairing_note.find("the run has 1, the reference 2"), std::string::npos)
+        << comparison.pairing_note;
+}
+
+// Realization i of both runs starts from the same state, so a run's T(t) is
+// its reference's realization by realization times a factor: 1 until index
+// `from`, then shift x (1 +- wobble). The realizations themselves spread by
+// +-30%, as T(t) of small rings does.
+constexpr std::size_t paired_realizations = 8;
+constexpr double realization_spread = 0.3;
+constexpr double paired_shift = 1.05;
+constexpr double paired_wobble = 0.002;
+TemperatureHistory spread_history(const std::vector<double>& time, double shift, double wobble, std::size_t from) {
+    std::vector<double> temperature;
+    for (std::size_t i = 0; i < paired_realizations; ++i) {
+        const double realization_factor =
+            1.0 + realization_spread * (static_cast<double>(i) - 3.5) / 3.5;
+        for (std::size_t k = 0; k < time.size(); ++k)
+            temperature.push_back(std::pow(time[k], -2.0 / 3.0) * realization_factor *
+                                  (k >= from ? shift * (1.0 + (i % 2 == 0 ? wobble : -wobble)) : 1.0));
+    }
+    return TemperatureHistory::from(time, static_cast<std::int64_t>(paired_realizations), temperature);
+}
+
+TEST(Compare, PairedRealizationsSeeAShiftTheirSpreadHides) {
+    // A 5% shift under a 30% realization spread: as independent ensembles the
+    // 3 sigma band (about 29%) hides it; paired, each realization's ratio is
+    // 1.05 +- 0.2%, and the shift departs where it begins.
+    const std::vector<double> time{1, 10, 100, 1000, 10000};
+    const auto reference = spread_history(time, 1.0, 0.0, 0);
+    const auto run = spread_history(time, paired_shift, paired_wobble, 2);
+    const auto independent = compare_temperatures(run, reference, Realizations::independent);
+    const auto paired = compare_temperatures(run, reference, Realizations::paired);
+    EXPECT_TRUE(std::isinf(independent.departure_time));
+    EXPECT_EQ(paired.departure_time, 100.0);
+    EXPECT_EQ(paired.realizations_compared, paired_realizations);
+    EXPECT_TRUE(paired.pairing_note.empty());
+    // Before the shift the runs are identical realization by realization: sigma exactly 0.
+    EXPECT_EQ(paired.relative_sigma[0], 0.0);
+    EXPECT_EQ(paired.relative_deviation[0], 0.0);
+    // The ratio of sums is the shift up to the wobble's weighted mean (below 2e-3).
+    constexpr double wobble_bound = paired_wobble;
+    EXPECT_NEAR(paired.relative_deviation[3], paired_shift - 1.0, wobble_bound);
+    // The paired sigma is of the wobble's size (2e-3 / sqrt(8) x 1.05 ~ 8e-4),
+    // the independent one of the spread's (about 0.1).
+    EXPECT_LT(paired.relative_sigma[3], 3.0 * paired_wobble);
+    EXPECT_GT(independent.relative_sigma[3], 20.0 * paired_wobble);
+}
+
+TEST(Compare, PairedSigmaAgainstAConstantReferenceIsTheStandardError) {
+    // With every reference realization equal to 1 the ratio of sums is the
+    // run's mean, and the delete-one jackknife error of a mean is exactly the
+    // standard error s / sqrt(n) (Efron & Tibshirani 1993, Sec. 11.2): an
+    // identity, so only rounding separates the two.
+    constexpr double rounding_tolerance = 1e-12;
+    const std::vector<double> time{1, 10};
+    const auto run = spread_history(time, 1.0, 0.0, 0);
+    const auto ones = TemperatureHistory::from(time, static_cast<std::int64_t>(paired_realizations),
+                                               std::vector<double>(paired_realizations * time.size(), 1.0));
+    const auto paired = compare_temperatures(run, ones, Realizations::paired);
+    for (std::size_t k = 0; k < time.size(); ++k) {
+        EXPECT_NEAR(paired.relative_deviation[k], run.mean(k) - 1.0, rounding_tolerance);
+        EXPECT_NEAR(paired.relative_sigma[k] / run.standard_error(k), 1.0, rounding_tolerance);
+    }
 }
 
 // A run of one realization and three sample times with these parameters, as shockgas-sim writes it.

@@ -356,6 +356,10 @@ TEST(AnalysisCrossover, GivenHaffRateReplacesTheFit) {
     EXPECT_NE(fitted.t_stick.value, derived.t_stick.value);
     // The rate A eps (1 - eps) sqrt(T0), Eq. (2) with A = 6 sqrt(3)/5 (E3).
     EXPECT_DOUBLE_EQ(sa::derived_haff_rate(0.05), reference::haff_a * 0.05 * 0.95 * std::sqrt(reference::t0));
+    // The Gaussian start (the same T0): A = 4/sqrt(pi) (PhysicsEvent's Gaussian Haff test measures it).
+    EXPECT_DOUBLE_EQ(sa::haff_constant_gaussian, 4.0 / std::sqrt(3.14159265358979323846));
+    EXPECT_DOUBLE_EQ(sa::derived_haff_rate(0.05, shockgas::VelocityLaw::gaussian),
+                     sa::haff_constant_gaussian * 0.05 * 0.95 * std::sqrt(reference::t0));
 }
 
 TEST(AnalysisCrossover, ReferenceStickTimeSolvesHaffJoinedToTheStickyGas) {

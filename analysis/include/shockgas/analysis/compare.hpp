@@ -5,6 +5,7 @@
 // t_valid ~ delta^(-3).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -12,11 +13,20 @@
 
 namespace shockgas::analysis {
 
+// How the realizations of a run and of its reference relate. compare's runs
+// share seed and first realization (comparison_differences), so realization k
+// starts from the same state in both: they are paired, and the fluctuations
+// of a realization largely cancel in its ratio. Independent ensembles (other
+// seeds) are compared with both standard errors in quadrature.
+enum class Realizations { paired, independent };
+
 struct TemperatureComparison {
     std::vector<double> time;                // common sample times
     std::vector<double> relative_deviation;  // <T>/<T_ref> - 1
-    std::vector<double> relative_sigma;      // its standard error (both ensembles, independent); NaN, see below
-    std::string sigma_note;                  // why relative_sigma is NaN (a run of one realization), else empty
+    std::vector<double> relative_sigma;      // its standard error (see compare_temperatures); NaN, see below
+    std::string sigma_note;                  // why relative_sigma is NaN (one realization), else empty
+    std::size_t realizations_compared = 0;   // paired: the common realizations 0..n-1; independent: 0
+    std::string pairing_note;                // paired runs of unequal R: which realizations were compared
     double max_abs_deviation = 0.0;          // max_k |<T>/<T_ref> - 1|
     double time_of_max = 0.0;
     // The first sample time from which on the deviation exceeds
@@ -25,12 +35,20 @@ struct TemperatureComparison {
 };
 
 // Compares at the sample times both histories share (they must come from the
-// same sample grid). relative_sigma = |ratio| sqrt((SE/T)^2 + (SE_ref/T_ref)^2),
-// NaN when either run has one realization (no SE); the departure rule then
-// uses the floor alone. Throws InsufficientData when the histories share no
-// sample time: there is nothing to compare, and no deviation is not agreement.
+// same sample grid).
+// - paired: over the realizations both runs have (0 .. min(R, R_ref) - 1),
+//   ratio = sum_k T_k / sum_k T_ref,k and relative_sigma its delete-one-pair
+//   jackknife standard error (Efron & Tibshirani, An Introduction to the
+//   Bootstrap, 1993, Eq. 11.5), which keeps the covariance of the pairs. Two
+//   runs that have not yet diverged give sigma 0 there, and the floor decides.
+// - independent: ratio of the full means, relative_sigma = |ratio|
+//   sqrt((SE/T)^2 + (SE_ref/T_ref)^2) (first-order error propagation).
+// relative_sigma is NaN with one realization (paired: one in common); the
+// departure rule then uses the floor alone. Throws InsufficientData when the
+// histories share no sample time: there is nothing to compare, and no
+// deviation is not agreement.
 TemperatureComparison compare_temperatures(const TemperatureHistory& run, const TemperatureHistory& reference,
-                                           double k_sigma = 3.0, double floor = 0.02);
+                                           Realizations realizations, double k_sigma = 3.0, double floor = 0.02);
 
 // compare measures what the threshold delta and the sub-threshold rule cost
 // in accuracy: a run and its reference must be the same ensemble otherwise,

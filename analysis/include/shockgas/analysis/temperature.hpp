@@ -12,6 +12,7 @@
 #include "shockgas/analysis/fit.hpp"
 #include "shockgas/ensemble.hpp"
 #include "shockgas/output.hpp"
+#include "shockgas/parameters.hpp"
 
 namespace shockgas::analysis {
 
@@ -174,8 +175,15 @@ Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRul
 // too large for a Haff regime at this floor) or no such t exists.
 Measured reference_stick_time(double inelasticity, const CrossoverRule& rule = {});
 
+// A of Haff's law for the Gaussian start of variance T0 (Eq. (2) with A =
+// <|g|^3> / (2 T0^(3/2)), docs/haff-and-collapse.md): g = v1 - v2 is normal
+// with variance 2 T0, so <|g|^3> = 8 T0^(3/2) / sqrt(pi) and A = 4 / sqrt(pi),
+// 8.6% above the uniform start's 6 sqrt(3)/5.
+inline constexpr double haff_constant_gaussian = 2.2567583341910251;  // 4 / sqrt(pi)
+
 // Haff's rate a = A eps (1 - eps) sqrt(T0) of sqrt(T0/T) = 1 + a t, with the
-// derived A = 6 sqrt(3)/5 of the uniform start (Eq. (2), E3).
-double derived_haff_rate(double inelasticity);
+// derived A of the start's velocity law, T0 = 1/3 for both: 6 sqrt(3)/5 for
+// the uniform start (Eq. (2), E3), 4/sqrt(pi) for the Gaussian one.
+double derived_haff_rate(double inelasticity, VelocityLaw law = VelocityLaw::uniform);
 
 }  // namespace shockgas::analysis
