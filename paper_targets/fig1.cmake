@@ -9,7 +9,7 @@ foreach(run IN LISTS fig1_RUNS)
   set(base "${fig1_DIR}/${run}")
   string(MAKE_C_IDENTIFIER "${run}" id)
   if(run MATCHES "^pure_")
-    add_custom_command(
+    shockgas_step(
       OUTPUT "${base}.T.dat" "${base}.collapse.h5" "${base}.collapse.dat"
       COMMAND shockgas-analyze decay "${h5}" --data-only --data "${base}.T.dat"
       COMMAND shockgas-analyze collapse "${h5}" -o "${base}.collapse.h5" --data "${base}.collapse.dat"
@@ -18,7 +18,7 @@ foreach(run IN LISTS fig1_RUNS)
       VERBATIM)
     list(APPEND _fig1_data "${base}.T.dat" "${base}.collapse.dat")
   else()
-    add_custom_command(
+    shockgas_step(
       OUTPUT "${base}.T.dat" "${base}.scan.dat" "${base}.decay.h5" "${base}.fit.gp"
       COMMAND shockgas-analyze decay "${h5}" -o "${base}.decay.h5" --data "${base}.T.dat" --scan "${base}.scan.dat"
       COMMAND shockgas-dump gnuplot-vars "${base}.decay.h5" /decay --prefix "fit_${id}" --output "${base}.fit.gp"

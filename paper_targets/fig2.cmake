@@ -6,7 +6,7 @@ set(_fig2_data)
 foreach(run IN LISTS fig2_RUNS)
   set(base "${fig2_DIR}/${run}")
   string(MAKE_C_IDENTIFIER "${run}" id)
-  add_custom_command(
+  shockgas_step(
     OUTPUT "${base}.T.dat" "${base}.decay.h5" "${base}.fit.gp"
     COMMAND shockgas-analyze decay "${fig2_${run}_H5}" -o "${base}.decay.h5" --data "${base}.T.dat"
     COMMAND shockgas-dump gnuplot-vars "${base}.decay.h5" /decay --prefix "fit_${id}" --output "${base}.fit.gp"

@@ -1,6 +1,6 @@
 # Fig. 3: world lines of 500 particles (snapshots every unit of time).
 shockgas_figure_runs(fig3)
-add_custom_command(
+shockgas_step(
   OUTPUT "${fig3_DIR}/worldlines.dat"
   COMMAND shockgas-dump snapshots "${fig3_worldlines_H5}" --output "${fig3_DIR}/worldlines.dat"
   DEPENDS "${fig3_worldlines_H5}" shockgas-dump

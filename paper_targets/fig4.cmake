@@ -5,7 +5,7 @@ set(_fig4_inputs)
 foreach(run IN LISTS fig4_RUNS)
   list(APPEND _fig4_inputs "${fig4_${run}_H5}")
 endforeach()
-add_custom_command(
+shockgas_step(
   OUTPUT "${fig4_DIR}/phi.dat" "${fig4_DIR}/scaling.h5" "${fig4_DIR}/collapse.gp"
   COMMAND shockgas-analyze scaling ${_fig4_inputs} -o "${fig4_DIR}/scaling.h5" --data "${fig4_DIR}/phi.dat"
   COMMAND shockgas-dump gnuplot-vars "${fig4_DIR}/scaling.h5" /collapse --prefix collapse

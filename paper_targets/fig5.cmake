@@ -1,7 +1,7 @@
 # Fig. 5: density and velocity profile at the snapshot time; shocks counted and
 # the slopes of the segments between them fitted (Eq. 7: slope 1/t).
 shockgas_figure_runs(fig5)
-add_custom_command(
+shockgas_step(
   OUTPUT "${fig5_DIR}/profile.dat" "${fig5_DIR}/shocks.h5" "${fig5_DIR}/shocks.gp"
   COMMAND shockgas-analyze shocks "${fig5_profile_H5}" -o "${fig5_DIR}/shocks.h5" --data "${fig5_DIR}/profile.dat"
           --coarse-grain 20 --merge-gap 2
@@ -11,7 +11,7 @@ add_custom_command(
   VERBATIM)
 # Inviscid Burgers from the same initial condition (the run's
 # seed, N, L), at the snapshot time: the continuum limit the shocks are compared with (docs/continuum.md).
-add_custom_command(
+shockgas_step(
   OUTPUT "${fig5_DIR}/burgers.dat" "${fig5_DIR}/burgers.gp"
   COMMAND shockgas-burgers --run "${fig5_profile_H5}" --cells-per-particle 4
           --output "${fig5_DIR}/burgers.dat" --summary "${fig5_DIR}/burgers.gp"

@@ -15,7 +15,7 @@ foreach(run IN LISTS fig_collapse_RUNS)
   endif()
 endforeach()
 set(_dir "${fig_collapse_DIR}")
-add_custom_command(
+shockgas_step(
   OUTPUT "${_dir}/vs_eps.dat" "${_dir}/vs_eps.h5" "${_dir}/time_forms.gp" "${_dir}/mass_forms.gp"
   COMMAND shockgas-analyze collapse --vs eps ${_eps_inputs} -o "${_dir}/vs_eps.h5" --data "${_dir}/vs_eps.dat"
   COMMAND shockgas-dump gnuplot-vars "${_dir}/vs_eps.h5" /time_forms --recursive --prefix time
@@ -25,7 +25,7 @@ add_custom_command(
   DEPENDS ${_eps_inputs} shockgas-analyze shockgas-dump
   COMMENT "[fig_collapse] collapse time and mass against eps: competing forms"
   VERBATIM)
-add_custom_command(
+shockgas_step(
   OUTPUT "${_dir}/vs_N.dat" "${_dir}/vs_N.h5" "${_dir}/vs_N.gp" "${_dir}/hazard.dat"
   COMMAND shockgas-analyze collapse --vs N ${_n_inputs} -o "${_dir}/vs_N.h5" --data "${_dir}/vs_N.dat"
           --hazard "${_dir}/hazard.dat"

@@ -6,7 +6,7 @@ foreach(run IN LISTS fig_crossovers_RUNS)
   list(APPEND _crossover_inputs "${fig_crossovers_${run}_H5}")
 endforeach()
 set(_dir "${fig_crossovers_DIR}")
-add_custom_command(
+shockgas_step(
   OUTPUT "${_dir}/crossovers.dat" "${_dir}/crossovers.h5" "${_dir}/crossovers.gp"
   COMMAND shockgas-analyze crossover ${_crossover_inputs} -o "${_dir}/crossovers.h5" --data "${_dir}/crossovers.dat"
   COMMAND shockgas-dump gnuplot-vars "${_dir}/crossovers.h5" /scaling_in_eps --prefix fit --output "${_dir}/crossovers.gp"

@@ -3,7 +3,7 @@ shockgas_figure_runs(fig_haff)
 set(_haff_data)
 foreach(run IN LISTS fig_haff_RUNS)
   set(base "${fig_haff_DIR}/${run}")
-  add_custom_command(
+  shockgas_step(
     OUTPUT "${base}.T.dat"
     COMMAND shockgas-analyze decay "${fig_haff_${run}_H5}" --data-only --data "${base}.T.dat"
     DEPENDS "${fig_haff_${run}_H5}" shockgas-analyze

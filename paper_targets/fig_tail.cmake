@@ -15,7 +15,7 @@ else()
 endif()
 set(fig_tail_DIR "${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/fig_tail")
 file(MAKE_DIRECTORY "${fig_tail_DIR}")
-add_custom_command(
+shockgas_step(
   OUTPUT "${fig_tail_DIR}/tail.h5"
   COMMAND shockgas-tail ${_tail_options} --z-reach 6 --z-step 0.25 -o "${fig_tail_DIR}/tail.h5"
   # The simulator's source stamp, as every simulation (pipeline.cmake), not the
@@ -23,7 +23,7 @@ add_custom_command(
   DEPENDS ${SHOCKGAS_SIM_STAMP}
   COMMENT "[fig_tail] far-tail sampler"
   VERBATIM)
-add_custom_command(
+shockgas_step(
   OUTPUT "${fig_tail_DIR}/tail.dat" "${fig_tail_DIR}/gamma.h5" "${fig_tail_DIR}/gamma.gp"
   COMMAND shockgas-analyze far-tail "${fig_tail_DIR}/tail.h5" -o "${fig_tail_DIR}/gamma.h5"
           --data "${fig_tail_DIR}/tail.dat"

@@ -18,7 +18,7 @@ foreach(run IN LISTS fig_tradeoff_RUNS)
     # Short gnuplot prefix (gnuplot truncates long variable names): stat_N1000_R4 -> s1000r4.
     string(REPLACE "stat_N" "s" id "${run}")
     string(REPLACE "_R" "r" id "${id}")
-    add_custom_command(
+    shockgas_step(
       OUTPUT "${_dir}/${run}.decay.h5" "${_dir}/${run}.fit.gp"
       COMMAND shockgas-analyze decay "${fig_tradeoff_${run}_H5}" -o "${_dir}/${run}.decay.h5"
       COMMAND shockgas-dump gnuplot-vars "${_dir}/${run}.decay.h5" / --recursive --prefix "${id}"
@@ -31,7 +31,7 @@ foreach(run IN LISTS fig_tradeoff_RUNS)
     list(APPEND _compared "${fig_tradeoff_${run}_H5}")
   endif()
 endforeach()
-add_custom_command(
+shockgas_step(
   OUTPUT "${_dir}/tradeoff.dat" "${_dir}/deviation.dat" "${_dir}/tradeoff.h5" "${_dir}/reference.gp"
   COMMAND shockgas-analyze compare "${_reference}" ${_compared} -o "${_dir}/tradeoff.h5"
           --data "${_dir}/tradeoff.dat" --curves "${_dir}/deviation.dat"

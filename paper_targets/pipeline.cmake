@@ -164,13 +164,20 @@ function(shockgas_plot figure)
   set_property(GLOBAL APPEND PROPERTY SHOCKGAS_FIGURES ${figure})
 endfunction()
 
-# shockgas_analysis_step(OUTPUT <files...> COMMAND <args...> DEPENDS <files...>)
-function(shockgas_analysis_step)
-  cmake_parse_arguments(ARG "" "COMMENT" "OUTPUT;ARGS;DEPENDS" ${ARGN})
-  add_custom_command(
-    OUTPUT ${ARG_OUTPUT}
-    COMMAND ${ARG_ARGS}
-    DEPENDS ${ARG_DEPENDS}
-    COMMENT "${ARG_COMMENT}"
-    VERBATIM)
+# shockgas_step(<add_custom_command arguments>): add_custom_command for one of a figure's own steps
+# (the far-tail sampler, an analysis, a dump), rerun also when its command changes. Make reruns a
+# rule when an input is newer than its outputs, not when its command line changes: an option edited
+# in a <figure>.cmake file (fig_tail's sampler options, fig5's --coarse-grain) or a run taken out of
+# an aggregate's input list (which makes no remaining input newer) left the outputs stale until
+# 2026-11-28. The call's arguments are written at configure time to <first output>.command, which
+# file(CONFIGURE) rewrites only when they change, and the step depends on that file, as each run
+# depends on its .args file (above).
+function(shockgas_step)
+  cmake_parse_arguments(ARG "VERBATIM;APPEND;USES_TERMINAL;COMMAND_EXPAND_LISTS"
+                        "WORKING_DIRECTORY;COMMENT;MAIN_DEPENDENCY;DEPFILE;JOB_POOL"
+                        "OUTPUT;COMMAND;DEPENDS;BYPRODUCTS;IMPLICIT_DEPENDS" ${ARGN})
+  list(GET ARG_OUTPUT 0 first_output)
+  string(REPLACE ";" "\n" command_text "${ARGN}")
+  file(CONFIGURE OUTPUT "${first_output}.command" CONTENT "${command_text}\n" @ONLY)
+  add_custom_command(${ARGN} DEPENDS "${first_output}.command")
 endfunction()
