@@ -2,7 +2,7 @@
 # with format = 'png' and format = 'pdf'; loading this file sets the terminal
 # and the output file, so the scripts themselves only plot.
 # Variables passed by CMake (-e): datadir, outbase, styledir, theorydir,
-# fidelity, format.
+# fidelity, format, version_program.
 set encoding utf8
 if (format eq 'pdf') {
     set terminal pdfcairo size 6in,4.5in font 'Sans,9'
@@ -30,7 +30,12 @@ set linetype 8 lc rgb '#999999' lw 1.5 dt 2
 set linetype cycle 8
 
 decades = 'set format x "10^{%L}"; set format y "10^{%L}"'
-fidelity_note = sprintf('%s fidelity', fidelity)
+# The title's note: the fidelity and the version of the tools that drew the figure (git describe,
+# as every output file records it), so that a figure away from its build says what made it.
+# version_program (CMake: shockgas-dump) prints "shockgas-dump <version>".
+shockgas_version = exists('version_program') ? word(system(sprintf("'%s' --version", version_program)), 2) : ''
+fidelity_note = (shockgas_version eq '') ? sprintf('%s fidelity', fidelity) \
+                                         : sprintf('%s fidelity, shockgas %s', fidelity, shockgas_version)
 # ' ± sigma' printed with format f, or ' ± n/a' where shockgas-analyze stored NaN
 # (one or two realizations; its note in the results file says why).
 plus_minus(sigma, f) = (sigma == sigma) ? sprintf(' ± '.f, sigma) : ' ± n/a'

@@ -142,12 +142,14 @@ endfunction()
 # shockgas_plot(<figure> SCRIPT <gp> DATA <files...>): gnuplot writes
 # <figure>.png and <figure>.pdf into the build's figures/ directory; reruns
 # when the script, the shared style or the data change, never a simulation.
+# Each figure's title names the fidelity and the shockgas version that drew it
+# (style.gp asks version_program, built before every plot, for its version).
 function(shockgas_plot figure)
   cmake_parse_arguments(ARG "" "SCRIPT" "DATA" ${ARGN})
   set(figure_dir "${CMAKE_BINARY_DIR}/figures/${SHOCKGAS_FIDELITY}")
   file(MAKE_DIRECTORY "${figure_dir}")
   set(outputs "${figure_dir}/${figure}.png" "${figure_dir}/${figure}.pdf")
-  set(variables "datadir='${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/${figure}'; outbase='${figure_dir}/${figure}'; styledir='${PROJECT_SOURCE_DIR}/figures'; theorydir='${SHOCKGAS_THEORY_DIR}'; fidelity='${SHOCKGAS_FIDELITY}'")
+  set(variables "datadir='${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/${figure}'; outbase='${figure_dir}/${figure}'; styledir='${PROJECT_SOURCE_DIR}/figures'; theorydir='${SHOCKGAS_THEORY_DIR}'; fidelity='${SHOCKGAS_FIDELITY}'; version_program='$<TARGET_FILE:shockgas-dump>'")
   add_custom_command(
     OUTPUT ${outputs}
     COMMAND ${GNUPLOT_EXECUTABLE} -e "${variables}; format='png'" "${PROJECT_SOURCE_DIR}/figures/${ARG_SCRIPT}"
