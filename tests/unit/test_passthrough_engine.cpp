@@ -294,6 +294,39 @@ TEST(PassThroughEngine, CountsEveryCrossingOfFreeLinesExactly) {
     }
 }
 
+// Two nearly parallel lines meet once. Their positions are rounded apart
+// (ulp(1e4) ~ 2e-12), so for about ulp / dv around the meeting the computed
+// order flips back and forth; sorts that swapped a pair beyond each other but
+// separating counted each flip as a collision: 181 for dv = 1e-14, 139 for
+// 3e-14, 17 for 1e-12 in steps (2026-11-28). Samples every 1e-3 around the
+// meeting make a sort at each. The kinetic lists swap closing pairs only and
+// always counted one; the event engine collides them once.
+TEST(PassThroughEngine, NearlyParallelLinesCrossOnce) {
+    using shockgas::testing::unit_masses;
+    const CollisionModel free_lines{0.5, 10.0, Subthreshold::elastic};  // delta above every relative speed
+    for (const double relative_speed : {1e-12, 3e-14, 1e-14}) {
+        // Line 0 catches line 1 at t = 100, near x = 1e4 + 70, both moving at about 0.7.
+        const InitialCondition start =
+            unit_masses(2.0e4, {1.0e4, 1.0e4 + 100.0 * relative_speed}, {0.7 + relative_speed, 0.7});
+        for (const auto paths : {PassThroughEngine::Paths::mixed, PassThroughEngine::Paths::steps_only,
+                                 PassThroughEngine::Paths::kinetic_only}) {
+            PassThroughEngine engine(start, free_lines);
+            engine.set_paths(paths);
+            for (int k = -200; k <= 200; ++k) {
+                engine.advance_to(100.0 + 1e-3 * k);
+                ASSERT_LE(engine.collisions(), 1u) << "relative speed " << relative_speed << ", paths "
+                                                   << static_cast<int>(paths) << ", t = " << 100.0 + 1e-3 * k;
+            }
+            engine.advance_to(200.0);
+            EXPECT_EQ(engine.collisions(), 1u) << "relative speed " << relative_speed << ", paths "
+                                               << static_cast<int>(paths);
+        }
+        EventEngine reference(start, free_lines, CollapseCriterion{});
+        reference.advance_to(200.0);
+        EXPECT_EQ(reference.collisions(), 1u) << "event engine, relative speed " << relative_speed;
+    }
+}
+
 // Momentum conserved, energy never rising, the ring in order (gaps >= 0 up
 // to rounding, summing to L), over millions of collisions.
 // Lines that start at one point and close collide at t = 0, and the state at
