@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,39 +18,26 @@ namespace shockgas::analysis {
 
 namespace {
 
-// <T>/<T_ref> at sample k (run) and j (reference) and its standard error.
-struct Ratio {
-    double value;
-    double sigma;  // NaN: no standard error (one realization)
-};
-
 // Paired realizations 0..n-1: the ratio of the sums and its delete-one-pair
-// jackknife error, sigma^2 = (n-1)/n sum_i (ratio_(i) - mean_i ratio_(i))^2
-// (Efron & Tibshirani 1993, Eq. 11.5).
-Ratio paired_ratio(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference, std::size_t j,
-                   std::size_t n) {
+// jackknife error (the analysis library's jackknife, Efron & Tibshirani 1993,
+// Eq. 11.5; sigma NaN with one pair).
+Estimate paired_ratio(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference,
+                      std::size_t j, std::size_t n) {
     double sum = 0.0, reference_sum = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         sum += run.at(i, k);
         reference_sum += reference.at(i, j);
     }
-    const double value = sum / reference_sum;
-    if (n < 2) return {value, std::numeric_limits<double>::quiet_NaN()};
-    std::vector<double> replicas(n);
-    double replica_mean = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-        replicas[i] = (sum - run.at(i, k)) / (reference_sum - reference.at(i, j));
-        replica_mean += replicas[i] / static_cast<double>(n);
-    }
-    double squares = 0.0;
-    for (double replica : replicas) squares += (replica - replica_mean) * (replica - replica_mean);
-    return {value, std::sqrt(static_cast<double>(n - 1) / static_cast<double>(n) * squares)};
+    return jackknife(n, [&](std::optional<std::size_t> left_out) {
+        return left_out ? (sum - run.at(*left_out, k)) / (reference_sum - reference.at(*left_out, j))
+                        : sum / reference_sum;
+    });
 }
 
 // Independent ensembles: the ratio of the means, its error by first-order
 // propagation of both standard errors.
-Ratio independent_ratio(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference,
-                        std::size_t j) {
+Estimate independent_ratio(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference,
+                           std::size_t j) {
     const double mean = run.mean(k), reference_mean = reference.mean(j);
     const double value = mean / reference_mean;
     const double relative_error =
@@ -77,8 +65,9 @@ TemperatureComparison compare_temperatures(const TemperatureHistory& run, const 
         std::size_t j = 0;
         while (j < reference.time.size() && reference.time[j] != run.time[k]) ++j;
         if (j == reference.time.size()) continue;
-        const auto [ratio, sigma] =
+        const Estimate estimate =
             paired ? paired_ratio(run, k, reference, j, common) : independent_ratio(run, k, reference, j);
+        const double ratio = estimate.value, sigma = estimate.sigma;
         // One realization (in common): no standard error, not a zero one.
         if (std::isnan(sigma))
             out.sigma_note = std::string(paired ? "one realization in common" : "a run of one realization") +

@@ -4,10 +4,13 @@
 numbers X with X_sigma must agree within k sqrt(sigma_a^2 + sigma_b^2); date, host
 and timings are never compared, in HDF5 attributes, gnuplot variable dumps and data
 columns alike; a figure without a run parameter file is packed with its rule."""
+import argparse
 import importlib.machinery
 import importlib.util
+import json
 import os
 import sys
+import tarfile
 import tempfile
 
 import h5py
@@ -119,10 +122,6 @@ expect_bytes("dat: other deviation", text_file("c.dat", table.format(build="/old
 # pack: a figure without a parameter file of runs (fig_tail: the sampler's options are in its rule)
 # is packed with paper_targets/<figure>.cmake as its parameters (until 2026-11-28 the whole-pipeline
 # `archive` target stopped there).
-import argparse  # noqa: E402
-import json  # noqa: E402
-import tarfile  # noqa: E402
-
 source = os.path.join(work, "source")
 build = os.path.join(work, "build")
 os.makedirs(os.path.join(source, "paper_targets"))
