@@ -140,7 +140,7 @@ AnalysisInvocation invocation_of(const CLI::App& subcommand, int argc, char** ar
 struct RunParameters {
     double restitution, velocity_threshold, particles, t_max;
     std::string init_file;                            // a start read from a file (--init), else empty
-    VelocityLaw velocity_law = VelocityLaw::uniform;  // the drawn start's law (files before the laws: the paper's)
+    VelocityLaw velocity_law = VelocityLaw::uniform;  // the drawn start's law (read_initial_law)
 };
 RunParameters run_parameters(const std::string& path) {
     const auto file = h5::File::open_read(path);
@@ -152,8 +152,7 @@ RunParameters run_parameters(const std::string& path) {
                       static_cast<double>(root.attribute_integer("particles")), root.attribute_double("t_max"),
                       "", VelocityLaw::uniform};
     if (root.has_attribute("init_file")) run.init_file = root.attribute_string("init_file");
-    if (run.init_file.empty() && root.has_attribute("velocity_distribution"))
-        run.velocity_law = velocity_law_from_string(root.attribute_string("velocity_distribution"));
+    if (run.init_file.empty()) run.velocity_law = read_initial_law(root).velocities;
     return run;
 }
 

@@ -247,6 +247,13 @@ ClusterState read_cluster_state(const h5::Group& group, const std::string& file)
     return state;
 }
 
+InitialLaw read_initial_law(const h5::Group& root) {
+    // Files written before the initial laws existed hold the paper's law.
+    if (!root.has_attribute("positions")) return {};
+    return {position_law_from_string(root.attribute_string("positions")),
+            velocity_law_from_string(root.attribute_string("velocity_distribution"))};
+}
+
 namespace {
 
 // The output schema from root, checked for consistency: every dataset that
@@ -279,10 +286,7 @@ OutputFile read_result(const h5::Group& root, const std::string& file) {
     p.seed = static_cast<std::uint64_t>(root.attribute_integer("seed"));
     p.init_file = root.attribute_string("init_file");
     if (root.has_attribute("init_file_sha256")) p.init_file_sha256 = root.attribute_string("init_file_sha256");
-    // Files written before the initial laws existed hold the paper's law.
-    if (p.init_file.empty() && root.has_attribute("positions"))
-        p.initial_law = {position_law_from_string(root.attribute_string("positions")),
-                         velocity_law_from_string(root.attribute_string("velocity_distribution"))};
+    if (p.init_file.empty()) p.initial_law = read_initial_law(root);
     p.engine = root.attribute_string("engine");
     out.version = root.attribute_string("version");
     if (root.has_attribute("simulator_sha256")) out.simulator_sha256 = root.attribute_string("simulator_sha256");

@@ -86,6 +86,12 @@ bool is_far_tail_file(const h5::Group& root);
 // group it lacks ("missing group /timeseries").
 void check_simulation_output(const h5::Group& root, const std::string& path);
 
+// The drawn start's law a run's root attributes record (positions,
+// velocity_distribution); the paper's law for a file written before the laws
+// existed. A start read from an init file (root attribute init_file) has no
+// law: read_output leaves the default there, and so should every caller.
+InitialLaw read_initial_law(const h5::Group& root);
+
 // One stored ring state (a snapshot or a collapse state: time, position,
 // velocity, mass, first_particle) from its group; throws h5::Error naming
 // file and dataset if the four datasets do not have one value per cluster.
