@@ -182,7 +182,9 @@ private:
             }
             key_[static_cast<std::size_t>(k)] = {X, order_[static_cast<std::size_t>(k)]};
         }
-        sort_crossed_ahead(key_);
+        // Stable by position alone: a level pair keeps the order it has, which
+        // is the particles' at the start and the last window's end sort after.
+        std::stable_sort(key_.begin(), key_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         for (std::int64_t k = 0; k < n; ++k) order_[static_cast<std::size_t>(k)] = key_[static_cast<std::size_t>(k)].second;
         const auto [lo_v, hi_v] = std::minmax_element(v_.begin(), v_.end());
         const double spread = *hi_v - *lo_v;
@@ -193,7 +195,7 @@ private:
         };
         double widest = -never;
         for (std::int64_t k = 0; k < n; ++k) widest = std::max(widest, gap(k));
-        if (spread * (end - begin) * (1.0 + 1e-9) + 1e-9 >= widest) end = begin + 0.5 * widest / spread;
+        if (spread > 0.0 && spread * (end - begin) * (1.0 + 1e-9) + 1e-9 >= widest) end = begin + 0.5 * widest / spread;
         const double travel = spread * (end - begin) * (1.0 + 1e-9) + 1e-9;
         cuts_.clear();
         for (std::int64_t k = 0; k < n; ++k)
@@ -340,10 +342,10 @@ private:
         const double xa = local_position(i, t);
         const double va = loc_[static_cast<std::size_t>(i)].v;
         const double delta = model_.velocity_threshold;
-        double best = end_;
+        double best = end_;  // a meeting at the window's end itself runs in it: the state at t includes it
         std::int32_t behind = -1, ahead = -1;
         const auto keep = [&](double time, std::int32_t b, std::int32_t a) {
-            if (time < best || (time == best && (b < behind || (b == behind && a < ahead)))) {
+            if (time < best || (time == best && (behind < 0 || b < behind || (b == behind && a < ahead)))) {
                 best = time;
                 behind = b;
                 ahead = a;

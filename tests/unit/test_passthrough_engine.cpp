@@ -291,6 +291,20 @@ TEST(InversionOracle, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
     expect_substance(totals, "inversion oracle");
 }
 
+// Lines level and closing at the start collide at the start time (the
+// engine's test of the same name): the oracle must not take the level pair
+// for one that has crossed already.
+TEST(InversionOracle, CollidesAtTheStartTimeAsTheEventEngineDoes) {
+    using shockgas::testing::unit_masses;
+    const InitialCondition start = unit_masses(3.0, {0.5, 1.0, 1.0}, {0.0, 0.5, -0.5});
+    shockgas::testing::InversionOracle oracle(start, CollisionModel{0.5, 0.1, Subthreshold::elastic});
+    oracle.advance_to(0.0);
+    EXPECT_EQ(oracle.collisions(), 1u);
+    ClusterState state;
+    oracle.clusters(state);
+    EXPECT_EQ(state.velocity, (std::vector<double>{0.0, -0.25, 0.25}));
+}
+
 // The pass-through engine against the oracle at N = 2e4, from the windowed
 // event engine's state at t = 300 (the hybrid's hand-over) to t = 3000: the
 // collision count equal and T to 1e-12 at every sample until the chaos
