@@ -71,8 +71,7 @@ public:
 
     InversionOracle(const InitialCondition& initial, const CollisionModel& model)
         : model_(model), ring_(initial.ring_length) {
-        std::vector<double> position = initial.position;
-        start(position, initial.velocity, 0.0);
+        start(initial.position, initial.velocity, 0.0);
     }
     InversionOracle(const MidRunState& state, const CollisionModel& model) : model_(model), ring_(state.ring_length) {
         start(state.position, state.velocity, state.time);
@@ -98,15 +97,8 @@ public:
     // Particle n (ring order from particle 0): wrapped position and velocity.
     void clusters(ClusterState& out) const override {
         const auto n = static_cast<std::int64_t>(x_.size());
-        std::vector<std::pair<double, std::int32_t>> wrapped(static_cast<std::size_t>(n));
-        std::int64_t winding = winding_;
-        for (std::int64_t j = 0; j < n; ++j) {
-            const double X = position(j, now_);
-            const double turns = std::floor(X / ring_);
-            winding += static_cast<std::int64_t>(turns);
-            wrapped[static_cast<std::size_t>(j)] = {X - turns * ring_, static_cast<std::int32_t>(j)};
-        }
-        sort_crossed_ahead(wrapped);
+        std::vector<std::pair<double, std::int32_t>> wrapped;
+        const std::int64_t winding = wrapped_order(wrapped);
         out.clear();
         out.time = now_;
         for (std::int64_t k = 0; k < n; ++k) {
@@ -134,6 +126,22 @@ private:
         });
     }
 
+    // The lines by wrapped position at now_ (sort_crossed_ahead), and their
+    // total winding W: winding_ plus the turns in the stored positions.
+    std::int64_t wrapped_order(std::vector<std::pair<double, std::int32_t>>& wrapped) const {
+        const auto n = static_cast<std::int64_t>(x_.size());
+        wrapped.resize(static_cast<std::size_t>(n));
+        std::int64_t winding = winding_;
+        for (std::int64_t j = 0; j < n; ++j) {
+            const double X = position(j, now_);
+            const double turns = std::floor(X / ring_);
+            winding += static_cast<std::int64_t>(turns);
+            wrapped[static_cast<std::size_t>(j)] = {X - turns * ring_, static_cast<std::int32_t>(j)};
+        }
+        sort_crossed_ahead(wrapped);
+        return winding;
+    }
+
     double position(std::int64_t j, double t) const {
         const auto s = static_cast<std::size_t>(j);
         return x_[s] + v_[s] * (t - clock_[s]);
@@ -149,14 +157,8 @@ private:
         order_.resize(n);
         for (std::size_t k = 0; k < n; ++k) order_[k] = static_cast<std::int32_t>(k);
         // offset_: particle 0 (line 0) at extended rank 0 + offset_ + W now.
-        std::vector<std::pair<double, std::int32_t>> wrapped(n);
-        std::int64_t winding = 0;
-        for (std::size_t j = 0; j < n; ++j) {
-            const double turns = std::floor(x_[j] / ring_);
-            winding += static_cast<std::int64_t>(turns);
-            wrapped[j] = {x_[j] - turns * ring_, static_cast<std::int32_t>(j)};
-        }
-        sort_crossed_ahead(wrapped);
+        std::vector<std::pair<double, std::int32_t>> wrapped;
+        const std::int64_t winding = wrapped_order(wrapped);
         std::int64_t rank0 = 0;
         while (wrapped[static_cast<std::size_t>(rank0)].second != 0) ++rank0;
         offset_ = rank0 + static_cast<std::int64_t>(n) * static_cast<std::int64_t>(std::floor(x_[0] / ring_)) - winding;
@@ -168,8 +170,7 @@ private:
         const double begin = now_;
         const auto n = static_cast<std::int64_t>(order_.size());
         // Every line's position at `begin` into [0, L) (its turns go to
-        // winding_), the ring order rotated to start at the seam, and rounding's
-        // small disorders undone.
+        // winding_), and the ring order from the seam.
         key_.resize(static_cast<std::size_t>(n));
         for (std::int64_t k = 0; k < n; ++k) {
             const auto j = static_cast<std::size_t>(order_[static_cast<std::size_t>(k)]);
