@@ -83,6 +83,31 @@ namespace {
 // How every data file names itself in messages: "cannot write data file 'x.dat': ...".
 const std::string data_file_kind = "data file ";
 
+// One '#' line per input that is a simulator's file: its program, source hash
+// (simulator_sha256) and seed. A table then names the simulation its numbers
+// came from, not only a path that a later run may overwrite, as the results
+// files do with their input_* attributes. Not the git version: the same
+// simulator built at another commit makes the same numbers, and
+// tools/reproduce-check compares tables byte for byte. Inputs that are not
+// HDF5 (a T(t) table) or carry no hash add nothing.
+std::string input_provenance_lines(const std::vector<std::string>& inputs) {
+    std::string lines;
+    for (const auto& input : inputs) {
+        if (h5::probe(input).kind != h5::Probe::Kind::hdf5) continue;
+        const auto file = h5::File::open_read(input);
+        const auto root = file.root();
+        if (!root.has_attribute("simulator_sha256")) continue;
+        auto text = [&root](const std::string& name) {
+            return root.has_attribute(name) ? root.attribute_string(name) : std::string("?");
+        };
+        std::string line =
+            fmt::format("# input {}: {}, simulator_sha256 {}", input, text("program"), text("simulator_sha256"));
+        if (root.has_attribute("seed")) line += fmt::format(", seed {}", root.attribute_integer("seed"));
+        lines += line + '\n';
+    }
+    return lines;
+}
+
 }  // namespace
 
 void check_data_file_writable(const std::string& path) { check_text_writable(path, data_file_kind); }
@@ -125,7 +150,7 @@ DataFile::DataFile(const std::string& path, const std::string& description, cons
     std::string header = "# " + description + "\n" +
                          provenance_comment("shockgas-analyze", fmt::format("{}", fmt::join(inputs, ", ")),
                                             false) +
-                         "#";
+                         input_provenance_lines(inputs) + "#";
     for (const auto& column : columns) header += ' ' + column;
     file_.write(header + '\n');
 }

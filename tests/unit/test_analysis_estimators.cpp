@@ -1019,20 +1019,28 @@ TEST(AnalysisResults, AnInputThatIsNotARunIsNamedForWhatItIs) {
 
 // A table said what it held but not what made it nor from which files (user
 // review, 2026-11-27): one '#' line names the program's version and the inputs.
+// Since 2026-12-02 a line per simulator file also names the simulator that
+// made it (source hash, seed), as the results files' input_*
+// attributes do; an input that is not HDF5 (a T(t) table) adds no line.
 TEST(AnalysisResults, DataFileNamesTheVersionAndTheInputs) {
     const auto directory = scratch_directory("data_provenance");
     const auto first = write_run("data_provenance_a", {}, {});
     const auto second = write_run("data_provenance_b", {}, {});
+    const auto table = (directory / "input.dat").string();
+    std::ofstream(table) << "# a text input\n1 2\n";
     const auto target = (directory / "table.dat").string();
     {
-        sa::DataFile file(target, "test table", {first, second}, {"x"});
+        sa::DataFile file(target, "test table", {first, table, second}, {"x"});
         file.row({1.0});
         file.commit();
     }
     std::ifstream in(target);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_EQ(text, "# test table\n# shockgas-analyze " + shockgas::build_info().version + ", from " + first + ", " +
-                        second + "\n# x\n1\n");
+    const auto& build = shockgas::build_info();
+    const std::string simulator = ": shockgas-sim, simulator_sha256 " + build.simulator_sha256 +
+                                  ", seed " + std::to_string(shockgas::SimulationParameters{}.seed) + "\n";
+    EXPECT_EQ(text, "# test table\n# shockgas-analyze " + build.version + ", from " + first + ", " + table + ", " +
+                        second + "\n# input " + first + simulator + "# input " + second + simulator + "# x\n1\n");
     std::filesystem::remove_all(directory);
     std::filesystem::remove(first);
     std::filesystem::remove(second);

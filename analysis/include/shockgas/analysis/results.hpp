@@ -69,7 +69,8 @@ std::string format_estimate(const Estimate& estimate, const std::string& spec, c
 
 // A gnuplot data file: '#' lines (a description; the program, its version and
 // `inputs`, the files it was computed from, as shockgas::provenance_comment
-// writes them; the column names), then one whitespace-separated row per call. Written as every text output
+// writes them; for each input written by a simulator, its program,
+// simulator_sha256 and seed; the column names), then one whitespace-separated row per call. Written as every text output
 // is (shockgas::TextFile): beside the target and renamed onto it by commit(),
 // removed if commit() is not reached, so that a failed run never leaves a
 // table that looks complete; devices, FIFOs and links written through. A
