@@ -115,7 +115,7 @@ add_test(NAME cli.analyze.data_to_redirected_standard_output
                  sh ${_analyze_program} WORKING_DIRECTORY "${_analyze_dir}")
 set_tests_properties(cli.analyze.data_to_redirected_standard_output PROPERTIES LABELS cli
                      FIXTURES_REQUIRED analyze_cases TIMEOUT 60
-                     PASS_REGULAR_EXPRESSION "^# decay exponent in moving windows[^\n]*\n# shockgas-analyze [^\n]*, from a\\.h5\n# t_centre[^\n]*\n# exponent_sigma, chi2_per_dof nan: two realizations[^\n]*\n[0-9].*\ndecay exponent "
+                     PASS_REGULAR_EXPRESSION "^# decay exponent in moving windows[^\n]*\n# shockgas-analyze [^\n]*, from a\\.h5\n# input a\\.h5: shockgas-sim, simulator_sha256 [0-9a-f]+, seed 1\n# t_centre[^\n]*\n# exponent_sigma, chi2_per_dof nan: two realizations[^\n]*\n[0-9].*\ndecay exponent "
                      FAIL_REGULAR_EXPRESSION "error")
 
 # 5. Fits with no slope (one eps, one N) are refused naming the inputs; two points leave no chi2.
