@@ -83,8 +83,9 @@ namespace {
 // How every data file names itself in messages: "cannot write data file 'x.dat': ...".
 const std::string data_file_kind = "data file ";
 
-// One '#' line per input that is a simulator's file: its program, source hash
-// (simulator_sha256) and seed. A table then names the simulation its numbers
+// One '#' line per HDF5 input that our programs wrote (write_provenance: a
+// program and a simulator_sha256, always together): the program, the source
+// hash and, for a run, its seed. A table then names the simulation its numbers
 // came from, not only a path that a later run may overwrite, as the results
 // files do with their input_* attributes. Not the git version: the same
 // simulator built at another commit makes the same numbers, and
@@ -97,11 +98,8 @@ std::string input_provenance_lines(const std::vector<std::string>& inputs) {
         const auto file = h5::File::open_read(input);
         const auto root = file.root();
         if (!root.has_attribute("simulator_sha256")) continue;
-        auto text = [&root](const std::string& name) {
-            return root.has_attribute(name) ? root.attribute_string(name) : std::string("?");
-        };
-        std::string line =
-            fmt::format("# input {}: {}, simulator_sha256 {}", input, text("program"), text("simulator_sha256"));
+        std::string line = fmt::format("# input {}: {}, simulator_sha256 {}", input, root.attribute_string("program"),
+                                       root.attribute_string("simulator_sha256"));
         if (root.has_attribute("seed")) line += fmt::format(", seed {}", root.attribute_integer("seed"));
         lines += line + '\n';
     }
