@@ -27,6 +27,13 @@ struct CollapseReport {
     std::string criterion;             // "relative_speed" or "stall"
 };
 
+// The clusters in contact around a colliding pair (detail::contact_cluster):
+// how many, and their mass. Three or more make a collapse (McNamara & Young 1992).
+struct ContactCluster {
+    std::int64_t members = 0;
+    double mass = 0.0;
+};
+
 // Lets a long run be watched and stopped: the engine publishes its time and
 // collision count every few thousand events and returns from advance_to when
 // asked to stop (the user's Ctrl-C) or to pause (the driver wants a

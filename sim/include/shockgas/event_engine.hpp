@@ -25,6 +25,8 @@ namespace shockgas {
 namespace detail {
 template <class Engine>
 void collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind kind);
+template <class Engine>
+ContactCluster contact_cluster(const Engine& engine, std::int32_t i, double t);
 }  // namespace detail
 
 class EventEngine final : public Engine {
@@ -87,12 +89,10 @@ private:
     static void log_left(double, std::int32_t, double) {}
     static void log_right(double, std::int32_t, std::int32_t, double, double) {}
     static void became_block_end(std::int32_t) {}
-    // The clusters in contact around the pair (left, its right neighbour) at t: how many, and their mass.
-    struct ContactCluster {
-        std::int64_t members;
-        double mass;
-    };
-    ContactCluster contact_cluster(std::int32_t left, double t) const;
+    // detail::contact_cluster (shared with the windowed engine) reads these.
+    template <class Engine>
+    friend ContactCluster detail::contact_cluster(const Engine& engine, std::int32_t i, double t);
+    const std::vector<Cluster>& records() const { return cluster_; }
     void detect_collapse(std::int32_t left, double relative_speed, double t, const char* criterion,
                          const ContactCluster& cluster);
     void move_anchor_clock(std::int32_t slot, double t);

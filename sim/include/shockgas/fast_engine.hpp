@@ -31,17 +31,28 @@
 //    where a light cluster can rebound faster than either velocity, and
 //    unequal masses with r > 0).
 //  * Collapse detection is global: delta = 0 (r > 0) stops at the first slow
-//    inelastic collision in global time order, which the window scheme cannot
-//    locate, so supports() refuses it. The stall detector (max(10^6, 10 N)
-//    consecutive events within 10^-12 t) is bounded per window instead: each
-//    block counts its own densest run, and if the bound cannot exclude a stall
-//    the engine throws rather than guess (never seen with delta > 0).
+//    inelastic collision with three clusters in contact in global time order,
+//    and the run then reports the whole ring at that instant. Blocks cannot
+//    give that ring (the others have run on), so a window whose blocks meet a
+//    slow inelastic collision (detail::collapse_candidate) is abandoned, the
+//    engine goes back to a copy of the state taken at most rewind_period
+//    windows earlier, runs the windows up to that one again (they are
+//    deterministic, so they come out the same) and runs that one window as a
+//    single block of the whole ring, which is the global loop itself; there
+//    the candidate is judged as EventEngine judges it. The copy is taken only
+//    when collapse is possible (delta below --collapse-speed).
+//    The stall detector (max(10^6, 10 N) consecutive events within 10^-12 t)
+//    is bounded per window instead: each block counts its own densest run, and
+//    if the bound cannot exclude a stall the engine throws rather than guess
+//    (StallUndecidable; run_ensemble then reruns the realization with
+//    EventEngine).
 #pragma once
 
 #include <cstdint>
 #include <deque>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include "shockgas/collision.hpp"
@@ -53,6 +64,8 @@ namespace shockgas {
 namespace detail {
 template <class Engine>
 void collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind kind);
+template <class Engine>
+ContactCluster contact_cluster(const Engine& engine, std::int32_t i, double t);
 }  // namespace detail
 
 // Thrown by FastEventEngine::advance_to when its per-window bound cannot rule
@@ -70,8 +83,9 @@ public:
                     LiveStatus* live = nullptr);
 
     // True when the window scheme reproduces EventEngine exactly for this run:
-    // no collapse detection can fire (r = 0, or delta >= collapse speed) and
-    // |v|max cannot grow (r = 0, or elastic sub-threshold with equal masses).
+    // |v|max cannot grow (r = 0; or equal masses with elastic sub-threshold
+    // collisions or delta = 0, where there are none). Collapse detection
+    // (delta below the collapse speed) is exact by the rewind described above.
     static bool supports(const InitialCondition& initial, const CollisionModel& model,
                          const CollapseCriterion& collapse);
 
@@ -161,6 +175,8 @@ private:
                     const std::vector<BoundaryChange>& right_side);
     Cut snapshot_cut(std::int32_t left) const;
     void check_stall_bound(double window_end, std::uint64_t run_events);
+    void save_rewind();
+    void rewind();
     void move_anchor_clock(std::int32_t slot, double t);
 
     // What detail::collide_neighbours (the collision step both event engines
@@ -169,6 +185,9 @@ private:
     template <class Engine>
     friend void detail::collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind kind);
     std::vector<Node>& records() { return node_; }
+    template <class Engine>
+    friend ContactCluster detail::contact_cluster(const Engine& engine, std::int32_t i, double t);
+    const std::vector<Node>& records() const { return node_; }
     bool left_is_cut(std::int32_t i) const { return i == block_first_; }
     bool right_is_cut(std::int32_t j) const { return j == block_last_; }
     void unschedule(std::int32_t slot) {
@@ -197,7 +216,32 @@ private:
     std::uint64_t inelastic_ = 0;
     std::int32_t anchor_ = 0;
     double anchor_position_ = 0.0;
-    std::optional<CollapseReport> collapse_;  // stays empty: collapsing runs are not supported
+    std::optional<CollapseReport> collapse_;
+
+    // Collapse detection (delta below the collapse speed; see the header's
+    // comment). The copy of the state between windows that a window meeting
+    // a slow inelastic collision goes back to, and the window (by count) to
+    // run as one block of the whole ring.
+    // What a rewind restores besides the records: the clock, the counters and
+    // the window history, as one tuple of references.
+    auto rewound() {
+        return std::tie(now_, anchor_position_, window_length_, speed_bound_, window_start_, collisions_, inelastic_,
+                        alive_, anchor_, windows_, blocks_, recent_windows_);
+    }
+    struct Rewind {
+        std::vector<Node> nodes;
+        std::tuple<double, double, double, double, double, std::uint64_t, std::uint64_t, std::int64_t, std::int32_t,
+                   std::uint64_t, std::uint64_t, std::deque<WindowRuns>>
+            values;
+        std::uint64_t windows = 0;  // the window count it was taken at
+    };
+    static constexpr std::uint64_t no_window = ~std::uint64_t{0};
+    bool collapse_possible_ = false;
+    bool global_window_ = false;     // this window runs as one block of the whole ring
+    bool candidate_seen_ = false;    // a block met a slow inelastic collision: abandon the window
+    bool slow_pair_seen_ = false;    // the window run as the global loop met one (and it was no collapse)
+    std::uint64_t global_window_index_ = no_window;
+    Rewind rewind_;
     std::uint64_t stall_window_;
 
     // Window state.

@@ -94,6 +94,11 @@ public:
                 remove(b);
         }
     }
+    // Empties the heap: every queued slot is absent again.
+    void clear() {
+        for (const Entry& entry : heap_) position_[static_cast<std::size_t>(entry.slot)] = absent;
+        heap_.clear();
+    }
     // Removes the top entry.
     void pop_top() {
         position_[static_cast<std::size_t>(heap_.front().slot)] = absent;

@@ -22,7 +22,8 @@ namespace shockgas {
 // r = 0.99, delta = 1e-4, N = 2e4 to t = 1e5 1.41x; Fig. 4's delta = 1e-3,
 // N = 2e4, r = 0.5 to t = 1e5 1.29x; where it never switches (short runs) it
 // does the event engine's work plus one window boundary per check. Everywhere
-// else (delta = 0, sticky sub-threshold, unequal masses) the event engine.
+// else (delta = 0, sticky sub-threshold, unequal masses) the event engine
+// (windowed where FastEventEngine::supports, collapses included).
 // Called on the main thread before any realization starts, so an impossible
 // choice is one InputError.
 std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial) {

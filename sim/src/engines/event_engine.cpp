@@ -11,11 +11,6 @@
 namespace shockgas {
 
 namespace {
-// Two clusters count as one collapsing cluster when their gap at the moment
-// of collapse is below this fraction of the mean spacing L/N. In a collapse
-// the gaps shrink geometrically to zero, far below this; between ordinary
-// neighbours they are of order the spacing (see ARCHITECTURE.md, "Collapse").
-constexpr double collapse_contact_fraction = 1e-6;
 // Publish progress and look at the stop flag every 4096 events: rare enough to
 // cost nothing, often enough that Ctrl-C answers within milliseconds.
 constexpr std::uint64_t live_status_period_mask = 0xFFF;
@@ -103,20 +98,16 @@ void EventEngine::collide_pair(std::int32_t i, double t) {
     // geometrically to nothing in an inelastic collision.
     if (t - stall_reference_time_ <= criterion_.stall_time_fraction * std::max(1.0, t)) {
         if (++stall_events_ >= stall_window_) {
-            detect_collapse(i, relative_speed, t, "stall", contact_cluster(i, t));
+            detect_collapse(i, relative_speed, t, "stall", detail::contact_cluster(*this, i, t));
             return;
         }
     } else {
         stall_reference_time_ = t;
         stall_events_ = 0;
     }
-    if (kind == CollisionKind::inelastic && relative_speed < criterion_.collapse_speed) {
-        // Collapse needs three bodies: two alone separate after each collision (McNamara & Young
-        // 1992). A slow pair with no third cluster in contact is a cooled gas, not a collapse: a
-        // ring of N = 2 ... 8 at delta = 0 reaches g < 1e-12 by Haff cooling alone near t ~ 1e12
-        // and was reported collapsed there. Every collapse the figures record has 10 or more.
-        const ContactCluster cluster = contact_cluster(i, t);
-        if (cluster.members >= 3) {
+    if (detail::collapse_candidate(criterion_, kind, relative_speed)) {
+        const ContactCluster cluster = detail::contact_cluster(*this, i, t);
+        if (cluster.members >= detail::collapse_min_members) {
             detect_collapse(i, relative_speed, t, "relative_speed", cluster);
             return;
         }
@@ -125,28 +116,10 @@ void EventEngine::collide_pair(std::int32_t i, double t) {
     detail::collide_neighbours(*this, i, t, kind);
 }
 
-EventEngine::ContactCluster EventEngine::contact_cluster(std::int32_t i, double t) const {
-    // The run of clusters around the pair that are in contact (gap below
-    // collapse_contact_fraction * L / N).
-    const double contact = collapse_contact_fraction * ring_length_ / static_cast<double>(particles_);
-    double mass = cluster_[static_cast<std::size_t>(i)].mass;
-    std::int64_t members = 1;
-    for (std::int32_t s = i; members < alive_ && gap_at(s, t) <= contact; ++members) {
-        s = cluster_[static_cast<std::size_t>(s)].next;
-        mass += cluster_[static_cast<std::size_t>(s)].mass;
-    }
-    for (std::int32_t s = cluster_[static_cast<std::size_t>(i)].prev; members < alive_ && gap_at(s, t) <= contact;
-         ++members) {
-        mass += cluster_[static_cast<std::size_t>(s)].mass;
-        s = cluster_[static_cast<std::size_t>(s)].prev;
-    }
-    return {members, mass};
-}
-
 void EventEngine::detect_collapse(std::int32_t i, double relative_speed, double t, const char* criterion,
                                   const ContactCluster& cluster) {
     // The collapsing cluster is the pair's contact cluster.
-    collapse_ = CollapseReport{t, i, static_cast<std::int64_t>(std::llround(cluster.mass)), relative_speed, criterion};
+    collapse_ = detail::collapse_report(i, relative_speed, t, criterion, cluster);
     now_ = t;
 }
 

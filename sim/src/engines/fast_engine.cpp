@@ -39,17 +39,18 @@ constexpr double target_events_per_cluster = 0.3;
 // sit in L2, so the window is shortened to make more cuts.
 constexpr double max_mean_block_clusters = 4096.0;
 constexpr double first_window = 0.05;
+// Where collapse is possible, the state is copied every this many windows
+// (and at each advance_to), so a window that meets a slow inelastic collision
+// goes back at most this far.
+constexpr std::uint64_t rewind_period = 16;
 }  // namespace
 
 bool FastEventEngine::supports(const InitialCondition& initial, const CollisionModel& model,
-                               const CollapseCriterion& collapse) {
+                               const CollapseCriterion& /*collapse: detected exactly, see the header*/) {
     if (initial.size() < 2) return false;
-    const bool sticky_gas = model.restitution == 0.0;
-    // An inelastic collision needs g >= delta and collapse fires at g < collapse_speed.
-    const bool collapse_impossible = sticky_gas || collapse.collapse_speed <= model.velocity_threshold;
-    if (!collapse_impossible) return false;
-    if (sticky_gas) return true;  // merges only: V = (m1 v1 + m2 v2)/(m1 + m2) is convex for any masses
-    if (model.subthreshold == Subthreshold::sticky) return false;  // merged clusters then collide with r > 0
+    if (model.restitution == 0.0) return true;  // merges only: V = (m1 v1 + m2 v2)/(m1 + m2) is convex for any masses
+    // Merged clusters then collide with r > 0 (sticky sub-threshold; at delta = 0 no collision is below it).
+    if (model.subthreshold == Subthreshold::sticky && model.velocity_threshold > 0.0) return false;
     const double mass = initial.mass.front();
     return std::all_of(initial.mass.begin(), initial.mass.end(), [mass](double m) { return m == mass; });
 }
@@ -67,6 +68,8 @@ FastEventEngine::FastEventEngine(const InitialCondition& initial, const Collisio
     validate(initial);
     if (!supports(initial, model, collapse))
         throw std::logic_error("FastEventEngine: run not supported, use EventEngine (see supports())");
+    // An inelastic collision needs g >= delta and a collapse g < collapse speed.
+    collapse_possible_ = model.restitution > 0.0 && !(collapse.collapse_speed <= model.velocity_threshold);
     const auto n = static_cast<std::int32_t>(initial.size());
     link_ring(initial, node_);  // the same initial state and arithmetic as EventEngine's
     anchor_position_ = initial.position[0];
@@ -163,10 +166,34 @@ FastEventEngine::Cut FastEventEngine::snapshot_cut(std::int32_t left) const {
 }
 
 bool FastEventEngine::advance_to(double t) {
+    if (collapse_) return false;
+    // A copy to go back to within this call (whose window ends are clipped
+    // at t, so the windows run again come out the same).
+    if (collapse_possible_) save_rewind();
     for (;;) {
+        if (collapse_possible_ && windows_ - rewind_.windows >= rewind_period) save_rewind();
         const double end = std::min(now_ + window_length_, t);
         const double start = now_;
+        global_window_ = windows_ == global_window_index_;
+        const bool forced_global = global_window_;
+        slow_pair_seen_ = false;
         run_window(end);
+        if (candidate_seen_) {
+            // A block met a slow inelastic collision: run this window again
+            // as the global loop, from the copy (header comment).
+            candidate_seen_ = false;
+            global_window_index_ = windows_;
+            rewind();
+            continue;
+        }
+        const bool ran_global = global_window_;  // also a ring with no cut, which is one block anyway
+        if (collapse_) {
+            if (live_ != nullptr) {
+                live_->time.store(now_, std::memory_order_relaxed);
+                live_->collisions.store(collisions_, std::memory_order_relaxed);
+            }
+            return false;
+        }
         now_ = end;
         ++windows_;
         // Adapt W: about target_events_per_cluster events per cluster per
@@ -178,8 +205,16 @@ bool FastEventEngine::advance_to(double t) {
             double factor = 2.0;
             if (window_events_ > 0)
                 factor = std::clamp(target_events_per_cluster * clusters / static_cast<double>(window_events_), 0.5, 2.0);
-            if (clusters / blocks > max_mean_block_clusters) factor = std::min(factor, 0.7);
+            // (Not after a window made one block on purpose to judge a slow pair.)
+            if (!forced_global && clusters / blocks > max_mean_block_clusters) factor = std::min(factor, 0.7);
             if (end - start >= 0.5 * window_length_) window_length_ *= factor;
+        }
+        if (ran_global && collapse_possible_) {
+            // A later rewind must not go back past a window run as the global
+            // loop: run normally, that window would be abandoned again. While
+            // slow pairs go on, the next window runs as the global loop at once.
+            global_window_index_ = slow_pair_seen_ ? windows_ : no_window;
+            save_rewind();
         }
         if (live_ != nullptr) {
             live_->time.store(now_, std::memory_order_relaxed);
@@ -195,7 +230,8 @@ bool FastEventEngine::advance_to(double t) {
 void FastEventEngine::run_window(double window_end) {
     window_start_ = now_;
     window_end_ = window_end;
-    cut_reach_ = 2.0 * speed_bound_ * (window_end_ - window_start_) * cut_safety;
+    // A window run as the global loop has no cut: no gap exceeds an infinite reach.
+    cut_reach_ = global_window_ ? never : 2.0 * speed_bound_ * (window_end_ - window_start_) * cut_safety;
     window_events_ = 0;
     blocks_last_window_ = 0;
     stall_span_ = criterion_.stall_time_fraction * std::max(1.0, window_end);
@@ -275,6 +311,7 @@ void FastEventEngine::run_window(double window_end) {
                 const bool final_block = block_last == first_cut;
                 const Cut right_cut = final_block ? first : snapshot_cut(block_last);
                 run_scanned(block_first, block_last);
+                if (candidate_seen_) return;  // abandoned: the state goes back to the copy
                 if (index == 0)
                     first_left_changes_.swap(left_changes_);
                 else
@@ -296,7 +333,9 @@ void FastEventEngine::run_window(double window_end) {
     }
     if (whole_ring_last >= 0) {
         // The pending list of the whole ring is already collected; no cut
-        // pairs, so nothing is deferred and the block is the global loop.
+        // pairs, so nothing is deferred and the block is the global loop,
+        // which judges a collapse itself.
+        global_window_ = true;
         run_scanned(-1, -1);
     }
     speed_bound_ = next_speed_bound;
@@ -331,7 +370,25 @@ void FastEventEngine::run_block(std::int32_t first, std::int32_t last) {
     }
 
     const Node& a = node_[static_cast<std::size_t>(i)];
-    const CollisionKind kind = classify(model_, a.velocity - node_[static_cast<std::size_t>(a.next)].velocity);
+    const double relative_speed = a.velocity - node_[static_cast<std::size_t>(a.next)].velocity;
+    const CollisionKind kind = classify(model_, relative_speed);
+    // Never true where collapse is impossible (inelastic means g >= delta >= the collapse speed).
+    if (detail::collapse_candidate(criterion_, kind, relative_speed)) [[unlikely]] {
+        if (!global_window_) {
+            // Blocks cannot place it in global order: abandon the window.
+            candidate_seen_ = true;
+            heap_.clear();
+            return;
+        }
+        // EventEngine::collide_pair's test, in the same global order.
+        slow_pair_seen_ = true;
+        const ContactCluster cluster = detail::contact_cluster(*this, i, t);
+        if (cluster.members >= detail::collapse_min_members) {
+            collapse_ = detail::collapse_report(i, relative_speed, t, "relative_speed", cluster);
+            heap_.clear();
+            return;
+        }
+    }
     inelastic_ += kind == CollisionKind::inelastic ? 1 : 0;
     detail::collide_neighbours(*this, i, t, kind);
 }
@@ -408,7 +465,25 @@ void FastEventEngine::check_stall_bound(double window_end, std::uint64_t run_eve
             "FastEventEngine: cannot exclude a stall (events too dense in time); rerun with the reference engine");
 }
 
+void FastEventEngine::save_rewind() {
+    rewind_.nodes = node_;
+    rewind_.values = rewound();
+    rewind_.windows = windows_;
+}
+
+void FastEventEngine::rewind() {
+    if (rewind_.nodes.size() != node_.size()) throw std::logic_error("FastEventEngine: no state to go back to");
+    node_ = rewind_.nodes;
+    rewound() = rewind_.values;
+    heap_.clear();
+    left_changes_.clear();
+    right_changes_.clear();
+    previous_right_changes_.clear();
+    first_left_changes_.clear();
+}
+
 std::optional<EngineSnapshot> FastEventEngine::snapshot() const {
+    if (collapse_) return std::nullopt;  // a collapsed run is finished, not paused
     EngineSnapshot out;
     out.kind = snapshot_kind;
     snapshot_io::save_ring(node_, out);

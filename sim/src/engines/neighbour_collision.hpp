@@ -16,11 +16,60 @@
 //   collisions_, alive_, anchor_, anchor_position_, ring_length_
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "shockgas/collision.hpp"
+#include "shockgas/engine.hpp"
 
 namespace shockgas::detail {
+
+// Two clusters count as one collapsing cluster when their gap at the moment
+// of collapse is below this fraction of the mean spacing L/N. In a collapse
+// the gaps shrink geometrically to zero, far below this; between ordinary
+// neighbours they are of order the spacing (see ARCHITECTURE.md, "Collapse").
+inline constexpr double collapse_contact_fraction = 1e-6;
+
+// The run of clusters in contact (gap below collapse_contact_fraction L/N)
+// around the pair (i, next i) at time t, for both event engines. The engine
+// provides records() (next, prev, mass), gap_at(slot, t), alive_,
+// ring_length_ and particles_.
+template <class Engine>
+ContactCluster contact_cluster(const Engine& engine, std::int32_t i, double t) {
+    const auto& records = engine.records();
+    const double contact = collapse_contact_fraction * engine.ring_length_ / static_cast<double>(engine.particles_);
+    double mass = records[static_cast<std::size_t>(i)].mass;
+    std::int64_t members = 1;
+    for (std::int32_t s = i; members < engine.alive_ && engine.gap_at(s, t) <= contact; ++members) {
+        s = records[static_cast<std::size_t>(s)].next;
+        mass += records[static_cast<std::size_t>(s)].mass;
+    }
+    for (std::int32_t s = records[static_cast<std::size_t>(i)].prev;
+         members < engine.alive_ && engine.gap_at(s, t) <= contact; ++members) {
+        mass += records[static_cast<std::size_t>(s)].mass;
+        s = records[static_cast<std::size_t>(s)].prev;
+    }
+    return {members, mass};
+}
+
+// A slow inelastic collision (relative speed below --collapse-speed) is a
+// candidate collapse; it is one when three or more clusters are in contact.
+// Two alone separate after each collision (McNamara & Young 1992): a slow pair
+// with no third cluster in contact is a cooled gas, not a collapse (a ring of
+// N = 2 ... 8 at delta = 0 reaches g < 1e-12 by Haff cooling alone near
+// t ~ 1e12 and was reported collapsed there; every collapse the figures record
+// has 10 or more).
+inline bool collapse_candidate(const CollapseCriterion& criterion, CollisionKind kind, double relative_speed) {
+    return kind == CollisionKind::inelastic && relative_speed < criterion.collapse_speed;
+}
+inline constexpr std::int64_t collapse_min_members = 3;
+
+// The report of a collapse found at pair (i, next i) at time t.
+inline CollapseReport collapse_report(std::int32_t i, double relative_speed, double t, const char* criterion,
+                                      const ContactCluster& cluster) {
+    return CollapseReport{t, i, static_cast<std::int64_t>(std::llround(cluster.mass)), relative_speed, criterion};
+}
 
 template <class Engine>
 void collide_neighbours(Engine& engine, std::int32_t i, double t, CollisionKind kind) {
