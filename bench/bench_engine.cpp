@@ -198,6 +198,26 @@ void BM_hybrid(benchmark::State& state) {
     });
 }
 
+// The pure inelastic gas (delta = 0) of fig_haff's smallest epsilon, r = 0.998:
+// collapse is possible, so the windowed engine keeps its copy to go back to
+// (fast_engine.hpp); to t = 300 no realization collapses at these sizes.
+const shockgas::CollisionModel pure_gas{0.998, 0.0, shockgas::Subthreshold::elastic};
+
+void BM_pure_fast(benchmark::State& state) {
+    measure(state, "pure_fast", shockgas::FastEventEngine::bytes_per_particle(), [](const auto& initial) {
+        shockgas::FastEventEngine engine(initial, pure_gas, {});
+        engine.advance_to(t_end);
+        return engine.collisions();
+    });
+}
+void BM_pure_reference(benchmark::State& state) {
+    measure(state, "pure_reference", shockgas::EventEngine::bytes_per_particle(), [](const auto& initial) {
+        shockgas::EventEngine engine(initial, pure_gas, {});
+        engine.advance_to(t_end);
+        return engine.collisions();
+    });
+}
+
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 // CPU seconds an engine takes to advance to t.
@@ -315,6 +335,13 @@ int main(int argc, char** argv) {
         return 0;
     }
     for (const std::int64_t n : {1000, 10000, 100000, 1000000}) register_all(n);
+    for (const std::int64_t n : {10000, 100000})
+        for (auto* bench : {&BM_pure_fast, &BM_pure_reference})
+            benchmark::RegisterBenchmark(bench == &BM_pure_fast ? "pure_gas/fast" : "pure_gas/reference", bench)
+                ->Arg(n)
+                ->Iterations(n >= 100000 ? 1 : 3)
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
     if (const char* large = std::getenv("SHOCKGAS_BENCH_LARGE"); large != nullptr && std::string(large) == "1")
         register_all(10000000);
     if (const char* long_runs = std::getenv("SHOCKGAS_BENCH_LONG"); long_runs != nullptr && std::string(long_runs) == "1")
@@ -337,6 +364,15 @@ int main(int argc, char** argv) {
                     get("hybrid"), get("fast") / get("textbook"), get("passthrough") / get("fast"),
                     get("hybrid") / get("fast"),
                     shockgas::FastEventEngine::bytes_per_particle(), TextbookRing::bytes_per_particle());
+    }
+    std::printf("\npure inelastic gas (delta = 0, r = 0.998, to t = %g)\n%10s %14s %14s %10s\n", t_end, "N",
+                "fast c/s", "reference c/s", "fast/ref");
+    for (const auto& [n, present] : sizes) {
+        const auto fast = rates().find({"pure_fast", n});
+        const auto reference = rates().find({"pure_reference", n});
+        if (fast == rates().end() || reference == rates().end()) continue;
+        std::printf("%10lld %14.3e %14.3e %10.2f\n", static_cast<long long>(n), fast->second, reference->second,
+                    fast->second / reference->second);
     }
     if (!long_seconds().empty()) {
         std::printf("\n%-26s %12s %14s %12s %10s %8s %8s\n", "long workload", "fast CPU s", "passthru CPU s",
