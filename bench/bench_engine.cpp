@@ -161,18 +161,22 @@ void measure(benchmark::State& state, const std::string& engine, std::size_t byt
 
 const shockgas::CollisionModel paper_gas{restitution, threshold, shockgas::Subthreshold::elastic};
 
+// Collisions of one realization to t_end with an engine that takes a collapse criterion.
+template <class EngineType>
+std::uint64_t collisions_to_end(const shockgas::InitialCondition& initial, const shockgas::CollisionModel& model) {
+    EngineType engine(initial, model, {});
+    engine.advance_to(t_end);
+    return engine.collisions();
+}
+
 void BM_fast(benchmark::State& state) {
     measure(state, "fast", shockgas::FastEventEngine::bytes_per_particle(), [](const auto& initial) {
-        shockgas::FastEventEngine engine(initial, paper_gas, {});
-        engine.advance_to(t_end);
-        return engine.collisions();
+        return collisions_to_end<shockgas::FastEventEngine>(initial, paper_gas);
     });
 }
 void BM_reference(benchmark::State& state) {
     measure(state, "reference", shockgas::EventEngine::bytes_per_particle(), [](const auto& initial) {
-        shockgas::EventEngine engine(initial, paper_gas, {});
-        engine.advance_to(t_end);
-        return engine.collisions();
+        return collisions_to_end<shockgas::EventEngine>(initial, paper_gas);
     });
 }
 void BM_textbook(benchmark::State& state) {
@@ -192,9 +196,7 @@ void BM_passthrough(benchmark::State& state) {
 
 void BM_hybrid(benchmark::State& state) {
     measure(state, "hybrid", shockgas::PassThroughEngine::bytes_per_particle(), [](const auto& initial) {
-        shockgas::HybridEngine engine(initial, paper_gas, {});
-        engine.advance_to(t_end);
-        return engine.collisions();
+        return collisions_to_end<shockgas::HybridEngine>(initial, paper_gas);
     });
 }
 
@@ -205,16 +207,12 @@ const shockgas::CollisionModel pure_gas{0.998, 0.0, shockgas::Subthreshold::elas
 
 void BM_pure_fast(benchmark::State& state) {
     measure(state, "pure_fast", shockgas::FastEventEngine::bytes_per_particle(), [](const auto& initial) {
-        shockgas::FastEventEngine engine(initial, pure_gas, {});
-        engine.advance_to(t_end);
-        return engine.collisions();
+        return collisions_to_end<shockgas::FastEventEngine>(initial, pure_gas);
     });
 }
 void BM_pure_reference(benchmark::State& state) {
     measure(state, "pure_reference", shockgas::EventEngine::bytes_per_particle(), [](const auto& initial) {
-        shockgas::EventEngine engine(initial, pure_gas, {});
-        engine.advance_to(t_end);
-        return engine.collisions();
+        return collisions_to_end<shockgas::EventEngine>(initial, pure_gas);
     });
 }
 
