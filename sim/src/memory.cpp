@@ -119,11 +119,10 @@ MemoryPlan plan_memory(const SimulationParameters& p, int threads, bool checkpoi
     const auto particles = static_cast<double>(p.particles);
     const auto realizations = static_cast<double>(p.realizations);
     MemoryPlan plan;
-    const bool collapse_possible =
-        p.collision.restitution > 0.0 && !(p.collapse.collapse_speed <= p.collision.velocity_threshold);
-    const double engine_bytes = p.engine == "passthrough" || p.engine == "hybrid" ? passthrough_bytes_per_particle
-                                : collapse_possible                               ? collapsing_engine_bytes_per_particle
-                                                                                  : engine_bytes_per_particle;
+    const double engine_bytes = p.engine == "passthrough" || p.engine == "hybrid"
+                                    ? passthrough_bytes_per_particle
+                                : collapse_possible(p.collision, p.collapse) ? collapsing_engine_bytes_per_particle
+                                                                             : engine_bytes_per_particle;
     plan.per_realization_bytes = particles * (engine_bytes + (checkpoints ? checkpoint_bytes_per_particle : 0.0));
     // Kept for every realization until the output is written: its snapshots,
     // a collapse record when δ = 0 (a run may collapse), its rows of the time

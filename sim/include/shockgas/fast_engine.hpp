@@ -219,11 +219,11 @@ private:
     std::optional<CollapseReport> collapse_;
 
     // Collapse detection (delta below the collapse speed; see the header's
-    // comment). The copy of the state between windows that a window meeting
+    // comment): the copy of the state between windows that a window meeting
     // a slow inelastic collision goes back to, and the window (by count) to
-    // run as one block of the whole ring.
-    // What a rewind restores besides the records: the clock, the counters and
-    // the window history, as one tuple of references.
+    // run as one block of the whole ring. rewound() is what a rewind restores
+    // besides the records (the clock, the counters and the window history),
+    // as one tuple of references.
     auto rewound() {
         return std::tie(now_, anchor_position_, window_length_, speed_bound_, window_start_, collisions_, inelastic_,
                         alive_, anchor_, windows_, blocks_, recent_windows_);

@@ -54,6 +54,12 @@ struct CollapseCriterion {
     std::uint64_t stall_events_min = 1000000;  // the stall window is max(this, 10 N) events
 };
 
+// Whether a run can collapse: r > 0 and a collision can be inelastic (g >= delta)
+// while slower than the collapse speed, as in every delta = 0 run.
+inline bool collapse_possible(const CollisionModel& model, const CollapseCriterion& criterion) {
+    return model.restitution > 0.0 && !(criterion.collapse_speed <= model.velocity_threshold);
+}
+
 struct SimulationParameters {
     std::int64_t particles = 1000;    // N
     double ring_length = 0.0;         // L; 0 means L = N (unit spacing)

@@ -1,7 +1,6 @@
 #include "shockgas/event_engine.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "shockgas/collision.hpp"
 #include "shockgas/engine_snapshot.hpp"

@@ -68,8 +68,7 @@ FastEventEngine::FastEventEngine(const InitialCondition& initial, const Collisio
     validate(initial);
     if (!supports(initial, model, collapse))
         throw std::logic_error("FastEventEngine: run not supported, use EventEngine (see supports())");
-    // An inelastic collision needs g >= delta and a collapse g < collapse speed.
-    collapse_possible_ = model.restitution > 0.0 && !(collapse.collapse_speed <= model.velocity_threshold);
+    collapse_possible_ = shockgas::collapse_possible(model, collapse);
     const auto n = static_cast<std::int32_t>(initial.size());
     link_ring(initial, node_);  // the same initial state and arithmetic as EventEngine's
     anchor_position_ = initial.position[0];

@@ -18,7 +18,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <optional>
 
 #include "shockgas/collision.hpp"
 #include "shockgas/engine.hpp"
