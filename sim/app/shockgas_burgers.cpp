@@ -32,6 +32,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/analysis/burgers_comparison.hpp"
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/burgers.hpp"
 #include "shockgas/checksum.hpp"
@@ -43,51 +44,8 @@
 #include "shockgas/state.hpp"
 #include "shockgas/text_file.hpp"
 
-namespace {
-
 using shockgas::burgers::Shock;
 using shockgas::burgers::Solver;
-
-double periodic_distance(double a, double b, double length) {
-    double d = std::fmod(std::abs(a - b), length);
-    return std::min(d, length - d);
-}
-
-// For each shock in `from`, the distance to the nearest position in `to`.
-std::vector<double> nearest_distances(const std::vector<double>& from, const std::vector<double>& to, double length) {
-    std::vector<double> out;
-    for (double x : from) {
-        double best = length;
-        for (double y : to) best = std::min(best, periodic_distance(x, y, length));
-        out.push_back(best);
-    }
-    return out;
-}
-
-double median(std::vector<double> values) {
-    if (values.empty()) return std::nan("");
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-// Shocks whose velocity drop mass/t (Rankine-Hugoniot: v_- - v_+ = (q_b - q_a)/t) is at
-// least jump_fraction v_rms, the detector's rule (analysis/README.md, "Shocks").
-std::vector<double> strong_shock_positions(const Solver& solver, double t, double jump_fraction) {
-    const double v_rms = std::sqrt(solver.temperature(t));
-    std::vector<double> out;
-    for (const Shock& s : solver.shocks(t))
-        if (s.mass() / t >= jump_fraction * v_rms) out.push_back(s.position);
-    return out;
-}
-
-double l1_distance(const std::vector<double>& a, const std::vector<double>& b) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i) sum += std::abs(a[i] - b[i]);
-    return sum / static_cast<double>(a.size());
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"shockgas-burgers: inviscid and viscous Burgers profiles from a particle run's initial condition"};
@@ -283,7 +241,7 @@ int main(int argc, char** argv) {
             fmt::format_to(std::back_inserter(profile), "{:.10g} {:.10g} {:.10g} {:.6g}\n", s.position, s.mass(),
                            s.velocity, s.mass() / time / v_rms);
 
-        const auto burgers_shocks = strong_shock_positions(solver, time, jump_fraction);
+        const auto burgers_shocks = shockgas::analysis::strong_burgers_shocks(solver, time, jump_fraction);
         std::string vars = provenance + fmt::format("burgers_time = {:.10g}\nburgers_shock_count = {}\nburgers_v_rms = {:.10g}\n"
                                        "burgers_cells_per_particle = {}\n",
                                        time, burgers_shocks.size(), v_rms, cells_per_particle);
@@ -291,96 +249,34 @@ int main(int argc, char** argv) {
                    burgers_shocks.size(), jump_fraction, v_rms);
         const auto snapshot = std::find_if(snapshots.begin(), snapshots.end(), [&](const auto& s) { return s.time == time; });
         if (snapshot != snapshots.end()) {
-            // A merging run (sticky gas): its clusters are the shocks, with the same jump rule
-            // (a cluster of mass M at a Burgers shock has drop M/t). Otherwise the Fig. 5 detector.
-            const bool merged = std::any_of(snapshot->mass.begin(), snapshot->mass.end(), [](double m) { return m > 1.5; });
-            std::vector<double> particle_shocks;
-            if (merged) {
-                for (std::size_t i = 0; i < snapshot->mass.size(); ++i)
-                    if (snapshot->mass[i] / time >= jump_fraction * v_rms) particle_shocks.push_back(snapshot->position[i]);
-            } else {
-                shockgas::analysis::ShockRule rule;
-                rule.jump_fraction = jump_fraction;
-                particle_shocks = shockgas::analysis::find_shocks(*snapshot, rule).shock_position;
-            }
-            for (double& p : particle_shocks) p = shockgas::wrap_position(p, length);
-            // Velocity misfit: mass-weighted mean |v_i - v_Burgers(x_i)| over the particles and
-            // clusters. At a shock the Burgers field jumps, and its value there is one side of
-            // the jump; what moves at a shock is its mass, with the shock's velocity
-            // (v_- + v_+)/2, the mean initial velocity of that mass (Rankine-Hugoniot). So an
-            // element on a shock (within shock_match of it) is compared with the shock's
-            // velocity: for the sticky gas every cluster sits on a shock to rounding (1e-8,
-            // test_burgers), and comparing it with one side made the misfit about v_rms where
-            // the two agree exactly.
-            const double shock_match = 1e-6 * length / static_cast<double>(n);
-            std::vector<std::pair<double, double>> shock_at;  // (position, velocity), sorted
-            for (const Shock& shock : solver.shocks(time)) shock_at.emplace_back(shock.position, shock.velocity);
-            std::sort(shock_at.begin(), shock_at.end());
-            auto at_particles = solver.inviscid(snapshot->position, time);
-            for (std::size_t i = 0; i < at_particles.size() && !shock_at.empty(); ++i) {
-                const double here = shockgas::wrap_position(snapshot->position[i], length);
-                const auto above = std::lower_bound(shock_at.begin(), shock_at.end(), std::make_pair(here, -HUGE_VAL));
-                // The nearest shocks are the ones either side of it, around the ring.
-                const auto& after = above == shock_at.end() ? shock_at.front() : *above;
-                const auto& before = above == shock_at.begin() ? shock_at.back() : *(above - 1);
-                for (const auto& [position, velocity] : {after, before})
-                    if (periodic_distance(here, position, length) <= shock_match) {
-                        at_particles[i] = velocity;
-                        break;
-                    }
-            }
-            double misfit = 0.0, mass = 0.0;
-            for (std::size_t i = 0; i < at_particles.size(); ++i) {
-                misfit += snapshot->mass[i] * std::abs(snapshot->velocity[i] - at_particles[i]);
-                mass += snapshot->mass[i];
-            }
-            misfit /= mass * v_rms;
+            const auto c = shockgas::analysis::compare_with_burgers(*snapshot, solver, time, jump_fraction, n);
             fmt::print("particle shocks from {}; mean |v - v_Burgers| / v_rms = {:.4g}\n",
-                       merged ? "clusters" : "the Fig. 5 detector", misfit);
-            vars += fmt::format("burgers_velocity_misfit = {:.10g}\n", misfit);
-            const auto to_burgers = nearest_distances(particle_shocks, burgers_shocks, length);
-            const auto to_particles = nearest_distances(burgers_shocks, particle_shocks, length);
-            const double separation = length / std::max<double>(1.0, static_cast<double>(burgers_shocks.size()));
-            const double med = median(to_burgers);
-            const double largest = to_burgers.empty() ? std::nan("") : *std::max_element(to_burgers.begin(), to_burgers.end());
-            std::size_t close = 0;
-            for (double d : to_burgers) close += d < 0.1 * separation;
+                       c.clusters_are_shocks ? "clusters" : "the Fig. 5 detector", c.velocity_misfit);
+            vars += fmt::format("burgers_velocity_misfit = {:.10g}\n", c.velocity_misfit);
             fmt::print("particles: {} shocks; distance to the nearest Burgers shock: median {:.4g}, max {:.4g} "
                        "(mean Burgers shock separation {:.4g}); {} within 0.1 separation; Burgers -> particles median {:.4g}\n",
-                       particle_shocks.size(), med, largest, separation, close, median(to_particles));
+                       c.particle_shocks, c.median_distance, c.max_distance, c.mean_separation, c.matched,
+                       c.median_distance_reverse);
             vars += fmt::format("burgers_particle_shock_count = {}\nburgers_median_distance = {:.10g}\n"
                                 "burgers_max_distance = {:.10g}\nburgers_mean_separation = {:.10g}\n"
                                 "burgers_matched = {}\nburgers_median_distance_reverse = {:.10g}\n",
-                                particle_shocks.size(), med, largest, separation, close, median(to_particles));
+                                c.particle_shocks, c.median_distance, c.max_distance, c.mean_separation, c.matched,
+                                c.median_distance_reverse);
         }
         if (!study.empty()) {
-            // (1) nu -> 0 at the run's grid: mean |v_nu - v_0| over the sample points.
+            const auto study_result = shockgas::analysis::burgers_convergence(initial, solver, x, v0, time, jump_fraction);
             fmt::format_to(std::back_inserter(convergence), "# nu -> 0 at {} cells per particle, t = {:g}: nu mean|v_nu - v_0| (v_rms = {:.6g})\n",
                        cells_per_particle, time, v_rms);
-            for (double nu : {1.0, 0.3, 0.1, 0.03, 0.01, 1e-3, 1e-4, 1e-5, 1e-6}) {
-                const auto v = solver.viscous(x, time, nu);
-                fmt::format_to(std::back_inserter(convergence), "{:g} {:.6g}\n", nu, l1_distance(v, v0));
-            }
-            // (2) grid refinement: cells per particle 1/16 .. 4 against the particle field (1 per particle).
+            for (const auto& row : study_result.viscous_limit)
+                fmt::format_to(std::back_inserter(convergence), "{:g} {:.6g}\n", row.viscosity, row.mean_deviation);
             fmt::format_to(std::back_inserter(convergence), "\n\n# grid: cells_per_particle shocks(drop>=v_rms) median|dx| max|dx| mean|v - v_exact|\n");
-            const Solver exact(shockgas::burgers::grid_from_particles(initial, n));
-            const auto reference = strong_shock_positions(exact, time, jump_fraction);
-            const auto v_exact = exact.inviscid(x, time);
-            for (double per : {1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2, 1.0, 2.0, 4.0}) {
-                // A coarse cell holds a whole number of particles (grid_from_particles): the
-                // coarse levels exist only where N divides into them; the others are named as skipped.
-                const auto divisor = static_cast<std::int64_t>(std::llround(1.0 / per));
-                if (per < 1.0 && n % divisor != 0) {
-                    fmt::format_to(std::back_inserter(convergence), "# {:g}: skipped, N = {} is not a multiple of {}\n", per, n, divisor);
-                    continue;
-                }
-                const auto cells = static_cast<std::int64_t>(std::llround(per * static_cast<double>(n)));
-                const Solver coarse(shockgas::burgers::grid_from_particles(initial, cells));
-                const auto found = strong_shock_positions(coarse, time, jump_fraction);
-                const auto d = nearest_distances(reference, found, length);
-                fmt::format_to(std::back_inserter(convergence), "{:g} {} {:.6g} {:.6g} {:.6g}\n", per, found.size(), median(d),
-                           d.empty() ? 0.0 : *std::max_element(d.begin(), d.end()),
-                           l1_distance(coarse.inviscid(x, time), v_exact));
+            for (const auto& level : study_result.grid) {
+                if (level.skipped)
+                    fmt::format_to(std::back_inserter(convergence), "# {:g}: skipped, N = {} is not a multiple of {}\n",
+                                   level.cells_per_particle, n, std::llround(1.0 / level.cells_per_particle));
+                else
+                    fmt::format_to(std::back_inserter(convergence), "{:g} {} {:.6g} {:.6g} {:.6g}\n", level.cells_per_particle,
+                                   level.strong_shocks, level.median_shift, level.max_shift, level.mean_deviation);
             }
         }
         // Each written beside its name and closed (where a full disk shows) before any is

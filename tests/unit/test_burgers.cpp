@@ -1,11 +1,13 @@
 // Burgers solver (sim/src/burgers.cpp): analytic Riemann solutions, nu -> 0,
-// grid refinement, no overflow at small nu, and the sticky-gas identity.
+// grid refinement, no overflow at small nu, the sticky-gas identity, and the comparison of a
+// run with Burgers (analysis/burgers_comparison.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "shockgas/analysis/burgers_comparison.hpp"
 #include "shockgas/burgers.hpp"
 #include "shockgas/exact_engine.hpp"
 #include "shockgas/state.hpp"
@@ -162,4 +164,42 @@ TEST(Burgers, InviscidShocksAreTheStickyGasClusters) {
         EXPECT_NEAR(s.mass(), state.mass[heavy[k]], 1e-9);
         EXPECT_NEAR(s.velocity, state.velocity[heavy[k]], 1e-12);
     }
+}
+
+// The comparison shockgas-burgers prints (analysis/burgers_comparison.hpp), on the sticky gas,
+// where it must find nothing to tell apart, and on the same clusters with every velocity moved by
+// a known amount, where the misfit must be that amount.
+TEST(BurgersComparison, StickyGasClustersAreTheBurgersShocks) {
+    const std::int64_t n = 3000;
+    const auto initial = generate_initial_condition(n, static_cast<double>(n), 42, 0);
+    const double t = 2000.0;
+    ExactEngine engine(initial);
+    ASSERT_TRUE(engine.advance_to(t));
+    ClusterState state;
+    engine.clusters(state);
+    analysis::Snapshot snapshot{t, 0, initial.ring_length, state.position, state.velocity, state.mass};
+    const Solver solver(grid_from_particles(initial, n));
+    constexpr double jump_fraction = 1.0;  // the detector's default: a drop of at least v_rms
+    const auto strong = analysis::strong_burgers_shocks(solver, t, jump_fraction);
+    ASSERT_GE(strong.size(), 3u) << "too few shocks for the comparison to mean anything";
+    const auto same = analysis::compare_with_burgers(snapshot, solver, t, jump_fraction, n);
+    EXPECT_TRUE(same.clusters_are_shocks);
+    // Velocities agree to rounding (every element moves with its shock, or lies between shocks on
+    // v = (x - q)/t); positions as in InviscidShocksAreTheStickyGasClusters.
+    constexpr double velocity_rounding = 1e-12;  // in units of v_rms, which is about 0.07 here
+    constexpr double position_rounding = 1e-8;
+    EXPECT_LT(same.velocity_misfit, velocity_rounding);
+    EXPECT_EQ(same.particle_shocks, strong.size());
+    EXPECT_EQ(same.matched, strong.size());
+    EXPECT_LT(same.median_distance, position_rounding);
+    EXPECT_LT(same.max_distance, position_rounding);
+    EXPECT_LT(same.median_distance_reverse, position_rounding);
+    EXPECT_DOUBLE_EQ(same.mean_separation, initial.ring_length / static_cast<double>(strong.size()));
+
+    // Every velocity moved by 0.1 v_rms: the misfit is 0.1, the shocks (from masses) unchanged.
+    const double v_rms = std::sqrt(solver.temperature(t));
+    for (double& v : snapshot.velocity) v += 0.1 * v_rms;
+    const auto moved = analysis::compare_with_burgers(snapshot, solver, t, jump_fraction, n);
+    EXPECT_NEAR(moved.velocity_misfit, 0.1, velocity_rounding);
+    EXPECT_EQ(moved.matched, strong.size());
 }
