@@ -138,17 +138,32 @@ TEST(Burgers, GridRefinementConvergesForSmoothData) {
     EXPECT_LT(error.back(), 0.01 * error.front());  // 64 times finer: measured 6.0e-3 -> 6.6e-6
 }
 
+namespace {
+
+// The sticky gas of both tests below: N = 3000 (seed 42) at t = 2000, clusters from the exact engine.
+constexpr std::int64_t sticky_particles = 3000;
+constexpr double sticky_time = 2000.0;
+InitialCondition sticky_start() {
+    return generate_initial_condition(sticky_particles, static_cast<double>(sticky_particles), 42, 0);
+}
+ClusterState sticky_clusters(const InitialCondition& initial) {
+    ExactEngine engine(initial);
+    EXPECT_TRUE(engine.advance_to(sticky_time));
+    ClusterState state;
+    engine.clusters(state);
+    return state;
+}
+
+}  // namespace
+
 TEST(Burgers, InviscidShocksAreTheStickyGasClusters) {
     // Hopf-Lax argmin of (x - q)^2/(2t) + Phi0(q) is the convex minorant of q^2/2 + t Phi0(q),
     // the sticky gas's variational principle (E, Rykov & Sinai 1996): with one cell per particle
     // each shock is one cluster, at the same place, with the same mass and velocity.
-    const std::int64_t n = 3000;
-    const auto initial = generate_initial_condition(n, static_cast<double>(n), 42, 0);
-    const double t = 2000.0;
-    ExactEngine engine(initial);
-    ASSERT_TRUE(engine.advance_to(t));
-    ClusterState state;
-    engine.clusters(state);
+    const std::int64_t n = sticky_particles;
+    const auto initial = sticky_start();
+    const double t = sticky_time;
+    const ClusterState state = sticky_clusters(initial);
     std::vector<std::size_t> heavy;
     for (std::size_t i = 0; i < state.size(); ++i)
         if (state.mass[i] >= 2.0) heavy.push_back(i);
@@ -170,13 +185,10 @@ TEST(Burgers, InviscidShocksAreTheStickyGasClusters) {
 // where it must find nothing to tell apart, and on the same clusters with every velocity moved by
 // a known amount, where the misfit must be that amount.
 TEST(BurgersComparison, StickyGasClustersAreTheBurgersShocks) {
-    const std::int64_t n = 3000;
-    const auto initial = generate_initial_condition(n, static_cast<double>(n), 42, 0);
-    const double t = 2000.0;
-    ExactEngine engine(initial);
-    ASSERT_TRUE(engine.advance_to(t));
-    ClusterState state;
-    engine.clusters(state);
+    const std::int64_t n = sticky_particles;
+    const auto initial = sticky_start();
+    const double t = sticky_time;
+    const ClusterState state = sticky_clusters(initial);
     analysis::Snapshot snapshot{t, 0, initial.ring_length, state.position, state.velocity, state.mass};
     const Solver solver(grid_from_particles(initial, n));
     constexpr double jump_fraction = 1.0;  // the detector's default: a drop of at least v_rms
