@@ -53,7 +53,7 @@ std::vector<double> strong_burgers_shocks(const Solver& solver, double t, double
 }
 
 BurgersComparison compare_with_burgers(const Snapshot& snapshot, const Solver& solver, double t, double jump_fraction,
-                                       std::int64_t particles) {
+                                       const std::vector<double>& burgers_shocks, std::int64_t particles) {
     const double length = snapshot.ring_length;
     const double v_rms = std::sqrt(solver.temperature(t));
     BurgersComparison out;
@@ -97,7 +97,6 @@ BurgersComparison compare_with_burgers(const Snapshot& snapshot, const Solver& s
         mass += snapshot.mass[i];
     }
     out.velocity_misfit = misfit / (mass * v_rms);
-    const auto burgers_shocks = strong_burgers_shocks(solver, t, jump_fraction);
     const auto to_burgers = nearest_distances(particle_shocks, burgers_shocks, length);
     out.particle_shocks = particle_shocks.size();
     out.mean_separation = length / std::max<double>(1.0, static_cast<double>(burgers_shocks.size()));

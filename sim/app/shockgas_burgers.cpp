@@ -249,7 +249,7 @@ int main(int argc, char** argv) {
                    burgers_shocks.size(), jump_fraction, v_rms);
         const auto snapshot = std::find_if(snapshots.begin(), snapshots.end(), [&](const auto& s) { return s.time == time; });
         if (snapshot != snapshots.end()) {
-            const auto c = shockgas::analysis::compare_with_burgers(*snapshot, solver, time, jump_fraction, n);
+            const auto c = shockgas::analysis::compare_with_burgers(*snapshot, solver, time, jump_fraction, burgers_shocks, n);
             fmt::print("particle shocks from {}; mean |v - v_Burgers| / v_rms = {:.4g}\n",
                        c.clusters_are_shocks ? "clusters" : "the Fig. 5 detector", c.velocity_misfit);
             vars += fmt::format("burgers_velocity_misfit = {:.10g}\n", c.velocity_misfit);

@@ -194,7 +194,7 @@ TEST(BurgersComparison, StickyGasClustersAreTheBurgersShocks) {
     constexpr double jump_fraction = 1.0;  // the detector's default: a drop of at least v_rms
     const auto strong = analysis::strong_burgers_shocks(solver, t, jump_fraction);
     ASSERT_GE(strong.size(), 3u) << "too few shocks for the comparison to mean anything";
-    const auto same = analysis::compare_with_burgers(snapshot, solver, t, jump_fraction, n);
+    const auto same = analysis::compare_with_burgers(snapshot, solver, t, jump_fraction, strong, n);
     EXPECT_TRUE(same.clusters_are_shocks);
     // Velocities agree to rounding (every element moves with its shock, or lies between shocks on
     // v = (x - q)/t); positions as in InviscidShocksAreTheStickyGasClusters.
@@ -211,7 +211,7 @@ TEST(BurgersComparison, StickyGasClustersAreTheBurgersShocks) {
     // Every velocity moved by 0.1 v_rms: the misfit is 0.1, the shocks (from masses) unchanged.
     const double v_rms = std::sqrt(solver.temperature(t));
     for (double& v : snapshot.velocity) v += 0.1 * v_rms;
-    const auto moved = analysis::compare_with_burgers(snapshot, solver, t, jump_fraction, n);
+    const auto moved = analysis::compare_with_burgers(snapshot, solver, t, jump_fraction, strong, n);
     EXPECT_NEAR(moved.velocity_misfit, 0.1, velocity_rounding);
     EXPECT_EQ(moved.matched, strong.size());
 }

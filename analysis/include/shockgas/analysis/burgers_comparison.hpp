@@ -34,10 +34,12 @@ struct BurgersComparison {
     double median_distance_reverse = 0.0;  // from each Burgers shock to the nearest particle shock
 };
 
-// The snapshot (at solver's time `t`) against the Burgers solution from its start; particles: the
+// The snapshot (at solver's time `t`) against the Burgers solution from its start; strong_shocks:
+// strong_burgers_shocks(solver, t, jump_fraction), which the caller has already; particles: the
 // run's N (the tolerance for "on a shock" is 1e-6 of a spacing).
 BurgersComparison compare_with_burgers(const Snapshot& snapshot, const burgers::Solver& solver, double t,
-                                       double jump_fraction, std::int64_t particles);
+                                       double jump_fraction, const std::vector<double>& strong_shocks,
+                                       std::int64_t particles);
 
 // The Burgers solution's own convergence at t, on the points x where v_inviscid was sampled.
 struct BurgersConvergence {
