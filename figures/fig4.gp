@@ -5,7 +5,9 @@
 load styledir.'/style.gp'
 load theorydir.'/constants.gp'
 load datadir.'/collapse.gp'
-set title sprintf('Fig. 4: scaling of the velocity distribution  (%s)', fidelity_note)
+# A caller that draws another variant (fig4_sticky.gp) names it with subtitle, shown after the title.
+if (!exists('subtitle')) subtitle = ''
+set title sprintf('Fig. 4: scaling of the velocity distribution%s  (%s)', subtitle, fidelity_note)
 set xlabel 'scaled velocity z = (v - ⟨v⟩) t^{1/3}'
 set ylabel 'Φ(z) = t^{-1/3} P(v, t)'
 set logscale y

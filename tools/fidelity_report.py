@@ -194,16 +194,19 @@ def readme_rows():
                     f"{stick_expectation(d)} |")
         rows.append(f"| P3 | T(t_stick) ∝ ε^x | x = {d['temperature_at_stick_exponent']:.3f} ± "
                     f"{d['temperature_at_stick_exponent_sigma']:.3f} | +1 |")
-    path = os.path.join(base, "fig4", "scaling.h5")
-    if os.path.exists(path):
+    # Fig. 4, then the same with sticky sub-threshold collisions (fig4_sticky, P5's other mechanism).
+    for figure, ids, variant in [("fig4", ("P7", "P7/P8"), ""), ("fig4_sticky", ("P5/P7", "P5/P8"), "sticky below δ: ")]:
+        path = os.path.join(base, figure, "scaling.h5")
+        if not os.path.exists(path):
+            continue
         results = shockgas.read_results(path)
         d = results["collapse"].attrs
         histograms = [results[g].attrs for g in results.sections if g.startswith("histogram")]
-        rows.append(f"| P7 | P(v,t) = t^(1/3) Φ(v t^(1/3)), best exponent over {len(histograms)} histograms | "
-                    f"β = {d['beta']:.3f} ± {d['beta_sigma']:.3f} | 1/3 |")
+        rows.append(f"| {ids[0]} | {variant}P(v,t) = t^(1/3) Φ(v t^(1/3)), best exponent over {len(histograms)} "
+                    f"histograms | β = {d['beta']:.3f} ± {d['beta_sigma']:.3f} | 1/3 |")
         if histograms:
             kurtosis = [h["kurtosis"] for h in histograms]
-            rows.append(f"| P7/P8 | kurtosis of Φ, {len(histograms)} histograms | {min(kurtosis):.2f} … "
+            rows.append(f"| {ids[1]} | {variant}kurtosis of Φ, {len(histograms)} histograms | {min(kurtosis):.2f} … "
                         f"{max(kurtosis):.2f} | 3.041 (exact) |")
     path = os.path.join(base, "fig5", "shocks.h5")
     if os.path.exists(path):
@@ -399,7 +402,9 @@ print(f"### Cost per figure ({fidelity} fidelity, {build})\n")
 print("| figure | runs | N | realizations | collisions | CPU s | peak memory |")
 print("|---|---|---|---|---|---|---|")
 total_cpu = 0.0
-for figure in ["fig1", "fig2", "fig3", "fig4", "fig5", "fig_collapse", "fig_crossovers", "fig_haff", "fig_tradeoff"]:
+# fig4_sticky reuses fig4's r = 0 run, which is counted under fig4 only (its file is in fig4's folder).
+for figure in ["fig1", "fig2", "fig3", "fig4", "fig4_sticky", "fig5", "fig_collapse", "fig_crossovers", "fig_haff",
+               "fig_tradeoff"]:
     items = list(runs(figure))
     if not items:
         continue
@@ -431,14 +436,16 @@ if os.path.exists(path):
                                   ("t_stick", "t_stick vs ε", stick_expectation(d)),
                                   ("temperature_at_stick", "T(t_stick) vs ε", "+1")]:
         print(f"| {label} exponent | {d[name + '_exponent']:.3f} ± {d[name + '_exponent_sigma']:.3f} | {expected} |")
-path = os.path.join(base, "fig4", "scaling.h5")
-if os.path.exists(path):
+for figure, title in [("fig4", "Fig. 4"), ("fig4_sticky", "Fig. 4, sticky below δ,")]:
+    path = os.path.join(base, figure, "scaling.h5")
+    if not os.path.exists(path):
+        continue
     d = attrs(path, "collapse")
-    print(f"| Fig. 4 scaling exponent β | {d['beta']:.3f} ± {d['beta_sigma']:.3f} | 1/3 |")
+    print(f"| {title} scaling exponent β | {d['beta']:.3f} ± {d['beta_sigma']:.3f} | 1/3 |")
     results = shockgas.read_results(path)
     for g in sorted(k for k in results.sections if k.startswith("histogram")):
         a = results[g].attrs
-        line = f"| Fig. 4 {a['label']}: kurtosis"
+        line = f"| {title} {a['label']}: kurtosis"
         value = (f"{a['kurtosis']:.3f} ± {a['kurtosis_sigma']:.3f}" if not math.isnan(a["kurtosis_sigma"])
                  else f"{a['kurtosis']:.3f} ± n/a ({why_missing(a, 'kurtosis_sigma_note', 'one realization')})")
         # A short run's tail often has too few bins, or a fit or jackknife replica at the search
