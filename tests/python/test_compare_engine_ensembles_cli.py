@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """tools/compare_engine_ensembles.py refuses what it cannot compare, and a NaN statistic fails
-(ctest python.compare_engine_ensembles, label python; about 1 s of CPU).
+(ctest python.compare_engine_ensembles, label python; about 10 s of CPU).
 
     test_compare_engine_ensembles_cli.py SIM WORK_DIR
 
@@ -14,9 +14,14 @@ skipped in silence. Now:
     sample grid with the same attributes, histograms missing from one file: exit 2, one line;
   * another seed is what is compared: not refused;
   * runs whose every realization collapsed (delta = 0) leave samples without any standard error:
-    a NaN statistic, which fails (exit 1), not passes.
+    a NaN statistic, which fails (exit 1), not passes;
+  * 4 realizations against 20 of the same law pass the permutation test where the chi-square law
+    alone would reject them;
+  * --mechanisms compares elastic with sticky sub-threshold runs (refused without it), fails where
+    the mechanism changes the law (delta = 0.3), and still refuses another restitution.
 """
 import os
+import re
 import shutil
 import sys
 import unittest
@@ -107,6 +112,55 @@ class Refusals(unittest.TestCase):
     def test_bad_paths(self):
         sc.one_line_error(self, compare("event.h5", "no_such.h5"), NAME, "no_such.h5", "no such file")
         sc.one_line_error(self, sc.run([sc.PYTHON, TOOL, path("event.h5")]), NAME, "required", "B.h5")
+
+
+class FewRealizations(unittest.TestCase):
+    def test_the_permutation_test_holds_where_the_chi_square_law_does_not(self):
+        # The same law twice: the sticky gas (r = 0, N = 5000), 4 realizations (seed 5) against 20
+        # (seed 2). Each bin's error comes from 4 realizations' spread, so the z-scores are
+        # Student-t-like and their sum far above its chi-square law: that law's p-value is below
+        # 1e-3 at t = 300 (measured 2026-12-02: chi2 = 109 for 61 bins). The permutation test, which
+        # decides, passes at both times.
+        simulate("few.h5", "-N", 5000, "-r", 0, "-t", 1000, "-R", 4, "-s", 5, "-j", 1, "-q",
+                 "--histogram-times", "300,1000")
+        simulate("many.h5", "-N", 5000, "-r", 0, "-t", 1000, "-R", 20, "-s", 2, "-j", 1, "-q",
+                 "--histogram-times", "300,1000")
+        result = compare("few.h5", "many.h5")
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        law = [float(p) for p in re.findall(r"chi-square law ([0-9.]+)", result.stdout)]
+        self.assertEqual(len(law), 2, result.stdout)
+        self.assertLess(law[0], 1e-3, result.stdout)
+
+
+class Mechanisms(unittest.TestCase):
+    """--mechanisms: elastic against sticky sub-threshold collisions, the paper's two, compared."""
+
+    @classmethod
+    def setUpClass(cls):
+        # delta = 0.3: most collisions are below it, so the mechanism decides the dynamics and by
+        # t = 50 sticky merging has narrowed the velocity law far more than elastic bouncing.
+        wide = ["-N", 1000, "-r", 0.9, "-d", 0.3, "-t", 50, "-R", 6, "-s", 1, "-j", 1, "-q",
+                "--histogram-times", "10,50"]
+        simulate("wide_elastic.h5", *wide)
+        simulate("wide_sticky.h5", *wide, "--subthreshold", "sticky")
+        simulate("wide_sticky_r05.h5", *wide[:2], "-r", 0.5, *wide[4:], "--subthreshold", "sticky")
+
+    def mechanisms(self, a, b):
+        return sc.run([sc.PYTHON, TOOL, "--mechanisms", path(a), path(b)], cwd=WORK)
+
+    def test_without_the_option_other_mechanisms_are_refused(self):
+        sc.one_line_error(self, compare("wide_elastic.h5", "wide_sticky.h5"), NAME, "subthreshold")
+
+    def test_a_law_the_mechanism_changes_fails(self):
+        result = self.mechanisms("wide_elastic.h5", "wide_sticky.h5")
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertIn("sub-threshold mechanisms: elastic (A) and sticky (B)", result.stdout)
+        self.assertRegex(result.stdout, r"histogram t = 50: .* FAIL")
+        # The collision counts differ by what each mechanism counts: reported, not compared.
+        self.assertIn("not compared", result.stdout)
+
+    def test_other_physics_is_still_refused(self):
+        sc.one_line_error(self, self.mechanisms("wide_elastic.h5", "wide_sticky_r05.h5"), NAME, "restitution")
 
 
 class NotANumber(unittest.TestCase):
