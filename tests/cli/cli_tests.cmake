@@ -376,7 +376,11 @@ if(SHOCKGAS_PYTHON)
   add_test(NAME cli.paper_tier
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/paper_tier_test.sh ${PROJECT_SOURCE_DIR}/tools/paper-tier ${_sim}
                    "${_cli_dir}/paper_tier")
-  set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 300)
+  # The tool builds at the lowest CPU priority (nice 19, and its own session's autogroup), so this test's
+  # builds yield to everything else on the machine: 88 s alone, 137 s beside the other ci tests, and
+  # over 300 s in the sanitizer stage of a fresh-clone .ci/run while two other simulations ran
+  # (2026-12-02). The timeout only bounds a hang.
+  set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 900)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock resume_other_parameters
                       rerun_without_resume memory_fewer_at_once hangup resume_other_build resume_same_simulator
