@@ -133,30 +133,26 @@ def fails(z, dof=np.inf):
     return 2.0 * stats.t.sf(abs(z), dof) < 2.0 * stats.norm.sf(Z_LIMIT)
 
 
-def histogram_chi2(fa, fb, keep):
-    """Sum over the bins in keep of the squared z-score of the difference of the realizations' mean
-    fractions (fa, fb: realizations x bins); a bin without spread in a relabelling adds nothing."""
-    diff = fa.mean(axis=0) - fb.mean(axis=0)
-    error = np.sqrt(fa.var(axis=0, ddof=1) / len(fa) + fb.var(axis=0, ddof=1) / len(fb))
-    use = keep & (error > 0)
-    return float(np.sum((diff[use] / error[use]) ** 2))
+def histogram_chi2(a, b):
+    """Sum over bins of the squared z-score of the difference of the realizations' mean fractions,
+    a and b (..., realizations, bins), the leading axes a batch of relabellings; a bin without
+    spread adds nothing."""
+    diff = a.mean(axis=-2) - b.mean(axis=-2)
+    error = np.sqrt(a.var(axis=-2, ddof=1) / a.shape[-2] + b.var(axis=-2, ddof=1) / b.shape[-2])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(error > 0, (diff / error) ** 2, 0.0).sum(axis=-1)
 
 
-def permutation_p(fa, fb, keep, observed):
+def permutation_p(fa, fb, observed):
     """The share of random relabellings of the realizations (A's count drawn from both, the rest
     B's) whose histogram_chi2 reaches the observed one, counting the observation itself."""
     rng = np.random.default_rng(PERMUTATION_SEED)
-    rows = np.vstack([fa, fb])[:, keep]
-    n_a, n_b = len(fa), len(fb)
+    rows = np.vstack([fa, fb])
     reached = 0
     batch = 100  # relabellings at a time: (batch x realizations x bins) doubles, tens of MB at most
     for start in range(0, PERMUTATIONS, batch):
         orders = np.argsort(rng.random((min(batch, PERMUTATIONS - start), len(rows))), axis=1)
-        a, b = rows[orders[:, :n_a]], rows[orders[:, n_a:]]
-        diff = a.mean(axis=1) - b.mean(axis=1)
-        error = np.sqrt(a.var(axis=1, ddof=1) / n_a + b.var(axis=1, ddof=1) / n_b)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            chi2 = np.where(error > 0, (diff / error) ** 2, 0.0).sum(axis=1)
+        chi2 = histogram_chi2(rows[orders[:, :len(fa)]], rows[orders[:, len(fa):]])
         reached += int(np.sum(chi2 >= observed))
     return (reached + 1) / (PERMUTATIONS + 1)
 
@@ -231,10 +227,10 @@ def compare(a, b, count_collisions=True):
         # exactly there (both empty, typically), else the histograms differ without any noise.
         exact_mismatch = keep & (error == 0) & (diff != 0)
         keep &= error > 0
-        chi2 = histogram_chi2(fa, fb, keep)
+        chi2 = float(histogram_chi2(fa[:, keep], fb[:, keep]))
         dof = int(keep.sum())
         p_law = float(stats.chi2.sf(chi2, dof)) if dof > 0 else 1.0
-        p = permutation_p(fa, fb, keep, chi2) if dof > 0 else 1.0
+        p = permutation_p(fa[:, keep], fb[:, keep], chi2) if dof > 0 else 1.0
         if exact_mismatch.any():
             p = 0.0
         bad = not np.isfinite(p) or p < P_LIMIT
