@@ -325,11 +325,12 @@ void write_h5(const std::string& path, const SimulationParameters& p, const Drif
     root.set_attribute("momentum_drift_definition", "|P - P0| / sum m |v0|");
     root.set_attribute("gap_units", "mean spacing L/N");
     const auto& names = column_names();
-    for (std::size_t c = 0; c < names.size(); ++c) {
-        std::vector<double> column;
-        for (const DriftRow& r : report.rows) column.push_back(row_values(r)[c]);
-        root.write(names[c], column);
+    std::vector<std::vector<double>> columns(names.size());
+    for (const DriftRow& r : report.rows) {
+        const auto values = row_values(r);
+        for (std::size_t c = 0; c < names.size(); ++c) columns[c].push_back(values[c]);
     }
+    for (std::size_t c = 0; c < names.size(); ++c) root.write(names[c], columns[c]);
     file.commit();
 }
 
