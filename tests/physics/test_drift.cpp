@@ -23,6 +23,11 @@ SimulationParameters elastic_gas(const std::string& engine) {
     return p;
 }
 
+// The elastic gas above delta loses energy at every inelastic collision: over 10^6 collisions E/E0 fell
+// to 3.0e-4 (N = 1000, r = 0.5, seed 1; 2026-12-02). Below half means it fell, which "never rose"
+// alone would not show, with room for any engine's own rounding of the same dynamics.
+constexpr double energy_ratio_after_a_million_collisions_below = 0.5;
+
 drift::DriftOptions short_run() {
     drift::DriftOptions o;
     o.target_collisions = 1e6;  // < 1 s on any engine; the ctest drift.check runs the same through the program
@@ -52,8 +57,7 @@ TEST(Drift, EveryEqualMassEngineStaysWithinTheRoundingBounds) {
         const auto& last = report.rows.back();
         EXPECT_GE(last.collisions, o.target_collisions) << engine;
         EXPECT_LE(last.drift, last.bound) << engine;
-        // Inelastic collisions above delta: energy must actually fall, not merely not rise.
-        EXPECT_LT(last.energy_ratio, 0.5) << engine;
+        EXPECT_LT(last.energy_ratio, energy_ratio_after_a_million_collisions_below) << engine;
         EXPECT_EQ(last.order, 1.0) << engine;
         EXPECT_EQ(rows_heard, static_cast<int>(report.rows.size())) << engine;
     }
