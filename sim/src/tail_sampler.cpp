@@ -34,9 +34,8 @@ constexpr double exact_tail_linear_coefficient = 2.676;
 // prior (it is reversible for it) and changes v by ~ 0.45 sigma: a small step
 // for chains at large bias, where redrawing from the prior is mostly rejected.
 constexpr double autoregressive_rho = 0.9;
-constexpr double uniform_step = 0.2;
 // Below this z the bias is weak and the prior is a good start.
-constexpr double instanton_z_min = 1.5;  // reflected uniform step on [-1, 1] (symmetric: keeps the uniform law)
+constexpr double instanton_z_min = 1.5;
 
 // Platform-independent variates: top 53 bits (as generate_initial_condition),
 // Gaussians by Box-Muller.
@@ -46,22 +45,48 @@ double standard_normal(std::mt19937_64& engine) {
     const double angle = 2.0 * M_PI * unit_uniform(engine);
     return std::sqrt(-2.0 * std::log(u)) * std::cos(angle);
 }
-double draw_from_prior(VelocityLaw law, std::mt19937_64& engine) {
-    if (law == VelocityLaw::gaussian) return std::sqrt(velocity_variance) * standard_normal(engine);
-    return 2.0 * unit_uniform(engine) - 1.0;
+
+// The chains move latent variables g, i.i.d. N(0, 1/3) under the prior,
+// whatever the initial law; the observable sees the velocities v = F^-1(G(g)),
+// F the law's distribution function and G the latent one's. For the Gaussian
+// v = g. For the uniform law on [-1, 1], F^-1(G(g)) = erf(g sqrt(3/2)): every
+// latent state is a valid window, so the collective (block) moves the tail
+// needs are never refused at the law's edge, as they were when the chains
+// moved the velocities themselves and rejected any move leaving [-1, 1]
+// (docs/far-tail.md, "The uniform start"). The map is monotone, so the
+// law of any observable is unchanged: only the chain's coordinates are.
+constexpr double uniform_latent_scale = 1.2247448713915890;  // sqrt(3/2) = 1/(sqrt(2) sigma), sigma^2 = 1/3
+double velocity_of_latent(VelocityLaw law, double latent) {
+    return law == VelocityLaw::gaussian ? latent : std::erf(uniform_latent_scale * latent);
 }
-// A proposal reversible with respect to the prior, so Metropolis accepts with
-// min(1, exp(beta (z' - z))) alone.
-double propose(VelocityLaw law, double current, std::mt19937_64& engine) {
+// The inverse map, for the instanton start (which is a mean in velocities).
+// Velocities at or beyond the uniform law's edge (a cluster asked to move at
+// |V| >= 1, which no window of this law can give) are held just inside it.
+double latent_of_velocity(VelocityLaw law, double velocity) {
+    if (law == VelocityLaw::gaussian) return velocity;
+    constexpr double edge = 1.0 - 1e-12;
+    const double target = std::clamp(velocity, -edge, edge);
+    // Bisection on erf(y) = |target| in [0, 6] (erf(6) rounds to 1): 64
+    // halvings reach the double next to the root, and this runs only at the start.
+    const double magnitude = std::abs(target);
+    double below = 0.0, above = 6.0;
+    for (int i = 0; i < 64; ++i) {
+        const double middle = 0.5 * (below + above);
+        (std::erf(middle) < magnitude ? below : above) = middle;
+    }
+    const double y = 0.5 * (below + above);
+    return std::copysign(y, target) / uniform_latent_scale;
+}
+
+double draw_latent(std::mt19937_64& engine) { return std::sqrt(velocity_variance) * standard_normal(engine); }
+// A proposal reversible with respect to the latent prior, so Metropolis
+// accepts with min(1, exp(beta (z' - z))) alone: a redraw from the prior, or
+// the autoregressive step g' = rho g + sqrt(1 - rho^2) sigma xi.
+double propose_latent(double current, std::mt19937_64& engine) {
     const bool redraw = unit_uniform(engine) < 0.5;
-    if (redraw) return draw_from_prior(law, engine);
-    if (law == VelocityLaw::gaussian)
-        return autoregressive_rho * current +
-               std::sqrt((1.0 - autoregressive_rho * autoregressive_rho) * velocity_variance) * standard_normal(engine);
-    double moved = current + uniform_step * (unit_uniform(engine) - 0.5);
-    if (moved > 1.0) moved = 2.0 - moved;
-    if (moved < -1.0) moved = -2.0 - moved;
-    return moved;
+    if (redraw) return draw_latent(engine);
+    return autoregressive_rho * current +
+           std::sqrt((1.0 - autoregressive_rho * autoregressive_rho) * velocity_variance) * standard_normal(engine);
 }
 
 double log_sum_exp(std::span<const double> values) {
@@ -82,14 +107,17 @@ struct ChainRecord {
     std::vector<double> swaps_accepted;
 };
 
-// One replica: the window's velocities at one bias, and its z.
+// One replica: the window's latent variables at one bias, the velocities
+// they map to (velocity_of_latent), and its z.
 struct Replica {
+    std::vector<double> latent;
     std::vector<double> velocity;
     double z = 0.0;
 };
 
 // One Metropolis step for the weight prior(v) exp(beta z(v)). Two moves:
-//  - one site: a proposal reversible for the prior (propose()), accepted
+// Both act on the latent variables, whose prior is Gaussian for every law.
+//  - one site: a proposal reversible for the prior (propose_latent()), accepted
 //    with min(1, exp(beta dz));
 //  - a block shift: velocities of a run of up to block_max consecutive sites
 //    move together, by one delta (flat) or by delta falling linearly to 0
@@ -97,8 +125,7 @@ struct Replica {
 //    changes by O(1). The tail's optimal windows are collective (a fast
 //    cluster needs the particles ahead of it to clear the way: a ramp of
 //    velocities, see tagged_cluster_instanton), which single sites build
-//    only slowly. Accepted with min(1, prior ratio exp(beta dz));
-//    for the uniform law the prior ratio is 1 inside [-1, 1] and 0 outside.
+//    only slowly. Accepted with min(1, prior ratio exp(beta dz)).
 bool metropolis_step(const TailSamplerParameters& p, const WindowObservable& observable, double beta,
                      Replica& replica, std::vector<double>& saved, std::mt19937_64& engine, std::int64_t& evaluations) {
     const auto focus_width = static_cast<double>(p.focus_end - p.focus_begin);
@@ -108,42 +135,45 @@ bool metropolis_step(const TailSamplerParameters& p, const WindowObservable& obs
             in_focus ? p.focus_begin + static_cast<std::int64_t>(unit_uniform(engine) * focus_width)
                      : static_cast<std::int64_t>(unit_uniform(engine) * static_cast<double>(p.sites)));
     };
-    std::vector<double>& velocity = replica.velocity;
+    std::vector<double>& latent = replica.latent;
     double log_prior_ratio = 0.0;
     std::size_t first = 0, length = 1;
     if (p.block_probability > 0.0 && unit_uniform(engine) < p.block_probability) {
         length = 1 + static_cast<std::size_t>(unit_uniform(engine) * static_cast<double>(p.block_max));
         first = pick_site();
-        length = std::min(length, velocity.size() - first);
+        length = std::min(length, latent.size() - first);
         const bool ramp = unit_uniform(engine) < 0.5;  // else flat
         const double delta =
             std::sqrt(velocity_variance / static_cast<double>(length)) * (ramp ? 1.0 : 0.5) * standard_normal(engine);
-        saved.assign(velocity.begin() + static_cast<std::ptrdiff_t>(first),
-                     velocity.begin() + static_cast<std::ptrdiff_t>(first + length));
-        bool inside = true;
+        saved.assign(latent.begin() + static_cast<std::ptrdiff_t>(first),
+                     latent.begin() + static_cast<std::ptrdiff_t>(first + length));
         for (std::size_t i = first; i < first + length; ++i) {
             const double shape =
                 ramp ? 1.0 - static_cast<double>(i - first) / static_cast<double>(length) : 1.0;
-            const double moved = velocity[i] + delta * shape;
-            // Gaussian prior: ln prior(v') - ln prior(v) = -(v'^2 - v^2) / (2 sigma^2).
-            log_prior_ratio -= (moved * moved - velocity[i] * velocity[i]) / (2.0 * velocity_variance);
-            inside = inside && std::abs(moved) <= 1.0;
-            velocity[i] = moved;
+            const double moved = latent[i] + delta * shape;
+            // Gaussian prior: ln prior(g') - ln prior(g) = -(g'^2 - g^2) / (2 sigma^2).
+            log_prior_ratio -= (moved * moved - latent[i] * latent[i]) / (2.0 * velocity_variance);
+            latent[i] = moved;
         }
-        if (p.law == VelocityLaw::uniform) log_prior_ratio = inside ? 0.0 : -std::numeric_limits<double>::infinity();
     } else {
         first = pick_site();
-        saved.assign(1, velocity[first]);
-        velocity[first] = propose(p.law, velocity[first], engine);
+        saved.assign(1, latent[first]);
+        latent[first] = propose_latent(latent[first], engine);
     }
-    const double proposed_z = std::isfinite(log_prior_ratio) ? observable(velocity) : replica.z;
-    if (std::isfinite(log_prior_ratio)) ++evaluations;
+    const auto remap = [&] {
+        for (std::size_t i = first; i < first + length; ++i) replica.velocity[i] = velocity_of_latent(p.law, latent[i]);
+    };
+    remap();
+    const double proposed_z = observable(replica.velocity);
+    ++evaluations;
     const double log_ratio = log_prior_ratio + beta * (proposed_z - replica.z);
     const bool accept = log_ratio >= 0.0 || unit_uniform(engine) < std::exp(log_ratio);
-    if (accept)
+    if (accept) {
         replica.z = proposed_z;
-    else
-        std::copy(saved.begin(), saved.end(), velocity.begin() + static_cast<std::ptrdiff_t>(first));
+    } else {
+        std::copy(saved.begin(), saved.end(), latent.begin() + static_cast<std::ptrdiff_t>(first));
+        remap();
+    }
     return accept;
 }
 
@@ -161,15 +191,15 @@ ChainRecord run_chain(const TailSamplerParameters& p, const WindowObservable& ob
     const auto sites = static_cast<std::size_t>(p.sites);
     for (std::size_t k = 0; k < biases; ++k) {
         Replica& replica = replicas[k];
-        replica.velocity.resize(sites);
-        for (double& v : replica.velocity) v = draw_from_prior(p.law, engine);
-        // Start near the bias's typical set: prior noise about the given mean
-        // (the burn-in removes what the start gets wrong).
+        replica.latent.resize(sites);
+        for (double& g : replica.latent) g = draw_latent(engine);
+        // Start near the bias's typical set: prior noise about the given mean,
+        // taken to latent variables (the burn-in removes what the start gets wrong).
         if (!p.start_mean.empty())
-            for (std::size_t i = 0; i < sites; ++i) {
-                const double shifted = replica.velocity[i] + p.start_mean[k * sites + i];
-                if (p.law == VelocityLaw::gaussian || std::abs(shifted) <= 1.0) replica.velocity[i] = shifted;
-            }
+            for (std::size_t i = 0; i < sites; ++i)
+                replica.latent[i] += latent_of_velocity(p.law, p.start_mean[k * sites + i]);
+        replica.velocity.resize(sites);
+        for (std::size_t i = 0; i < sites; ++i) replica.velocity[i] = velocity_of_latent(p.law, replica.latent[i]);
         replica.z = observable(replica.velocity);
         ++evaluations;
     }

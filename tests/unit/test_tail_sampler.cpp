@@ -75,6 +75,78 @@ TEST(TailSampler, MeanOfGaussiansRecoveredBelowTenToTheMinusThirty) {
     for (double a : estimate.acceptance) EXPECT_GT(a, 0.1);
 }
 
+// ln of the probability that the mean of 4 velocities uniform on [-1, 1] lies
+// in [lo, hi], divided by (hi - lo). With u = (v + 1)/2 the sum of the four u
+// is Irwin-Hall: CDF F(x) = (1/24) sum_{k <= x} (-1)^k C(4, k) (x - k)^4, and
+// the mean S maps to x = 2 (S + 1). The upper tail is taken as F(4 - x) (the
+// law is symmetric), exact near the edge where 1 - F would cancel.
+double log_mean_of_four_uniforms_bin_density(double lo, double hi) {
+    const auto cdf = [](double x) {
+        constexpr double binomial[5] = {1, 4, 6, 4, 1};
+        double sum = 0.0;
+        for (int k = 0; k <= 4 && k <= x; ++k) sum += (k % 2 ? -1.0 : 1.0) * binomial[k] * std::pow(x - k, 4);
+        return sum / 24.0;
+    };
+    const double x_lo = 2.0 * (lo + 1.0), x_hi = 2.0 * (hi + 1.0);
+    const double probability = x_lo >= 2.0 ? cdf(4.0 - x_lo) - cdf(4.0 - x_hi) : cdf(x_hi) - cdf(x_lo);
+    return std::log(probability) - std::log(hi - lo);
+}
+
+TEST(TailSampler, MeanOfUniformsRecoveredNearTheLawsEdge) {
+    // The uniform law's chains move latent Gaussians mapped to velocities by
+    // erf (tail_sampler.cpp); any error in that map changes the law. The mean
+    // S of 4 uniform velocities has the exact density above, falling as
+    // (1 - S)^3 at the edge: 2.7e-6 at 1 - S = 0.01. An exponential bias
+    // e^(beta S) centres the tilted law at 1 - S ~ 4 / beta, so the ladder
+    // beta = 4 / y for y from 1.2 down to 0.01 (ratio 1.4, the tilted law's
+    // relative width 1/2) reaches the edge with overlapping neighbours.
+    shockgas::TailSamplerParameters p;
+    p.sites = 6;
+    p.focus_begin = 1;
+    p.focus_end = 5;
+    p.focus_probability = 0.9;
+    p.law = shockgas::VelocityLaw::uniform;
+    p.biases.push_back(0.0);
+    for (double y = 1.2; y >= 0.01; y /= 1.4) p.biases.push_back(4.0 / y);
+    p.steps_per_bias = 10000;
+    p.burn_in_steps = 1000;
+    p.chains = 8;
+    p.seed = 13;
+    p.z_min = -1.0;
+    p.z_max = 1.0;
+    // WHAM's bins must be narrow enough that e^(beta S) varies little across
+    // one: beta = 400 at the deepest chain, so 1e-4 (4%).
+    p.fine_bin_width = 1e-4;
+    p.fine_bins_per_output_bin = 50;  // output bins of 0.005
+    const shockgas::WindowObservable mean_of_four = [](std::span<const double> v) {
+        for (std::size_t i = 1; i < 5; ++i)
+            if (!(std::abs(v[i]) <= 1.0)) throw std::logic_error("a velocity left [-1, 1]");
+        return (v[1] + v[2] + v[3] + v[4]) / 4.0;
+    };
+    const auto estimate = shockgas::sample_far_tail(p, mean_of_four);
+    // As in MeanOfGaussiansRecoveredBelowTenToTheMinusThirty: the jackknife
+    // over 8 chains (Student t, 7 dof) and a handful of points; 4 sigma fails
+    // a correct sampler with p ~ 0.005 per point; a map whose scale is off
+    // by 1% fails it (tried on 2026-12-02: the bin at S = 0.9925 is out).
+    constexpr double allowed_sigmas = 4.0;
+    const double width = estimate.z[1] - estimate.z[0];
+    std::size_t deep_points = 0, compared = 0;
+    for (std::size_t i = 0; i < estimate.z.size(); ++i) {
+        const double lo = estimate.z[i] - width / 2, hi = estimate.z[i] + width / 2;
+        if (lo < 0.0 || hi > 0.995 || estimate.samples[i] < 50.0 || !std::isfinite(estimate.log_density_sigma[i]))
+            continue;
+        if (i % 10 != 0 && hi < 0.97) continue;  // every 0.05 in S, every bin near the edge
+        EXPECT_NEAR(estimate.log_density[i], log_mean_of_four_uniforms_bin_density(lo, hi),
+                    allowed_sigmas * estimate.log_density_sigma[i])
+            << "S = " << estimate.z[i];
+        ++compared;
+        if (log_mean_of_four_uniforms_bin_density(lo, hi) < std::log(1e-5)) ++deep_points;
+    }
+    EXPECT_GE(compared, 20u);
+    EXPECT_GE(deep_points, 2u);
+    for (double a : estimate.acceptance) EXPECT_GT(a, 0.1);
+}
+
 TEST(TailSampler, WhamGivesBackAKnownLawFromExactHistograms) {
     // Histograms without noise: chain k's expected counts N_k P_b
     // exp(beta_k z_b - F_k) for a discretized Gaussian. The equations must
@@ -108,12 +180,12 @@ TEST(TailSampler, WhamGivesBackAKnownLawFromExactHistograms) {
     }
 }
 
-TEST(TailSampler, TaggedClusterAgreesWithPlainSamplingWhereHistogramsReach) {
-    // t = 100, 200 particles each side of the tag (the cluster scale is
-    // (t^2/3)^(1/3) = 15 particles, a fast cluster moves z t^(2/3) ~ 60).
-    // Plain sampling: i.i.d. windows, histogram of z. Sampler: the ladder to
-    // z = 2.5. They must agree bin by bin where the plain histogram has
-    // >= 100 counts (Phi >~ 10^-2) and z > -1.
+// t = 100, 200 particles each side of the tag (the cluster scale is
+// (t^2/3)^(1/3) = 15 particles, a fast cluster moves z t^(2/3) ~ 60).
+// Plain sampling: i.i.d. windows of the given law, histogram of z. Sampler:
+// the ladder to z = 2.5. They must agree bin by bin where the plain histogram
+// has >= 100 counts (Phi >~ 10^-2) and z > -1.
+void expect_tagged_cluster_agrees_with_plain_sampling(shockgas::VelocityLaw law) {
     constexpr std::int64_t half_window = 200;
     constexpr double t = 100.0;
     shockgas::TaggedClusterVelocity tagged(half_window, t);
@@ -122,8 +194,9 @@ TEST(TailSampler, TaggedClusterAgreesWithPlainSamplingWhereHistogramsReach) {
     std::vector<double> plain(60, 0.0), velocity(tagged.sites());
     std::mt19937_64 engine(5);
     std::normal_distribution<double> gaussian(0.0, std::sqrt(1.0 / 3.0));
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
     for (std::size_t s = 0; s < plain_samples; ++s) {
-        for (double& v : velocity) v = gaussian(engine);
+        for (double& v : velocity) v = law == shockgas::VelocityLaw::gaussian ? gaussian(engine) : uniform(engine);
         const double z = tagged(velocity);
         const double position = (z - z_min) / bin;
         if (position >= 0 && position < 60) plain[static_cast<std::size_t>(position)] += 1.0;
@@ -133,6 +206,7 @@ TEST(TailSampler, TaggedClusterAgreesWithPlainSamplingWhereHistogramsReach) {
     p.focus_begin = half_window - 80;
     p.focus_end = half_window + 81;
     p.biases = shockgas::tail_bias_ladder(2.5, 0.25);
+    p.law = law;
     p.steps_per_bias = 10000;
     p.burn_in_steps = 1000;
     p.chains = 6;
@@ -158,6 +232,14 @@ TEST(TailSampler, TaggedClusterAgreesWithPlainSamplingWhereHistogramsReach) {
         ++compared;
     }
     EXPECT_GE(compared, 20u);
+}
+
+TEST(TailSampler, TaggedClusterAgreesWithPlainSamplingWhereHistogramsReach) {
+    expect_tagged_cluster_agrees_with_plain_sampling(shockgas::VelocityLaw::gaussian);
+}
+
+TEST(TailSampler, TaggedClusterOfTheUniformLawAgreesWithPlainSampling) {
+    expect_tagged_cluster_agrees_with_plain_sampling(shockgas::VelocityLaw::uniform);
 }
 
 }  // namespace

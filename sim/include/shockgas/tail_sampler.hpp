@@ -32,7 +32,10 @@ namespace shockgas {
 // uniform law on [-1, 1]); the Gaussian is the white-noise setting of the
 // exact solution (python/exact_ballistic.py).
 // The initial velocity law is the simulator's (parameters.hpp: VelocityLaw,
-// to_string, velocity_law_from_string), variance 1/3 either way.
+// to_string, velocity_law_from_string), variance 1/3 either way. The chains
+// move latent N(0, 1/3) variables for both laws and map them to velocities
+// (for the uniform law v = erf(g sqrt(3/2)), which is uniform on [-1, 1]), so
+// no move can leave the law's support.
 
 // z = V t^(1/3) of the cluster holding the tagged particle at time t: unit
 // masses at x = -W, ..., W (W = half_window) on an open line, the tagged
