@@ -88,6 +88,18 @@ Derived quantities (scaled, then in our units with D = 1/3, rho = 1)
        (measured relative correction ~ 3.7-3.9/m^3 for m = 5..11).
        In FMP's variable with b = 1, mu = m/2^(1/3), the cubic factor is exp(-mu^3/12);
        in raw units M t^(-2/3) (ours) it is exp(-(M t^(-2/3))^3 / 8).
+(EB13) The uniform start at finite t (derived here; first order in the law's departure from the
+       Gaussian).  EB9's saddle in lattice units: the tagged cluster, mass M = 6/w^2 M*, moves at
+       V = z t^(-1/3), and the L = V t particles ahead carry the ramp u_i = V (1 - i/L).  A smooth
+       profile of i.i.d. velocities costs sum_i I(u_i) (Mogulskii), with I the Cramer rate of one
+       velocity: 3u^2/2 for the Gaussian of variance 1/3, and for the uniform law on [-1, 1]
+           I(u) = lam u - ln(sinh(lam)/lam),  coth(lam) - 1/lam = u,   = 3u^2/2 + 9u^4/20 + O(u^6).
+       Evaluated on the Gaussian saddle (first order: the saddle's own shift is second order),
+           ln Phi_uniform(z, t) - ln Phi(z) = -sum_{i=1}^{L} [I(u_i) - 3u_i^2/2] - M [I(V) - 3V^2/2]
+                                            ~ -(9/100) z^5 t^(-2/3) (ramp, leading order in V),
+       and Phi_uniform = 0 for V >= 1 (z >= t^(1/3)).  Because the saddle can relax, the true shift
+       is no larger than this; it vanishes as t^(-2/3) at fixed z, so the uniform start has the same
+       Phi and the same cubic tail as t -> infinity.
 """
 import json
 import os
@@ -321,6 +333,31 @@ def phi_tail_asymptote(z, D=D_SHOCKGAS):
     with np.errstate(divide="ignore"):
         return (2.0 ** (11.0 / 6.0) * D ** (1.0 / 3.0) / AIP1 * z ** -2.0
                 * np.exp(-z ** 3 / (6.0 * D) - ALPHA1 * z / (2.0 * D) ** (1.0 / 3.0)))
+
+
+def uniform_velocity_rate(u):
+    """(EB13) Cramer rate I(u) of one velocity uniform on [-1, 1] (mean u of its tilted law)."""
+    u = abs(float(u))
+    if u >= 1.0:
+        return np.inf
+    if u < 1e-4:
+        return 1.5 * u * u + 0.45 * u ** 4  # the series: the root below is ill-conditioned near 0
+    from scipy.optimize import brentq
+    lam = brentq(lambda l: 1.0 / np.tanh(l) - 1.0 / l - u, 1e-6, 1e7, xtol=1e-14, rtol=1e-15)
+    # ln(sinh(lam)/lam) written so that it does not overflow for large lam
+    return lam * u - (lam + np.log1p(-np.exp(-2.0 * lam)) - np.log(2.0 * lam))
+
+
+def uniform_start_log_phi_shift(z, t, D=D_SHOCKGAS):
+    """(EB13) ln Phi_uniform(z, t) - ln Phi(z) at first order, for z > 0 (-inf where z >= t^(1/3))."""
+    V = z * t ** (-1.0 / 3.0)
+    if V >= 1.0:
+        return -np.inf
+    ramp_sites = np.arange(1, int(V * t) + 1)
+    u = V * (1.0 - ramp_sites / (V * t))
+    ramp = sum(uniform_velocity_rate(x) - 1.5 * x * x for x in u)
+    cluster_mass = 6.0 / (z * D ** (-1.0 / 3.0)) ** 2 * (D * t * t) ** (1.0 / 3.0)
+    return -(ramp + cluster_mass * (uniform_velocity_rate(V) - 1.5 * V * V))
 
 
 def mass_density_from_grid(m, nw_pan=80, nper=16, wmax=10.0):

@@ -286,6 +286,36 @@ def _():
     return "6 D c_eff = %s at every D" % ", ".join("%.6f" % c for c in effective[1.0 / 3.0])
 
 
+# (EB13) The uniform law's Cramer rate against its series and a direct Legendre transform, and the
+# finite-t shift against its leading order.
+TOL_RATE_SERIES = 2e-3      # relative: the next term of 3u^2/2 + 9u^4/20 is O(u^6), 0.2% of I at u = 0.1
+TOL_RATE_LEGENDRE = 1e-6    # relative: a grid maximum over lam (step 1e-4) against the root-found one
+TOL_SHIFT_LEADING = 0.01    # relative, at V = 0.05: the u^6 terms (~V^2) and the ramp sum against its integral (~1/L)
+
+
+@check("EB13: the uniform law's rate and the finite-t shift of ln Phi")
+def _():
+    for u in (0.01, 0.05, 0.1):
+        series = 1.5 * u * u + 0.45 * u ** 4
+        assert abs(eb.uniform_velocity_rate(u) / series - 1.0) < TOL_RATE_SERIES, u
+    lam = np.arange(1e-4, 60.0, 1e-4)
+    for u in (0.3, 0.7, 0.95):
+        legendre = np.max(lam * u - np.log(np.sinh(lam) / lam))
+        assert abs(eb.uniform_velocity_rate(u) / legendre - 1.0) < TOL_RATE_LEGENDRE, u
+    assert eb.uniform_velocity_rate(1.0) == np.inf
+    # V = z t^(-1/3) = 0.05 (z = 5, t = 10^6): at leading order in V the ramp gives
+    # -(9/100) z^5 t^(-2/3) and the cluster -M (9/20) V^4, M = 6/w^2 M* (8% of the ramp's here).
+    z, t = 5.0, 1e6
+    V, D = z * t ** (-1.0 / 3.0), 1.0 / 3.0
+    cluster_mass = 6.0 / (z * D ** (-1.0 / 3.0)) ** 2 * (D * t * t) ** (1.0 / 3.0)
+    leading = -0.09 * z ** 5 * t ** (-2.0 / 3.0) - cluster_mass * 0.45 * V ** 4
+    shift = eb.uniform_start_log_phi_shift(z, t)
+    assert shift < 0.0 and abs(shift / leading - 1.0) < TOL_SHIFT_LEADING, (shift, leading)
+    assert eb.uniform_start_log_phi_shift(5.0, 100.0) == -np.inf  # V = 1.08: no uniform window gives it
+    return "I(0.7) = %.6f; shift at z = 5, t = 1e6: %.4g (leading %.4g)" % (
+        eb.uniform_velocity_rate(0.7), shift, leading)
+
+
 if __name__ == "__main__":
     npass = sum(1 for _, ok in RESULTS if ok)
     nfail = len(RESULTS) - npass

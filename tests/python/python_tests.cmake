@@ -75,6 +75,12 @@ add_test(NAME python.compare_engine_ensembles
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_compare_engine_ensembles_cli.py
                  $<TARGET_FILE:shockgas-sim> "${_py_work}/compare_engine_ensembles")
 set_tests_properties(python.compare_engine_ensembles PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# tools/tail_against_exact.py: a far-tail estimate against the exact Phi, with the uniform start's EB13
+# shift; refusals (~25 s of CPU: the exact Phi's quadrature, once per table).
+add_test(NAME python.tail_against_exact
+         COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_tail_against_exact_cli.py
+                 $<TARGET_FILE:shockgas-tail> "${_py_work}/tail_against_exact")
+set_tests_properties(python.tail_against_exact PROPERTIES LABELS python TIMEOUT 300 SKIP_RETURN_CODE 77)
 # python/refit_check.py: the run beside the results, checked against the recorded provenance; one or two
 # realizations (sigma n/a, the count in the note); bad inputs (~1 s).
 add_test(NAME python.refit_check_inputs
@@ -102,7 +108,7 @@ set_tests_properties(python.fidelity_report_inputs PROPERTIES LABELS python TIME
 add_test(NAME python.sticky_pav_inputs
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_sticky_pav_cli.py
                  "${_py_work}/sticky_pav_inputs")
-set_tests_properties(python.sticky_pav_inputs PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+set_tests_properties(python.sticky_pav_inputs PROPERTIES LABELS python TIMEOUT 300 SKIP_RETURN_CODE 77)
 # python/reference_gas.py: --compare checks the run's init_file_sha256; bad option values (r, delta, t_max,
 # --sample-times, --max-events, --digits, ...) and a start simulate() refuses, one line each before any row; a
 # missing module in one line (~10 s, one interpreter per refusal).
