@@ -22,28 +22,37 @@ double log_gaussian_bin_density(double lo, double hi, double variance) {
     return std::log(0.5 * (upper - lower)) - std::log(hi - lo);
 }
 
+// The ladder settings of the tests against laws known in closed form or
+// plain sampling: 8 chains (their jackknife gives the sigmas the 4-sigma
+// checks use) of 10^4 steps per bias, a focus on the sites the observable reads.
+shockgas::TailSamplerParameters exact_law_ladder(std::int64_t sites, std::int64_t focus_begin, std::int64_t focus_end,
+                                                 std::uint64_t seed, double z_min, double z_max) {
+    shockgas::TailSamplerParameters p;
+    p.sites = sites;
+    p.focus_begin = focus_begin;
+    p.focus_end = focus_end;
+    p.focus_probability = 0.9;
+    p.steps_per_bias = 10000;
+    p.burn_in_steps = 1000;
+    p.chains = 8;
+    p.seed = seed;
+    p.z_min = z_min;
+    p.z_max = z_max;
+    return p;
+}
+
 TEST(TailSampler, MeanOfGaussiansRecoveredBelowTenToTheMinusThirty) {
     // Observable: the mean of the 4 central velocities of an 8-site window of
     // i.i.d. N(0, 1/3): exactly N(0, 1/12). Its density is 10^-30 at
     // S = 3.43 (11.9 sigma) and 10^-36 at 3.75; the ladder reaches 4.
     constexpr std::int64_t averaged = 4;
     constexpr double variance = 1.0 / (3.0 * averaged);
-    shockgas::TailSamplerParameters p;
-    p.sites = 8;
-    p.focus_begin = 2;
-    p.focus_end = 6;
-    p.focus_probability = 0.9;
+    auto p = exact_law_ladder(8, 2, 6, 11, -2.0, 4.6);
     // Gaussian tilt: exp(beta S) moves the law's mean to beta * variance, so
     // the ladder beta_k = S_k / variance puts chain k at S_k; steps of 0.2 are
     // below the width sqrt(1/12) = 0.29, so neighbours overlap.
     p.biases.push_back(0.0);
     for (double s = 0.2; s <= 4.0 + 1e-9; s += 0.2) p.biases.push_back(s / variance);
-    p.steps_per_bias = 10000;
-    p.burn_in_steps = 1000;
-    p.chains = 8;
-    p.seed = 11;
-    p.z_min = -2.0;
-    p.z_max = 4.6;
     const shockgas::WindowObservable mean_of_four = [](std::span<const double> v) {
         return (v[2] + v[3] + v[4] + v[5]) / static_cast<double>(averaged);
     };
@@ -100,20 +109,10 @@ TEST(TailSampler, MeanOfUniformsRecoveredNearTheLawsEdge) {
     // e^(beta S) centres the tilted law at 1 - S ~ 4 / beta, so the ladder
     // beta = 4 / y for y from 1.2 down to 0.01 (ratio 1.4, the tilted law's
     // relative width 1/2) reaches the edge with overlapping neighbours.
-    shockgas::TailSamplerParameters p;
-    p.sites = 6;
-    p.focus_begin = 1;
-    p.focus_end = 5;
-    p.focus_probability = 0.9;
+    auto p = exact_law_ladder(6, 1, 5, 13, -1.0, 1.0);
     p.law = shockgas::VelocityLaw::uniform;
     p.biases.push_back(0.0);
     for (double y = 1.2; y >= 0.01; y /= 1.4) p.biases.push_back(4.0 / y);
-    p.steps_per_bias = 10000;
-    p.burn_in_steps = 1000;
-    p.chains = 8;
-    p.seed = 13;
-    p.z_min = -1.0;
-    p.z_max = 1.0;
     // WHAM's bins must be narrow enough that e^(beta S) varies little across
     // one: beta = 400 at the deepest chain, so 1e-4 (4%).
     p.fine_bin_width = 1e-4;
@@ -201,18 +200,12 @@ void expect_tagged_cluster_agrees_with_plain_sampling(shockgas::VelocityLaw law)
         const double position = (z - z_min) / bin;
         if (position >= 0 && position < 60) plain[static_cast<std::size_t>(position)] += 1.0;
     }
-    shockgas::TailSamplerParameters p;
-    p.sites = static_cast<std::int64_t>(tagged.sites());
-    p.focus_begin = half_window - 80;
-    p.focus_end = half_window + 81;
+    auto p = exact_law_ladder(static_cast<std::int64_t>(tagged.sites()), half_window - 80, half_window + 81, 3,
+                              z_min, 3.0);
+    p.focus_probability = 0.8;  // the defaults this test was set against
+    p.chains = 6;
     p.biases = shockgas::tail_bias_ladder(2.5, 0.25);
     p.law = law;
-    p.steps_per_bias = 10000;
-    p.burn_in_steps = 1000;
-    p.chains = 6;
-    p.seed = 3;
-    p.z_min = z_min;
-    p.z_max = 3.0;
     p.fine_bin_width = 1e-3;
     p.fine_bins_per_output_bin = 100;  // output bins of 0.1, as the plain histogram
     const auto estimate =
