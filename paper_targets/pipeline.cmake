@@ -49,6 +49,24 @@ function(_shockgas_run_to output result)
   set(${result} "${staged}" PARENT_SCOPE)
 endfunction()
 
+# _shockgas_manifest_line(<output> <staged> <arguments>): appends to the caller's `manifest` the line
+# "<output><TAB><command>" for shockgas_figure_runs' simulations.tsv. The command runs shockgas-sim with
+# <arguments> in this directory (as the rule does) and renames <staged> to <output> once it succeeds;
+# every word is single-quoted for the shell.
+function(_shockgas_manifest_line output staged arguments)
+  set(quoted)
+  foreach(word IN ITEMS "${CMAKE_CURRENT_BINARY_DIR}" "$<TARGET_FILE:shockgas-sim>" ${arguments} "${staged}" "${output}")
+    string(REPLACE "'" "'\\''" word "${word}")
+    list(APPEND quoted "'${word}'")
+  endforeach()
+  list(POP_FRONT quoted directory)
+  list(POP_BACK quoted quoted_output)
+  list(POP_BACK quoted quoted_staged)
+  list(JOIN quoted " " command)
+  set(manifest "${manifest}${output}\tcd ${directory} && ${command} && mv -f ${quoted_staged} ${quoted_output}\n"
+      PARENT_SCOPE)
+endfunction()
+
 # shockgas_figure_runs(<figure>): defines the simulations of <figure> at the
 # configured fidelity. Sets in the caller's scope:
 #   <figure>_RUNS            run names, in file order
@@ -63,6 +81,7 @@ function(shockgas_figure_runs figure)
   file(READ "${parameter_file}" json)
   set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/${figure}")
   file(MAKE_DIRECTORY "${out_dir}")
+  set(manifest "")  # _shockgas_manifest_line appends to it
   string(JSON run_count LENGTH "${json}" runs)
   math(EXPR last_run "${run_count} - 1")
   set(names)
@@ -94,10 +113,12 @@ function(shockgas_figure_runs figure)
     file(CONFIGURE OUTPUT "${out_dir}/${name}.args" CONTENT "${args_text}\n")
     if(parts EQUAL 1)
       _shockgas_run_to("${h5}" staged)
+      set(run_arguments ${args} --realizations ${realizations} --quiet --resume --set-aside-other-runs
+                        --output "${staged}")
+      _shockgas_manifest_line("${h5}" "${staged}" "${run_arguments}")
       add_custom_command(
         OUTPUT "${h5}"
-        COMMAND shockgas-sim ${args} --realizations ${realizations} --quiet --resume --set-aside-other-runs
-                --output "${staged}"
+        COMMAND shockgas-sim ${run_arguments}
         COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${h5}"
         DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
         COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}: ${args_text}"
@@ -113,10 +134,12 @@ function(shockgas_figure_runs figure)
         endif()
         set(part "${out_dir}/${name}.part${first}.h5")
         _shockgas_run_to("${part}" staged)
+        set(run_arguments ${args} --realizations ${count} --first-realization ${first} --quiet --resume
+                          --set-aside-other-runs --output "${staged}")
+        _shockgas_manifest_line("${part}" "${staged}" "${run_arguments}")
         add_custom_command(
           OUTPUT "${part}"
-          COMMAND shockgas-sim ${args} --realizations ${count} --first-realization ${first} --quiet --resume
-                  --set-aside-other-runs --output "${staged}"
+          COMMAND shockgas-sim ${run_arguments}
           COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${part}"
           DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
           COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}, realizations ${first}..+${count}"
@@ -134,6 +157,11 @@ function(shockgas_figure_runs figure)
     list(APPEND names "${name}")
     set(${figure}_${name}_H5 "${h5}" PARENT_SCOPE)
   endforeach()
+  # The figure's simulations as shell commands, for running them outside the build (a cluster's job
+  # array, tools/paper-tier commands): each line is the output file, a tab, and the command that makes
+  # it, the very command of its rule above. Put in place, the outputs are newer than their .args files
+  # and the simulator's stamp, so the build takes them as made and goes on with merging and analysis.
+  file(GENERATE OUTPUT "${out_dir}/simulations.tsv" CONTENT "${manifest}")
   set(${figure}_RUNS "${names}" PARENT_SCOPE)
   set(${figure}_PARAMETER_FILE "${parameter_file}" PARENT_SCOPE)
   set(${figure}_DIR "${out_dir}" PARENT_SCOPE)
