@@ -5,7 +5,7 @@
 #  1. A paper-fidelity tree of SOURCE_DIR, configured only (nothing is built or run): without the
 #     simulator's stamp the tool refuses with the command that builds it; with it, fig4's 41 runs (r = 0
 #     and the 20 parts each of r = 0.5 and 0.9) come out, each the very shockgas-sim command of its rule
-#     in the build's Makefile, and the runs already there are left out.
+#     in the build's Makefile, and the runs already there are left out; a target without runs is an error.
 #  2. Make takes outputs put in place by such commands as made: with r = 0.5's 20 parts present, the rule
 #     of r0.5.h5 merges them and runs no simulation; with them absent it runs them (the control).
 #  3. One command run for real: fig3's (CI_BUILD's quick tree, built by the figures fixture), its output
@@ -28,6 +28,10 @@ touch "$build/shockgas-sim.stamp" || exit 1
 "$tool" commands --build "$build" fig4 >"$work/fig4.commands" 2>"$work/fig4.summary" || fail "commands failed"
 [ "$(wc -l <"$work/fig4.commands")" -eq 41 ] || fail "$(wc -l <"$work/fig4.commands") commands for fig4, not 41"
 grep -qF "41 simulation command(s) of fig4" "$work/fig4.summary" || fail "summary: $(cat "$work/fig4.summary")"
+# A target with no list (fig_tail's sampler is no shockgas-sim run; so is every figure of a tree configured
+# before the lists existed) is an error, not "0 commands", which would read as "nothing left to run".
+out=$("$tool" commands --build "$build" fig_tail 2>&1)
+[ $? -eq 2 ] && grep -qF "lists no simulations of fig_tail" <<<"$out" || fail "fig_tail: $out"
 "$python" - "$work/fig4.commands" "$build/paper_targets/CMakeFiles/fig4.dir/build.make" <<'EOF' || fail "a command is not its rule's"
 import os, shlex, sys
 commands, makefile = sys.argv[1], sys.argv[2]
