@@ -2,8 +2,8 @@
 // workload: r = 0.9, delta = 1e-2, elastic sub-threshold, equally spaced
 // particles with velocities uniform on [-1, 1], run to t = 300.
 //
-//   fast       FastEventEngine: exact time windows, what make_engine picks
-//   reference  EventEngine: the global-order loop it is bit-identical to
+//   fast       EventEngine: exact time windows, what make_engine picks
+//   reference  ReferenceEventEngine: the global-order loop it is bit-identical to
 //   textbook   a plain peer kept only here: absolute positions and velocities
 //              in separate arrays, std::priority_queue with lazy invalidation
 //   passthrough PassThroughEngine: elastic collisions counted, not processed
@@ -26,8 +26,8 @@
 // SHOCKGAS_BENCH_CROSSOVER=paper (r = 0.9, delta = 1e-2, N = 1e5, about two
 // CPU minutes) or =fig5 (Fig. 5's setting, N = 2e4, about twenty) runs one.
 //
-// Run: build/bench/bench_engine  (N = 10^3 .. 10^6, a few minutes)
-//      SHOCKGAS_BENCH_LARGE=1 build/bench/bench_engine   adds N = 10^7
+// Run: build/bin/bench_engine  (N = 10^3 .. 10^6, a few minutes)
+//      SHOCKGAS_BENCH_LARGE=1 build/bin/bench_engine   adds N = 10^7
 //      --benchmark_filter=fast  etc. selects engines.
 // The ratio fast/textbook is printed at the end for each N.
 #include <benchmark/benchmark.h>
@@ -43,11 +43,11 @@
 #include <string>
 #include <vector>
 
-#include "shockgas/collision.hpp"
-#include "shockgas/event_engine.hpp"
-#include "shockgas/fast_engine.hpp"
-#include "shockgas/hybrid_engine.hpp"
-#include "shockgas/passthrough_engine.hpp"
+#include "shockgas/model/collision.hpp"
+#include "reference_event_engine.hpp"
+#include "event_engine.hpp"
+#include "hybrid_engine.hpp"
+#include "passthrough_engine.hpp"
 
 namespace {
 
@@ -170,13 +170,13 @@ std::uint64_t collisions_to_end(const shockgas::InitialCondition& initial, const
 }
 
 void BM_fast(benchmark::State& state) {
-    measure(state, "fast", shockgas::FastEventEngine::bytes_per_particle(), [](const auto& initial) {
-        return collisions_to_end<shockgas::FastEventEngine>(initial, paper_gas);
+    measure(state, "fast", shockgas::EventEngine::bytes_per_particle(), [](const auto& initial) {
+        return collisions_to_end<shockgas::EventEngine>(initial, paper_gas);
     });
 }
 void BM_reference(benchmark::State& state) {
-    measure(state, "reference", shockgas::EventEngine::bytes_per_particle(), [](const auto& initial) {
-        return collisions_to_end<shockgas::EventEngine>(initial, paper_gas);
+    measure(state, "reference", shockgas::ReferenceEventEngine::bytes_per_particle(), [](const auto& initial) {
+        return collisions_to_end<shockgas::ReferenceEventEngine>(initial, paper_gas);
     });
 }
 void BM_textbook(benchmark::State& state) {
@@ -202,17 +202,17 @@ void BM_hybrid(benchmark::State& state) {
 
 // The pure inelastic gas (delta = 0) of fig_haff's smallest epsilon, r = 0.998:
 // collapse is possible, so the windowed engine keeps its copy to go back to
-// (fast_engine.hpp); to t = 300 no realization collapses at these sizes.
+// (event_engine.hpp); to t = 300 no realization collapses at these sizes.
 const shockgas::CollisionModel pure_gas{0.998, 0.0, shockgas::Subthreshold::elastic};
 
 void BM_pure_fast(benchmark::State& state) {
-    measure(state, "pure_fast", shockgas::FastEventEngine::bytes_per_particle(), [](const auto& initial) {
-        return collisions_to_end<shockgas::FastEventEngine>(initial, pure_gas);
+    measure(state, "pure_fast", shockgas::EventEngine::bytes_per_particle(), [](const auto& initial) {
+        return collisions_to_end<shockgas::EventEngine>(initial, pure_gas);
     });
 }
 void BM_pure_reference(benchmark::State& state) {
-    measure(state, "pure_reference", shockgas::EventEngine::bytes_per_particle(), [](const auto& initial) {
-        return collisions_to_end<shockgas::EventEngine>(initial, pure_gas);
+    measure(state, "pure_reference", shockgas::ReferenceEventEngine::bytes_per_particle(), [](const auto& initial) {
+        return collisions_to_end<shockgas::ReferenceEventEngine>(initial, pure_gas);
     });
 }
 
@@ -248,7 +248,7 @@ std::map<std::string, LongSeconds>& long_seconds() {
 void run_long(benchmark::State& state, const LongWorkload& w) {
     for (auto _ : state) {
         const auto initial = shockgas::generate_initial_condition(w.particles, static_cast<double>(w.particles), 1, 0);
-        shockgas::FastEventEngine fast(initial, w.model, {});
+        shockgas::EventEngine fast(initial, w.model, {});
         const double fast_seconds = seconds_to(fast, w.t_end);
         shockgas::PassThroughEngine pass(initial, w.model);
         const double pass_seconds = seconds_to(pass, w.t_end);
@@ -284,7 +284,7 @@ void register_long() {
 void crossover(const LongWorkload& w) {
     const auto initial = shockgas::generate_initial_condition(w.particles, static_cast<double>(w.particles), 1, 0);
     const shockgas::HybridSwitchRule rule = shockgas::HybridSwitchRule::measured();
-    shockgas::FastEventEngine fast(initial, w.model, {});
+    shockgas::EventEngine fast(initial, w.model, {});
     std::printf("\ncrossover %s\n%12s %12s %14s %12s %12s %10s\n", w.name, "from t", "to t", "inelastic %",
                 "fast CPU s", "passthru s", "fast/pt");
     for (double from = rule.first_check, to = from * rule.check_factor; from < w.t_end;
@@ -361,7 +361,7 @@ int main(int argc, char** argv) {
                     static_cast<long long>(n), get("fast"), get("reference"), get("textbook"), get("passthrough"),
                     get("hybrid"), get("fast") / get("textbook"), get("passthrough") / get("fast"),
                     get("hybrid") / get("fast"),
-                    shockgas::FastEventEngine::bytes_per_particle(), TextbookRing::bytes_per_particle());
+                    shockgas::EventEngine::bytes_per_particle(), TextbookRing::bytes_per_particle());
     }
     std::printf("\npure inelastic gas (delta = 0, r = 0.998, to t = %g)\n%10s %14s %14s %10s\n", t_end, "N",
                 "fast c/s", "reference c/s", "fast/ref");

@@ -1,16 +1,19 @@
 # Install rules (docs/install.md), in the usual GNUInstallDirs layout:
 #
 #   bin/                                 shockgas-sim, -merge, -dump, -burgers, -analyze
-#   include/shockgas/                    the public headers of both libraries
-#   lib/<multiarch>/                     libshockgas_sim.a, libshockgas_analysis.a
-#   lib/<multiarch>/cmake/shockgas/      find_package(shockgas CONFIG): shockgas::sim, shockgas::analysis
+#   include/shockgas/<room>/             the public headers of each library (model, io, engines,
+#                                        run, tail, analysis)
+#   lib/<multiarch>/                     libshockgas_<room>.a
+#   lib/<multiarch>/cmake/shockgas/      find_package(shockgas CONFIG): shockgas::sim (all of the
+#                                        simulator), each room's library, shockgas::analysis
 #   lib/python3*/...-packages/shockgas/  the Python reader (cmake/InstallPythonModule.cmake picks the folder)
 #   share/shockgas/                      a CMake project that remakes the figures from the installed
 #                                        programs: paper_targets/ (parameter files and pipeline),
 #                                        figures/ (gnuplot scripts and style), python/ (exact theory),
 #                                        tools/ (fidelity report, reproduce-check)
 #   share/man/man1/                      man pages made from --help (cmake/ManPages.cmake)
-#   share/doc/shockgas/                  README.md, ARCHITECTURE.md, docs/, analysis/README.md
+#   share/doc/shockgas/                  README.md, ARCHITECTURE.md, CHANGELOG.md, docs/, analysis/README.md,
+#                                        LICENSE and the Debian copyright file (also in share/doc/shockgas-dev/)
 #
 # Two components, which become the two Debian packages (cmake/Packaging.cmake):
 # "runtime" (programs, Python, data, man pages, docs) and "dev" (headers,
@@ -29,7 +32,7 @@ set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers
 # (shockgasPrograms.cmake, in the runtime component, needing nothing found): the
 # installed figure project runs them by target name as the source build does,
 # without the -dev package or a compiler.
-install(TARGETS shockgas_sim shockgas_analysis
+install(TARGETS shockgas_sim shockgas_model shockgas_io shockgas_engines shockgas_run shockgas_tail shockgas_analysis
         EXPORT shockgasTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev
@@ -38,9 +41,11 @@ install(TARGETS shockgas_sim shockgas_analysis
 install(TARGETS ${SHOCKGAS_PROGRAMS}
         EXPORT shockgasPrograms
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
-# Whole folders, so that a header added to either library is installed without
-# editing this list.
-install(DIRECTORY "${PROJECT_SOURCE_DIR}/sim/include/" "${PROJECT_SOURCE_DIR}/analysis/include/"
+# Whole folders, so that a header added to a library is installed without
+# editing this list. The engines' internals (sim/engines/src) stay private.
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/sim/model/include/" "${PROJECT_SOURCE_DIR}/sim/io/include/"
+                  "${PROJECT_SOURCE_DIR}/sim/engines/include/" "${PROJECT_SOURCE_DIR}/sim/run/include/"
+                  "${PROJECT_SOURCE_DIR}/sim/tail/include/" "${PROJECT_SOURCE_DIR}/analysis/include/"
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev
         FILES_MATCHING PATTERN "*.hpp")
 
@@ -56,7 +61,7 @@ install(EXPORT shockgasPrograms
 configure_package_config_file("${PROJECT_SOURCE_DIR}/cmake/shockgasConfig.cmake.in"
                               "${PROJECT_BINARY_DIR}/shockgasConfig.cmake"
                               INSTALL_DESTINATION ${SHOCKGAS_INSTALL_CMAKEDIR})
-# 0.x: a new minor version may break the interface, so only 0.1.* satisfies 0.1.
+# 0.x: a new minor version may break the interface, so only 0.2.* satisfies 0.2.
 write_basic_package_version_file("${PROJECT_BINARY_DIR}/shockgasConfigVersion.cmake"
                                  COMPATIBILITY SameMinorVersion)
 install(FILES "${PROJECT_BINARY_DIR}/shockgasConfig.cmake" "${PROJECT_BINARY_DIR}/shockgasConfigVersion.cmake"
@@ -111,8 +116,13 @@ install(CODE "
   include(\"${PROJECT_SOURCE_DIR}/cmake/InstallPythonModule.cmake\")"
   COMPONENT runtime)
 
+# The licence (GPL-3.0-or-later) with each package, as Debian's policy asks: the
+# full text as LICENSE and the machine-readable copyright file.
+install(FILES LICENSE cmake/copyright DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
+install(FILES LICENSE cmake/copyright DESTINATION ${CMAKE_INSTALL_DATAROOTDIR}/doc/shockgas-dev COMPONENT dev)
+
 # Documentation, with the relative links between the pages kept.
-install(FILES README.md ARCHITECTURE.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
+install(FILES README.md ARCHITECTURE.md CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/docs/" DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs COMPONENT runtime
         FILES_MATCHING PATTERN "*.md" PATTERN "*.png" PATTERN "*.svg")
 install(FILES analysis/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}/analysis COMPONENT runtime)

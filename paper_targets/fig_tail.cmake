@@ -18,9 +18,9 @@ file(MAKE_DIRECTORY "${fig_tail_DIR}")
 shockgas_step(
   OUTPUT "${fig_tail_DIR}/tail.h5"
   COMMAND shockgas-tail ${_tail_options} --z-reach 6 --z-step 0.25 -o "${fig_tail_DIR}/tail.h5"
-  # The simulator's source stamp, as every simulation (pipeline.cmake), not the
-  # binary, which relinks at every commit: the sampler reruns only when sim/ changes.
-  DEPENDS ${SHOCKGAS_SIM_STAMP}
+  # The sampler's own source stamp (pipeline.cmake), not the binary, which relinks at
+  # every commit: it reruns only when sim/tail, or the model or I/O it uses, changes.
+  DEPENDS ${SHOCKGAS_TAIL_STAMP}
   COMMENT "[fig_tail] far-tail sampler"
   VERBATIM)
 shockgas_step(
@@ -34,3 +34,4 @@ shockgas_step(
   VERBATIM)
 shockgas_plot(fig_tail SCRIPT fig_tail.gp DATA "${fig_tail_DIR}/tail.dat" "${fig_tail_DIR}/gamma.gp"
               ${SHOCKGAS_THEORY_OUTPUTS})
+add_dependencies(fig_tail shockgas_tail_stamp)

@@ -14,24 +14,40 @@
 # --set-aside-other-runs, so that a run whose parameters were edited after it was
 # stopped starts anew (its old checkpoint moved aside) instead of failing the build.
 
-if(SHOCKGAS_PIPELINE_FROM_INSTALL)
-  # An installed copy (cmake/installed-pipeline): no sources to hash; the runs
-  # depend on the installed shockgas-sim itself, so a new installation reruns them.
-  set(SHOCKGAS_SIM_STAMP "$<TARGET_FILE:shockgas-sim>")
-  add_custom_target(shockgas_sim_stamp)
-else()
-  set(SHOCKGAS_SIM_STAMP "${CMAKE_BINARY_DIR}/shockgas-sim.stamp")
-  add_custom_target(shockgas_sim_stamp
+# _shockgas_stamp_target(<target> <stamp file> <directories> <programs...>): a target that writes
+# <stamp file>, the hash of <directories> ("|"-separated) and of how they are built
+# (cmake/SourceStamp.cmake), once <programs> are built. Simulations depend on the stamp, not on
+# the programs, which relink at every commit (they embed git describe).
+function(_shockgas_stamp_target target stamp directories)
+  add_custom_target(${target}
     COMMAND ${CMAKE_COMMAND}
             -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
-            "-DDIRECTORIES=${SHOCKGAS_SIM_DIRECTORIES}"
+            "-DDIRECTORIES=${directories}"
             "-DCOMPILER_INFO=${SHOCKGAS_SIM_COMPILER_INFO}"
-            -DSTAMP=${SHOCKGAS_SIM_STAMP}
+            -DSTAMP=${stamp}
             -P ${PROJECT_SOURCE_DIR}/cmake/SourceStamp.cmake
-    BYPRODUCTS ${SHOCKGAS_SIM_STAMP} ${SHOCKGAS_SIM_STAMP}.files
-    COMMENT "Hashing the simulator's sources (simulations rerun only when they change)"
+    BYPRODUCTS ${stamp} ${stamp}.files
+    COMMENT "Hashing what decides ${ARGN}'s numbers (its simulations rerun only when it changes)"
     VERBATIM)
-  add_dependencies(shockgas_sim_stamp shockgas-sim shockgas-merge shockgas-tail)
+  add_dependencies(${target} ${ARGN})
+endfunction()
+
+if(SHOCKGAS_PIPELINE_FROM_INSTALL)
+  # An installed copy (cmake/installed-pipeline): no sources to hash; the runs
+  # depend on the installed programs themselves, so a new installation reruns them.
+  set(SHOCKGAS_SIM_STAMP "$<TARGET_FILE:shockgas-sim>")
+  set(SHOCKGAS_TAIL_STAMP "$<TARGET_FILE:shockgas-tail>")
+  add_custom_target(shockgas_sim_stamp)
+  add_custom_target(shockgas_tail_stamp)
+else()
+  # The simulator's stamp: sim/model, sim/io, sim/engines and sim/run
+  # (SHOCKGAS_SIM_DIRECTORIES), the same hash the programs record as simulator_sha256.
+  set(SHOCKGAS_SIM_STAMP "${CMAKE_BINARY_DIR}/shockgas-sim.stamp")
+  _shockgas_stamp_target(shockgas_sim_stamp "${SHOCKGAS_SIM_STAMP}" "${SHOCKGAS_SIM_DIRECTORIES}"
+                         shockgas-sim shockgas-merge)
+  # The far-tail sampler's: sim/tail with the model and I/O it uses (SHOCKGAS_TAIL_DIRECTORIES).
+  set(SHOCKGAS_TAIL_STAMP "${CMAKE_BINARY_DIR}/shockgas-tail.stamp")
+  _shockgas_stamp_target(shockgas_tail_stamp "${SHOCKGAS_TAIL_STAMP}" "${SHOCKGAS_TAIL_DIRECTORIES}" shockgas-tail)
 endif()
 
 include(${PROJECT_SOURCE_DIR}/cmake/ShortestNumber.cmake)  # _shockgas_shortest_number

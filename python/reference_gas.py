@@ -372,14 +372,14 @@ class UsageError(Exception):
     """A user's mistake: one line "reference_gas.py: error: ..." on stderr, exit status 2."""
 
 
-# The bounds shockgas-sim puts on --samples-per-decade (sim/src/parameters.cpp, validate).
+# The bounds shockgas-sim puts on --samples-per-decade (sim/model/src/parameters.cpp, validate).
 SAMPLES_PER_DECADE_RANGE = (1, 1000)
 
 
 def check_arguments(args):
     """Refuses (UsageError) a command-line value that simulate() would refuse with a traceback, or
     would run on to print rows that mean nothing (a negative --t-max, --max-events below 1), before
-    any file is read; the rules are shockgas-sim's where it has the option (sim/src/parameters.cpp).
+    any file is read; the rules are shockgas-sim's where it has the option (sim/model/src/parameters.cpp).
     Returns --sample-times as a list of floats."""
     if not 0.0 <= args.restitution <= 1.0:
         raise UsageError("-r/--restitution %r: the restitution coefficient r lies in [0, 1]" % args.restitution)

@@ -53,9 +53,9 @@
 #include <string>
 #include <vector>
 
-#include "shockgas/collision.hpp"
-#include "shockgas/engine.hpp"
-#include "shockgas/state.hpp"
+#include "shockgas/model/collision.hpp"
+#include "shockgas/engines/engine.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace shockgas::testing {
 

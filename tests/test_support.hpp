@@ -13,10 +13,10 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/engine.hpp"
-#include "shockgas/ensemble.hpp"
-#include "shockgas/observables.hpp"
-#include "shockgas/state.hpp"
+#include "shockgas/engines/engine.hpp"
+#include "shockgas/run/ensemble.hpp"
+#include "shockgas/model/observables.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace shockgas::testing {
 

@@ -247,7 +247,7 @@ if readme:
     sys.exit(0)
 
 
-# The far-tail sampler's progress line in a log (sim/app/shockgas_tail.cpp), and the comment make prints
+# The far-tail sampler's progress line in a log (sim/tail/app/shockgas_tail.cpp), and the comment make prints
 # when fig_tail starts it (paper_targets/fig_tail.cmake).
 TAIL_PROGRESS = "shockgas-tail: progress: "
 TAIL_STARTED = "[fig_tail] far-tail sampler"
@@ -347,7 +347,7 @@ def progress_report():
           f"not begun; for each running part, that mean less its CPU so far) |")
     # shockgas-sim names a checkpoint it moves aside NAME.from-<version tag> (another simulator) or
     # NAME.from-other-run (--set-aside-other-runs: the run's parameters were edited), with ".<k>" added
-    # when that name is taken (sim/src/checkpoint.cpp keep_aside).
+    # when that name is taken (sim/run/src/checkpoint.cpp keep_aside).
     other_runs = [path for path in set_aside if re.fullmatch(r"other-run(\.\d+)?", path.split(".from-", 1)[1])]
     other_versions = [path for path in set_aside if path not in other_runs]
 

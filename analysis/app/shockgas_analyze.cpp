@@ -15,9 +15,9 @@
 
 #include "shockgas/analysis/commands.hpp"
 #include "shockgas/analysis/results.hpp"
-#include "shockgas/cli.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/provenance.hpp"
+#include "shockgas/cli/cli.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/io/provenance.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "shockgas/state.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace shockgas::analysis {
 namespace {

@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "shockgas/h5.hpp"
-#include "shockgas/output.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/output.hpp"
 
 namespace shockgas::analysis {
 

@@ -22,9 +22,9 @@
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
 #include "shockgas/analysis/velocity_distribution.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/provenance.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/io/provenance.hpp"
 
 namespace shockgas::analysis {
 namespace {

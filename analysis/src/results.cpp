@@ -8,9 +8,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "shockgas/output.hpp"
-#include "shockgas/parameters.hpp"
-#include "shockgas/provenance.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/model/parameters.hpp"
+#include "shockgas/io/provenance.hpp"
 
 namespace shockgas::analysis {
 

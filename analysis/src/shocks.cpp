@@ -7,10 +7,10 @@
 
 #include <fmt/format.h>
 
-#include "shockgas/h5.hpp"
+#include "shockgas/io/h5.hpp"
 
-#include "shockgas/output.hpp"
-#include "shockgas/ring_kinematics.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace shockgas::analysis {
 

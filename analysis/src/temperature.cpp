@@ -12,8 +12,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
 
-#include "shockgas/exact_constants.hpp"
-#include "shockgas/h5.hpp"
+#include "shockgas/model/exact_constants.hpp"
+#include "shockgas/io/h5.hpp"
 
 namespace shockgas::analysis {
 

@@ -1,4 +1,4 @@
-"""The one place in Python that opens shockgas's HDF5 files (h5py), as sim/include/shockgas/h5.hpp is
+"""The one place in Python that opens shockgas's HDF5 files (h5py), as sim/io/include/shockgas/io/h5.hpp is
 in C++: opening with the schema check, attribute decoding, and a generic tree of groups."""
 import contextlib
 import errno

@@ -21,7 +21,7 @@ words the line, the cause a string or, for a failure only the writing finds (a f
 changed meanwhile), the OSError.
 
 Every output is written so that a failure never leaves a file that looks complete, as the C++
-programs write theirs (shockgas::TextFile, sim/src/text_file.cpp):
+programs write theirs (shockgas::TextFile, sim/io/src/text_file.cpp):
 
     with atomic_output(args.json) as handle:        # a temporary file beside the target, renamed
         json.dump(table, handle)                     #  onto it when the block ends without an error

@@ -287,7 +287,7 @@ def read_tail(path):
 
 # ------------------------------------------------------------------------------ initial conditions
 def _check_initial_condition(position, velocity, mass, ring_length):
-    """The checks shockgas-sim's init reader makes (sim/src/state.cpp, validate), as ValueError."""
+    """The checks shockgas-sim's init reader makes (sim/model/src/state.cpp, validate), as ValueError."""
     if position.ndim != 1 or velocity.ndim != 1 or (mass is not None and mass.ndim != 1):
         raise ValueError("init: position, velocity and mass must be one-dimensional")
     n = len(position)

@@ -2,7 +2,7 @@
 
 Every HDF5 file shockgas writes (runs, merged runs, checkpoints, analysis results, drift records,
 far-tail estimates)
-carries `schema_version` next to its provenance (sim/include/shockgas/provenance.hpp,
+carries `schema_version` next to its provenance (sim/io/include/shockgas/io/provenance.hpp,
 `output_schema_version`). The layout of each version is documented in docs/cli-and-output.md.
 
 A new version: add it to SCHEMA_VERSIONS with one line on what changed, and teach the readers in

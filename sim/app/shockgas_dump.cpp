@@ -18,11 +18,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "shockgas/cli.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/provenance.hpp"
-#include "shockgas/text_file.hpp"
+#include "shockgas/cli/cli.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/io/provenance.hpp"
+#include "shockgas/io/text_file.hpp"
 
 namespace {
 

@@ -5,10 +5,10 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "shockgas/cli.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/provenance.hpp"
+#include "shockgas/cli/cli.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/io/provenance.hpp"
 
 int main(int argc, char** argv) {
     std::string output;

@@ -109,7 +109,7 @@ shockgas_analyze_reports(data_to_standard_output "# decay exponent in moving win
                          decay a.h5 ${_window} -o "${_analyze_dir}/stdout_decay.h5" --scan /dev/stdout)
 # The same under a shell's `> file`: /dev/stdout is then that file, and opening it anew ("w") truncated it
 # and wrote at an offset of its own, so the report overwrote the table's start. It is written through the
-# program's own standard output now (sim/src/text_file.cpp), the table before the report.
+# program's own standard output now (sim/io/src/text_file.cpp), the table before the report.
 add_test(NAME cli.analyze.data_to_redirected_standard_output
          COMMAND sh -c "\"$1\" decay a.h5 --t-lo 1 --t-hi 100 -o stdout_file_decay.h5 --scan /dev/stdout > stdout_file.txt && cat stdout_file.txt"
                  sh ${_analyze_program} WORKING_DIRECTORY "${_analyze_dir}")

@@ -302,7 +302,7 @@ add_test(NAME cli.sigint_writes_interrupted
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/sigint_test.sh ${_sim} "${_cli_dir}/interrupted.h5")
 set_tests_properties(cli.sigint_writes_interrupted PROPERTIES LABELS cli)
 
-# --- issue 8: parse and config-file problems, impossible engine choices ---
+# --- parse and config-file problems, impossible engine choices ---
 # Config files are written at configure time into the CLI work directory.
 file(WRITE "${_cli_dir}/config_unknown_key.toml" "particles = 10\nrestitutoin = 0.5\n")
 file(WRITE "${_cli_dir}/config_bad_value.toml" "particles = ten\n")
@@ -344,7 +344,7 @@ add_test(NAME cli.config_file_run
          COMMAND ${_sim} --config "${_cli_dir}/config_good.toml" -q -o "${_cli_dir}/config_run.h5")
 set_tests_properties(cli.config_file_run PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "complete \\(event engine")
 
-# --- issue 8: runs that survive being killed ---
+# --- runs that survive being killed ---
 # SIGKILL mid-run, then --resume: bit-identical to an uninterrupted run.
 if(SHOCKGAS_PYTHON)
   add_test(NAME cli.sigkill_resume_bit_identical
@@ -352,7 +352,7 @@ if(SHOCKGAS_PYTHON)
                    ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py "${_cli_dir}/sigkill")
   set_tests_properties(cli.sigkill_resume_bit_identical PROPERTIES LABELS cli TIMEOUT 300)
 endif()
-# --- issue 19: faults that must not lose work or change results ---
+# --- faults that must not lose work or change results ---
 if(SHOCKGAS_PYTHON)
   add_test(NAME cli.faults.damaged_checkpoint
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/damaged_checkpoint_test.sh ${_sim} ${SHOCKGAS_PYTHON}

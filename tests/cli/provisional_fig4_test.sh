@@ -8,9 +8,9 @@ set -u
 sim=$1 merge=$2 dump=$3 analyze=$4 python=$5 work=$6
 here=$(cd "$(dirname "$0")" && pwd)
 fail() { echo "FAIL: $*"; exit 1; }
-rm -rf "$work" && mkdir -p "$work/sim" "$work/analysis" "$work/paper_targets/paper/fig4" || exit 1
-ln -s "$sim" "$work/sim/shockgas-sim" && ln -s "$merge" "$work/sim/shockgas-merge" &&
-  ln -s "$dump" "$work/sim/shockgas-dump" && ln -s "$analyze" "$work/analysis/shockgas-analyze" || exit 1
+rm -rf "$work" && mkdir -p "$work/bin" "$work/paper_targets/paper/fig4" || exit 1
+ln -s "$sim" "$work/bin/shockgas-sim" && ln -s "$merge" "$work/bin/shockgas-merge" &&
+  ln -s "$dump" "$work/bin/shockgas-dump" && ln -s "$analyze" "$work/bin/shockgas-analyze" || exit 1
 "$python" "$here/../../python/exact_ballistic.py" --out-dir "$work/paper_targets/theory" >/dev/null ||
   fail "the exact theory did not build"
 runs=$work/paper_targets/paper/fig4
@@ -36,7 +36,7 @@ grep -q "^scaling exponent 0\.3" "$work/report.txt" || fail "no scaling exponent
 # again from what the tool passed gnuplot (a gnuplot first on PATH records it), as SVG, whose legend is text.
 tree=$work/only09
 mkdir -p "$tree/paper_targets/paper/fig4" "$work/bin" "$work/svgstyle" || exit 1
-ln -s "$work/sim" "$tree/sim" && ln -s "$work/analysis" "$tree/analysis" &&
+ln -s "$work/bin" "$tree/bin" &&
   ln -s "$work/paper_targets/theory" "$tree/paper_targets/theory" && ln -s "$runs/r0.h5" "$tree/paper_targets/paper/fig4/" &&
   ln -s "$runs/r0.9.part10.h5" "$tree/paper_targets/paper/fig4/" || exit 1
 "$sim" "${common[@]}" -r 0.9 -R 10 --first-realization 0 -o "$tree/paper_targets/paper/fig4/r0.9.part0.h5" ||

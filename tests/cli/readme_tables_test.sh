@@ -6,7 +6,7 @@
 # results table can be regenerated from a build instead of typed.
 set -euo pipefail
 build=$1 python=$2 work=$3
-sim=$build/sim/shockgas-sim analyze=$build/analysis/shockgas-analyze
+sim=$build/bin/shockgas-sim analyze=$build/bin/shockgas-analyze
 base=$work/paper_targets/quick
 rm -rf "$work" && mkdir -p "$base/fig1" "$base/fig4" "$base/fig5"
 fail() { echo "FAIL: $*"; echo "output was:"; echo "$out"; exit 1; }
@@ -17,7 +17,7 @@ fail() { echo "FAIL: $*"; echo "output was:"; echo "$out"; exit 1; }
 "$sim" -N 3000 -r 0.9 -d 1e-3 -t 1000 -R 1 --snapshot-times 1000 -q -o "$base/fig5/profile.h5" 2>/dev/null
 "$analyze" shocks "$base/fig5/profile.h5" -o "$base/fig5/shocks.h5" >/dev/null
 out=$("$python" "$(dirname "$0")/../../tools/fidelity_report.py" "$work" quick --readme)
-exponent=$("$build/sim/shockgas-dump" gnuplot-vars "$base/fig1/r0.decay.h5" /decay --prefix d | sed -n 's/^d_exponent = //p')
+exponent=$("$build/bin/shockgas-dump" gnuplot-vars "$base/fig1/r0.decay.h5" /decay --prefix d | sed -n 's/^d_exponent = //p')
 echo "$out" | grep -q '^| id | quantity | measured (quick) | paper / theory |$' || fail "no table header"
 echo "$out" | grep -Eq "^\| P1 \| T ~ t\^−α, r = 0 \(N = 3·10³, 3 realizations, t ∈ \[100, .*\]\) \| α = $(printf '%.3f' "$exponent") ± " \
   || fail "no P1 row with the file's exponent $exponent"

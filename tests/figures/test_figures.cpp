@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/h5.hpp"
+#include "shockgas/io/h5.hpp"
 
 namespace {
 

@@ -26,9 +26,10 @@
 
 #include <unistd.h>
 
-#include "shockgas/h5.hpp"
-#include "shockgas/parameters.hpp"
-#include "shockgas/state.hpp"
+#include "shockgas/io/initial_condition.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/model/parameters.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace {
 

@@ -25,20 +25,26 @@ if [ "$mode" = build ]; then
     exit 77
   fi
   flags=(-std=c++20 -g -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
-         -fno-sanitize-recover=undefined -I"$source_dir/sim/include" -I"$source_dir/sim/app/cli")
+         -fno-sanitize-recover=undefined)
+  # The rooms shockgas-sim is made of (sim/CMakeLists.txt), and the engines' private headers.
+  rooms=(model io engines run cli)
+  for room in "${rooms[@]}"; do flags+=(-I"$source_dir/sim/$room/include"); done
+  flags+=(-I"$source_dir/sim/engines/src")
   # CMake lists arrive ';'-separated.
   IFS=';' read -ra include_list <<< "$hdf5_includes"
   for dir in "${include_list[@]}"; do flags+=(-isystem "$dir"); done
   IFS=';' read -ra libraries <<< "$hdf5_libraries"
   objects=()
-  # The library's sources (whatever sim/src and sim/src/engines hold) and the build's provenance file.
+  # The rooms' sources (whatever their src/ folders hold) and the build's provenance file.
   # The fuzzers run one process: they take the one-rank stand-in of the
   # distributed layer, never its MPI version (which needs mpi.h and would
   # define the same symbols).
-  for src in "$source_dir"/sim/src/*.cpp "$source_dir"/sim/src/engines/*.cpp "$build_info"; do
+  sources=()
+  for room in "${rooms[@]}"; do sources+=("$source_dir/sim/$room"/src/*.cpp); done
+  for src in "${sources[@]}" "$build_info"; do
     [ "$(basename "$src")" = distributed_mpi.cpp ] && continue
     obj="$out_dir/$(basename "${src%.cpp}").o"
-    if [ ! -e "$obj" ] || [ "$src" -nt "$obj" ] || [ -n "$(find "$source_dir/sim/include" "$source_dir/sim/src/engines" -newer "$obj" -print -quit)" ]; then
+    if [ ! -e "$obj" ] || [ "$src" -nt "$obj" ] || [ -n "$(find "$source_dir/sim" -name '*.hpp' -newer "$obj" -print -quit)" ]; then
       clang++ "${flags[@]}" -c "$src" -o "$obj" &
     fi
     objects+=("$obj")

@@ -43,14 +43,21 @@ expect_files "$runtime" \
   usr/share/man/man1/shockgas-burgers.1.gz usr/share/man/man1/shockgas-analyze.1.gz \
   usr/lib/python3/dist-packages/shockgas/__init__.py usr/share/shockgas/CMakeLists.txt \
   usr/share/shockgas/paper_targets/fig1.paper.json usr/share/shockgas/figures/style.gp \
-  usr/share/doc/shockgas/README.md 'usr/lib/(.*/)?cmake/shockgas/shockgasPrograms.cmake'
+  usr/share/doc/shockgas/README.md usr/share/doc/shockgas/LICENSE usr/share/doc/shockgas/copyright \
+  'usr/lib/(.*/)?cmake/shockgas/shockgasPrograms.cmake'
 
 dpkg-deb --info "$dev" | grep -E "Package|Depends"
 version=$(dpkg-deb --field "$runtime" Version)
 expect_depends "$dev" "shockgas \(= ${version//./\\.}\)" libhdf5-dev libgsl-dev libfmt-dev
-expect_files "$dev" usr/include/shockgas/engine.hpp usr/include/shockgas/analysis/fit.hpp \
-  'usr/lib/(.*/)?libshockgas_sim\.a' 'usr/lib/(.*/)?libshockgas_analysis\.a' \
+expect_files "$dev" usr/include/shockgas/engines/engine.hpp usr/include/shockgas/analysis/fit.hpp \
+  usr/share/doc/shockgas-dev/LICENSE usr/share/doc/shockgas-dev/copyright \
+  'usr/lib/(.*/)?libshockgas_run\.a' 'usr/lib/(.*/)?libshockgas_engines\.a' 'usr/lib/(.*/)?libshockgas_analysis\.a' \
   'usr/lib/(.*/)?cmake/shockgas/shockgasConfig\.cmake' 'usr/lib/(.*/)?cmake/shockgas/shockgasTargets\.cmake'
+
+# The engines' internals stay private: the public interface is shockgas/engines/engine.hpp.
+if dpkg-deb --contents "$dev" | grep -Eq 'include/shockgas/.*(event_engine|passthrough_engine|quaternary_heap)\.hpp'; then
+  fail "$(basename "$dev") installs an engine's private header"
+fi
 
 # The packaged (stripped) program runs, and its man page documents it.
 dpkg-deb -x "$runtime" "$work/root"

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "shockgas/distributed.hpp"
+#include "shockgas/run/distributed.hpp"
 
 int main(int argc, char** argv) {
     constexpr auto rank0_run_time = std::chrono::minutes(10);

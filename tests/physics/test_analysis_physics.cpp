@@ -11,7 +11,7 @@
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
 #include "shockgas/analysis/velocity_distribution.hpp"
-#include "shockgas/ensemble.hpp"
+#include "shockgas/run/ensemble.hpp"
 
 namespace sa = shockgas::analysis;
 

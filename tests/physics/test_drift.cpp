@@ -1,4 +1,4 @@
-// The drift measurement (shockgas/drift.hpp) called as a library: its rounding
+// The drift measurement (drift.hpp) called as a library: its rounding
 // bounds as formulas, a run of every equal-mass engine that stays within them,
 // and a start off by 1e-9 that must not.
 #include <cmath>
@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/drift.hpp"
-#include "shockgas/parameters.hpp"
+#include "drift.hpp"
+#include "shockgas/model/parameters.hpp"
 
 namespace {
 

@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/event_engine.hpp"
-#include "shockgas/exact_engine.hpp"
-#include "shockgas/observables.hpp"
+#include "reference_event_engine.hpp"
+#include "exact_engine.hpp"
+#include "shockgas/model/observables.hpp"
 
 namespace {
 
@@ -76,7 +76,7 @@ InitialCondition make_initial(Kind kind, std::int64_t particles, std::uint64_t s
 
 // Time of the last merge (the ring becomes one cluster), by stepping events.
 double final_merge_time(const InitialCondition& initial) {
-    EventEngine engine(initial, CollisionModel{0.0, 0.0, Subthreshold::elastic}, {});
+    ReferenceEventEngine engine(initial, CollisionModel{0.0, 0.0, Subthreshold::elastic}, {});
     double last = 0.0;
     while (engine.cluster_count() > 1) {
         last = engine.next_event_time();
@@ -145,7 +145,7 @@ TEST(ExactVersusEvent, ClusterForClusterOverSixtySeedsToTheFinalState) {
             times.push_back(t_final * (1.0 + 1e-9));
             times.push_back(4.0 * t_final);
             std::sort(times.begin(), times.end());
-            EventEngine event(initial, CollisionModel{0.0, 0.0, Subthreshold::elastic}, {});
+            ReferenceEventEngine event(initial, CollisionModel{0.0, 0.0, Subthreshold::elastic}, {});
             ExactEngine exact(initial);
             ClusterState event_state, exact_state;
             for (const double t : times) {

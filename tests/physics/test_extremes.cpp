@@ -13,7 +13,7 @@
 //     >= -(rounding of an absolute coordinate) and the gaps close the ring.
 // Engines are built through make_engine (fast windowed engine where it
 // applies, the reference loop otherwise, the exact engine for r = 0 with
-// --engine exact), and for small N the reference EventEngine is also run
+// --engine exact), and for small N the reference ReferenceEventEngine is also run
 // directly so that the global loop is covered on the cases the fast engine
 // takes.
 //
@@ -32,13 +32,13 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/engine.hpp"
-#include "shockgas/ensemble.hpp"
-#include "shockgas/event_engine.hpp"
-#include "shockgas/fast_engine.hpp"
-#include "shockgas/observables.hpp"
-#include "shockgas/parameters.hpp"
-#include "shockgas/state.hpp"
+#include "shockgas/engines/engine.hpp"
+#include "shockgas/run/ensemble.hpp"
+#include "reference_event_engine.hpp"
+#include "event_engine.hpp"
+#include "shockgas/model/observables.hpp"
+#include "shockgas/model/parameters.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace {
 
@@ -79,7 +79,7 @@ struct Case {
     Subthreshold mechanism;
     std::int64_t particles;
     double t_max;
-    std::string engine;  // "event" / "exact" through make_engine, "reference" = EventEngine directly
+    std::string engine;  // "event" / "exact" through make_engine, "reference" = ReferenceEventEngine directly
     std::string special; // "" (random velocities) or one of the special initial conditions
 };
 
@@ -250,14 +250,14 @@ struct Checker {
                 << where << ": gaps do not close the ring";
         }
         // The reference engine also reports its own gaps (no absolute coordinates).
-        if (const auto* reference = dynamic_cast<const EventEngine*>(&engine); reference != nullptr && n >= 2) {
+        if (const auto* reference = dynamic_cast<const ReferenceEventEngine*>(&engine); reference != nullptr && n >= 2) {
             const auto gaps = reference->gaps();
             // Gap updates carry ulp((v_r - v_l)(t - tau)) <= ulp(2 |v|max t).
             const double scale = 2.0 * speed_bound * std::max(1.0, state.time) + ring_length;
             const double gap_tiny = gap_ulps * (std::nextafter(scale, INFINITY) - scale);
             for (double g : gaps) {
                 ASSERT_TRUE(std::isfinite(g)) << where;
-                EXPECT_GE(g, -gap_tiny) << where << ": EventEngine gap negative";
+                EXPECT_GE(g, -gap_tiny) << where << ": ReferenceEventEngine gap negative";
                 min_gap = std::min(min_gap, g);
             }
         }
@@ -271,7 +271,7 @@ std::unique_ptr<Engine> build(const Case& c, const InitialCondition& init) {
     p.particles = c.particles;
     p.collision = {c.restitution, c.threshold, c.mechanism};
     p.t_max = c.t_max;
-    if (c.engine == "reference") return std::make_unique<EventEngine>(init, p.collision, p.collapse);
+    if (c.engine == "reference") return std::make_unique<ReferenceEventEngine>(init, p.collision, p.collapse);
     p.engine = c.engine;
     validate(p);
     return make_engine(p, init, nullptr);
@@ -400,7 +400,7 @@ TEST(ExtremesEnsemble, UndecidableStallFallsBackToReferenceAndReportsCollapse) {
     p.realizations = 2;
     p.threads = 2;
     const InitialCondition init = generate_initial_condition(p.particles, 10.0, p.seed, 0);
-    ASSERT_TRUE(FastEventEngine::supports(init, p.collision, p.collapse));
+    ASSERT_TRUE(EventEngine::supports(init, p.collision, p.collapse));
     EnsembleResult result;
     ASSERT_NO_THROW(result = run_ensemble(p, nullptr));
     EXPECT_EQ(result.status, "collapsed");

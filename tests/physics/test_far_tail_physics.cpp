@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "shockgas/analysis/far_tail.hpp"
-#include "shockgas/tail_sampler.hpp"
+#include "shockgas/tail/tail_sampler.hpp"
 
 namespace {
 

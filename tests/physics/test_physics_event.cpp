@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/ensemble.hpp"
-#include "shockgas/event_engine.hpp"
-#include "shockgas/observables.hpp"
+#include "shockgas/run/ensemble.hpp"
+#include "reference_event_engine.hpp"
+#include "shockgas/model/observables.hpp"
 
 namespace {
 
@@ -24,7 +24,7 @@ struct RunInvariants {
 // kinetic energy never increases and that the gaps stay non-negative.
 RunInvariants run_checked(const CollisionModel& model, std::int64_t particles, double t_max, std::uint64_t seed) {
     const auto initial = generate_initial_condition(particles, static_cast<double>(particles), seed, 0);
-    EventEngine engine(initial, model, {});
+    ReferenceEventEngine engine(initial, model, {});
     RunInvariants out{};
     CompensatedSum momentum, scale;
     for (std::size_t i = 0; i < initial.velocity.size(); ++i) {
@@ -146,7 +146,7 @@ double measured_haff_constant(double restitution, double t, const InitialLaw& la
     const double eps = (1 - restitution) / 2;
     const auto initial = generate_initial_condition(100000, 100000.0, 21, 0, law);
     const double t0 = velocity_moments(initial.velocity, initial.mass).temperature;
-    EventEngine engine(initial, {restitution, 0.0, Subthreshold::elastic}, {});
+    ReferenceEventEngine engine(initial, {restitution, 0.0, Subthreshold::elastic}, {});
     if (!engine.advance_to(t)) return std::numeric_limits<double>::quiet_NaN();
     ClusterState state;
     engine.clusters(state);

@@ -259,7 +259,7 @@ class OtherKinds(unittest.TestCase):
         return sorted(name for name in os.listdir(WORK) if ".tmp." in name)
 
     def test_initial_condition_refused_as_shockgas_sim_refuses_it(self):
-        # Each start below is one shockgas-sim's init reader refuses (sim/src/state.cpp, validate):
+        # Each start below is one shockgas-sim's init reader refuses (sim/model/src/state.cpp, validate):
         # write_initial_condition refuses it too, with the same words, and leaves no file.
         ok = dict(position=[0.0, 1.0, 2.0], velocity=[0.1, -0.2, 0.3])
         cases = {

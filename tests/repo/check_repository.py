@@ -8,7 +8,7 @@ machine-paths  no tracked file points outside the repository: at the folder it w
                folders. A user's clone has none of them. The system's folders (/usr/bin/python3,
                /tmp) are the same on every Debian machine and allowed.
 hdf5-readers   Python opens shockgas's HDF5 files for reading in one place, python/shockgas (as
-               C++ does in sim/include/shockgas/h5.hpp): any other h5py.File( must name a writing
+               C++ does in sim/io/include/shockgas/io/h5.hpp): any other h5py.File( must name a writing
                mode ("w", "r+", "a", "x", "w-"): tests that make or damage files on purpose.
 doc-links      every relative link in a tracked Markdown file reaches a tracked file, and every
                #anchor a heading of its page (GitHub's heading slugs).

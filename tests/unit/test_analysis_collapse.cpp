@@ -13,8 +13,8 @@
 
 #include "shockgas/analysis/collapse.hpp"
 #include "shockgas/analysis/fit.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/output.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/output.hpp"
 
 namespace sa = shockgas::analysis;
 

@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "shockgas/analysis/commands.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/parameters.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/model/parameters.hpp"
 
 namespace {
 

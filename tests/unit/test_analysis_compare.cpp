@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "shockgas/analysis/compare.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/parameters.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/model/parameters.hpp"
 
 namespace {
 

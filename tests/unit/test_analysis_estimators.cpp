@@ -23,12 +23,12 @@
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
 #include "shockgas/analysis/velocity_distribution.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/observables.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/parameters.hpp"
-#include "shockgas/provenance.hpp"
-#include "shockgas/text_file.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/model/observables.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/model/parameters.hpp"
+#include "shockgas/io/provenance.hpp"
+#include "shockgas/io/text_file.hpp"
 
 #include "../test_support.hpp"
 

@@ -1,4 +1,4 @@
-// Burgers solver (sim/src/burgers.cpp): analytic Riemann solutions, nu -> 0,
+// Burgers solver (analysis/src/burgers.cpp): analytic Riemann solutions, nu -> 0,
 // grid refinement, no overflow at small nu, the sticky-gas identity, and the comparison of a
 // run with Burgers (analysis/burgers_comparison.hpp).
 #include <gtest/gtest.h>
@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "shockgas/analysis/burgers_comparison.hpp"
-#include "shockgas/burgers.hpp"
-#include "shockgas/exact_engine.hpp"
-#include "shockgas/state.hpp"
+#include "shockgas/analysis/burgers.hpp"
+#include "exact_engine.hpp"
+#include "shockgas/model/state.hpp"
 
 using namespace shockgas;
 using namespace shockgas::burgers;

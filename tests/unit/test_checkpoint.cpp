@@ -20,13 +20,13 @@
 
 #include "../test_support.hpp"
 
-#include "shockgas/checkpoint.hpp"
-#include "shockgas/engine.hpp"
-#include "shockgas/ensemble.hpp"
-#include "shockgas/event_engine.hpp"
-#include "shockgas/fast_engine.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/output.hpp"
+#include "shockgas/run/checkpoint.hpp"
+#include "shockgas/engines/engine.hpp"
+#include "shockgas/run/ensemble.hpp"
+#include "reference_event_engine.hpp"
+#include "event_engine.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/output.hpp"
 
 namespace {
 
@@ -87,7 +87,7 @@ TEST(EngineSnapshot, RestoredEngineContinuesBitForBit) {
             std::vector<std::unique_ptr<Engine>> originals;
             originals.push_back(shockgas::make_engine(p, initial, nullptr));
             originals.push_back(
-                std::make_unique<shockgas::EventEngine>(initial, p.collision, p.collapse, nullptr));
+                std::make_unique<shockgas::ReferenceEventEngine>(initial, p.collision, p.collapse, nullptr));
             for (auto& original : originals) {
                 const std::string what = mode.name + ", seed " + std::to_string(seed);
                 // delta = 0 collapses near t ~ 1-10 at this size: checkpoint early.

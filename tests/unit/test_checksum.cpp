@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/checksum.hpp"
-#include "shockgas/parameters.hpp"
+#include "shockgas/io/checksum.hpp"
+#include "shockgas/model/parameters.hpp"
 
 namespace {
 

@@ -1,11 +1,11 @@
-// The collision rule (sim/include/shockgas/collision.hpp), Eq. (1) of the paper.
+// The collision rule (sim/model/include/shockgas/model/collision.hpp), Eq. (1) of the paper.
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "shockgas/collision.hpp"
+#include "shockgas/model/collision.hpp"
 
 namespace {
 

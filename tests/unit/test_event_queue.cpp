@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "../queue_workload.hpp"
-#include "shockgas/event_queue.hpp"
+#include "event_queue.hpp"
 
 namespace {
 

@@ -9,16 +9,16 @@
 
 #include "../test_support.hpp"
 
-#include "shockgas/collision.hpp"
-#include "shockgas/engine.hpp"
-#include "shockgas/event_engine.hpp"
-#include "shockgas/exact_engine.hpp"
+#include "shockgas/model/collision.hpp"
+#include "shockgas/engines/engine.hpp"
+#include "reference_event_engine.hpp"
+#include "exact_engine.hpp"
 
 namespace {
 
 using shockgas::ClusterState;
 using shockgas::CollisionModel;
-using shockgas::EventEngine;
+using shockgas::ReferenceEventEngine;
 using shockgas::ExactEngine;
 using shockgas::InitialCondition;
 
@@ -81,7 +81,7 @@ TEST(ExactEngine, LoneClusterStartsAfterTheGapThatNeverClosed) {
     for (const double v2 : {0.5, -0.5}) {
         const std::int64_t expected_first = v2 > 0 ? 2 : 0;
         const auto initial = make(3.0, {0.0, 1.0, 2.0}, {0.5, -0.5, v2});
-        EventEngine event(initial, CollisionModel{0.0, 0.0, shockgas::Subthreshold::elastic}, {});
+        ReferenceEventEngine event(initial, CollisionModel{0.0, 0.0, shockgas::Subthreshold::elastic}, {});
         ASSERT_TRUE(event.advance_to(4.0));
         ClusterState reference;
         event.clusters(reference);

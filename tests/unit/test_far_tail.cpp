@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "shockgas/analysis/far_tail.hpp"
-#include "shockgas/h5.hpp"
+#include "shockgas/io/h5.hpp"
 #include "../test_support.hpp"
 
 namespace {
@@ -66,7 +66,7 @@ TEST(TailExponent, KnownGammaRecoveredWithinItsJackknifeError) {
 }
 
 // sigma(ln Phi) as the sampler gives it: the delete-one-chain jackknife spread
-// of the leave-one-out tables (sim/src/tail_sampler.cpp), an estimate with
+// of the leave-one-out tables (sim/tail/src/tail_sampler.cpp), an estimate with
 // chains - 1 degrees of freedom instead of the true per-bin error.
 void take_sampler_sigma(FarTail& tail) {
     const auto& tables = tail.log_phi_leave_one_chain_out;

@@ -14,10 +14,10 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/checkpoint.hpp"
-#include "shockgas/ensemble.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/memory.hpp"
+#include "shockgas/run/checkpoint.hpp"
+#include "shockgas/run/ensemble.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/run/memory_plan.hpp"
 
 namespace {
 

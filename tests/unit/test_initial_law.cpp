@@ -9,10 +9,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "shockgas/ensemble.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/state.hpp"
+#include "shockgas/run/ensemble.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace {
 

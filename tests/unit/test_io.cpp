@@ -8,12 +8,13 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "shockgas/ensemble.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/observables.hpp"
-#include "shockgas/provenance.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/state.hpp"
+#include "shockgas/io/initial_condition.hpp"
+#include "shockgas/run/ensemble.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/model/observables.hpp"
+#include "shockgas/io/provenance.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace {
 

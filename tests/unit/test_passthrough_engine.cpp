@@ -24,15 +24,15 @@
 #include "../inversion_oracle.hpp"
 #include "../test_support.hpp"
 
-#include "shockgas/engine.hpp"
-#include "shockgas/ensemble.hpp"
-#include "shockgas/event_engine.hpp"
-#include "shockgas/fast_engine.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/hybrid_engine.hpp"
-#include "shockgas/observables.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/passthrough_engine.hpp"
+#include "shockgas/engines/engine.hpp"
+#include "shockgas/run/ensemble.hpp"
+#include "reference_event_engine.hpp"
+#include "event_engine.hpp"
+#include "shockgas/io/h5.hpp"
+#include "hybrid_engine.hpp"
+#include "shockgas/model/observables.hpp"
+#include "shockgas/io/output.hpp"
+#include "passthrough_engine.hpp"
 
 namespace {
 
@@ -40,8 +40,8 @@ using shockgas::ClusterState;
 using shockgas::CollapseCriterion;
 using shockgas::CollisionModel;
 using shockgas::Engine;
+using shockgas::ReferenceEventEngine;
 using shockgas::EventEngine;
-using shockgas::FastEventEngine;
 using shockgas::HybridEngine;
 using shockgas::HybridSwitchRule;
 using shockgas::InitialCondition;
@@ -133,8 +133,8 @@ ComparisonTotals compare_with_the_reference_loop(Make make, Crossed crossed) {
         nudged.velocity[static_cast<std::size_t>(seed % static_cast<std::uint64_t>(n))] =
             std::nextafter(nudged.velocity[static_cast<std::size_t>(seed % static_cast<std::uint64_t>(n))], 2.0);
 
-        EventEngine reference(start, model, CollapseCriterion{});
-        EventEngine reference_nudged(nudged, model, CollapseCriterion{});
+        ReferenceEventEngine reference(start, model, CollapseCriterion{});
+        ReferenceEventEngine reference_nudged(nudged, model, CollapseCriterion{});
         auto engine = make(start, model, seed);
         auto engine_nudged = make(nudged, model, seed);
         const Trace ref = trace(reference, times);
@@ -317,7 +317,7 @@ TEST(InversionOracle, CollidesAtTheStartTimeAsTheEventEngineDoes) {
 TEST(PassThroughAtLargeN, CountsEveryCollisionAsTheInversionOracleDoes) {
     const CollisionModel model{0.9, 0.01, Subthreshold::elastic};
     const InitialCondition start = random_ring(20000, 11);
-    FastEventEngine event(start, model, CollapseCriterion{});
+    EventEngine event(start, model, CollapseCriterion{});
     event.advance_to(300.0);
     const shockgas::MidRunState state = event.mid_run_state();
     shockgas::MidRunState nudged = state;
@@ -430,7 +430,7 @@ TEST(PassThroughEngine, NearlyParallelLinesCrossOnce) {
             EXPECT_EQ(engine.collisions(), 1u) << "relative speed " << relative_speed << ", paths "
                                                << static_cast<int>(paths);
         }
-        EventEngine reference(start, free_lines, CollapseCriterion{});
+        ReferenceEventEngine reference(start, free_lines, CollapseCriterion{});
         reference.advance_to(200.0);
         EXPECT_EQ(reference.collisions(), 1u) << "event engine, relative speed " << relative_speed;
     }
@@ -451,7 +451,7 @@ TEST(PassThroughEngine, CollidesAtTheStartTimeAsTheEventEngineDoes) {
     start.mass = {1.0, 1.0, 1.0};
     const CollisionModel model{0.5, 0.1, Subthreshold::elastic};
     PassThroughEngine engine(start, model);
-    EventEngine reference(start, model, CollapseCriterion{});
+    ReferenceEventEngine reference(start, model, CollapseCriterion{});
     engine.advance_to(0.0);
     reference.advance_to(0.0);
     EXPECT_EQ(engine.collisions(), 1u);
@@ -616,7 +616,7 @@ TEST(PassThroughEngine, CountsACrossingAtTheSampleTimeAsTheEventEngineDoes) {
                                  PassThroughEngine::Paths::kinetic_only}) {
             PassThroughEngine engine(c.start, model);
             engine.set_paths(paths);
-            EventEngine reference(c.start, model, CollapseCriterion{});
+            ReferenceEventEngine reference(c.start, model, CollapseCriterion{});
             HybridEngine hybrid(c.start, model, CollapseCriterion{}, nullptr, switch_at(0.5));
             for (const auto& [t, collisions] : c.expected) {
                 engine.advance_to(t);
@@ -640,7 +640,7 @@ TEST(HybridEngine, IsTheEventEngineBeforeTheSwitch) {
     const CollisionModel model{0.9, 0.01, Subthreshold::elastic};
     const auto times = log_times(0.1, 300.0, 6);
     for (const HybridSwitchRule& rule : {HybridSwitchRule::measured(), never_switch()}) {
-        FastEventEngine event(start, model, {});
+        EventEngine event(start, model, {});
         HybridEngine hybrid(start, model, {}, nullptr, rule);
         for (const double t : times) {
             event.advance_to(t);
@@ -660,7 +660,7 @@ TEST(HybridEngine, HandsOverTheWholeState) {
     const CollisionModel model{0.9, 0.01, Subthreshold::elastic};
     for (const double at : {0.5, 30.0, 200.0}) {
         const InitialCondition start = random_ring(2000, 3);
-        FastEventEngine event(start, model, {});
+        EventEngine event(start, model, {});
         HybridEngine hybrid(start, model, {}, nullptr, switch_at(at));
         event.advance_to(at);
         hybrid.advance_to(at);

@@ -1,4 +1,4 @@
-// The one PAV (shockgas/pav.hpp) on the open line: cases solved by hand, and
+// The one PAV (shockgas/model/pav.hpp) on the open line: cases solved by hand, and
 // agreement with the exact engine on the ring for clusters far from the seam.
 #include <cmath>
 #include <random>
@@ -7,9 +7,9 @@
 
 #include "../test_support.hpp"
 
-#include "shockgas/exact_engine.hpp"
-#include "shockgas/pav.hpp"
-#include "shockgas/state.hpp"
+#include "exact_engine.hpp"
+#include "shockgas/model/pav.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace {
 

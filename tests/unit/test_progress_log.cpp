@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/ensemble.hpp"
+#include "shockgas/cli/progress.hpp"
 
 namespace {
 

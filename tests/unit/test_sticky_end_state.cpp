@@ -13,9 +13,9 @@
 #include <gtest/gtest.h>
 
 #include "shockgas/analysis/fit.hpp"
-#include "shockgas/exact_engine.hpp"
-#include "shockgas/observables.hpp"
-#include "shockgas/state.hpp"
+#include "exact_engine.hpp"
+#include "shockgas/model/observables.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace {
 

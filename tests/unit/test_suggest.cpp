@@ -1,7 +1,7 @@
 // "Did you mean ...?" for misspelt options and config keys.
 #include <gtest/gtest.h>
 
-#include "shockgas/suggest.hpp"
+#include "shockgas/cli/suggest.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The far-tail sampler (shockgas/tail_sampler.hpp): the weighted-histogram
+// The far-tail sampler (shockgas/tail/tail_sampler.hpp): the weighted-histogram
 // combination on a law known in closed form down to 10^-30 and below, and the
 // tagged-cluster sampler against plain sampling where a histogram reaches.
 #include <atomic>
@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "shockgas/tail_sampler.hpp"
+#include "shockgas/tail/tail_sampler.hpp"
 
 namespace {
 

@@ -2,8 +2,8 @@
 // prints T at t = 10 (r = 0.9, delta = 1e-2, N = 1000, seed 1).
 #include <cstdio>
 
-#include "shockgas/engine.hpp"
-#include "shockgas/observables.hpp"
+#include "shockgas/engines/engine.hpp"
+#include "shockgas/model/observables.hpp"
 
 int main() {
     shockgas::SimulationParameters parameters;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "shockgas/analysis/shocks.hpp"
-#include "shockgas/burgers.hpp"
-#include "shockgas/state.hpp"
+#include "shockgas/analysis/burgers.hpp"
+#include "shockgas/model/state.hpp"
 
 namespace shockgas::analysis {
 

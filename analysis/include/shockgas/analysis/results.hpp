@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "shockgas/analysis/fit.hpp"
-#include "shockgas/h5.hpp"
-#include "shockgas/text_file.hpp"
+#include "shockgas/io/h5.hpp"
+#include "shockgas/io/text_file.hpp"
 
 namespace shockgas::analysis {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "shockgas/analysis/fit.hpp"
-#include "shockgas/ensemble.hpp"
+#include "shockgas/model/records.hpp"
 
 namespace shockgas::analysis {
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "shockgas/analysis/fit.hpp"
-#include "shockgas/ensemble.hpp"
-#include "shockgas/output.hpp"
-#include "shockgas/parameters.hpp"
+#include "shockgas/model/records.hpp"
+#include "shockgas/io/output.hpp"
+#include "shockgas/model/parameters.hpp"
 
 namespace shockgas::analysis {
 

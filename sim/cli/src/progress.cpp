@@ -1,0 +1,59 @@
+#include "shockgas/cli/progress.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+namespace shockgas {
+
+bool ProgressLog::due(const Progress& p) {
+    const int tenth = static_cast<int>(std::floor(10.0 * p.fraction_done));
+    const bool time_for_a_line = interval_seconds_ > 0.0 && p.elapsed_seconds - last_line_seconds_ >= interval_seconds_;
+    if (!time_for_a_line && tenth <= last_tenth_) return false;
+    last_line_seconds_ = p.elapsed_seconds;
+    last_tenth_ = std::max(last_tenth_, tenth);
+    return true;
+}
+
+std::string format_progress(const Progress& p) {
+    const std::string eta = p.eta_seconds < 0 ? "--" : fmt::format("{:.0f} s", p.eta_seconds);
+    return fmt::format("t = {:.4g}  realizations {}/{}  {:.1f}%  {:.3g} collisions/s  elapsed {:.0f} s  ETA {}",
+                       p.latest_time, p.realizations_done, p.realizations, 100.0 * p.fraction_done,
+                       p.collisions_per_second, p.elapsed_seconds, eta);
+}
+
+namespace cli {
+
+ProgressCallback progress_printer(const std::string& program, double log_interval_seconds) {
+    if (isatty(STDERR_FILENO) != 0)
+        return [](const Progress& status) {
+            fmt::print(stderr, "\r{:<110}", format_progress(status));
+            std::fflush(stderr);
+        };
+    auto log = std::make_shared<ProgressLog>(log_interval_seconds);
+    return [log, program](const Progress& status) {
+        if (!log->due(status)) return;
+        fmt::print(stderr, "{}: progress: {}\n", program, format_progress(status));
+        std::fflush(stderr);
+    };
+}
+
+std::function<void(const std::string&)> rank_note(const std::string& program, int rank, int ranks, bool terminal) {
+    return [program, rank, ranks, terminal](const std::string& text) {
+        const std::string line =
+            ranks > 1 ? fmt::format("{}[rank {}]: {}", program, rank, text) : fmt::format("{}: {}", program, text);
+        if (terminal)
+            fmt::print(stderr, "\r{:<110}\n", line);
+        else
+            fmt::print(stderr, "{}\n", line);
+    };
+}
+
+}  // namespace cli
+
+}  // namespace shockgas
