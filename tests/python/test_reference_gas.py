@@ -42,7 +42,6 @@ import time
 import traceback
 
 HERE = os.path.dirname(os.path.realpath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "python"))
 try:
     import numpy as np
 

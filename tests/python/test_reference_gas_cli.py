@@ -27,14 +27,12 @@ import subprocess
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 try:
     import h5py
     import numpy  # noqa: F401
 
-    sys.path.insert(0, sc.script("python"))
     import shockgas
 except ImportError as error:  # pragma: no cover
     print("SKIP: needs numpy and h5py (%s)" % error)

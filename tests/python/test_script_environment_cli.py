@@ -28,16 +28,13 @@ module missing, an output path that cannot be written.
 """
 import os
 import shutil
-import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 sc.require("h5py", "numpy", "scipy")
 
 WORK = sc.arguments(1)
-sys.path.insert(0, sc.script("python"))
 from shockgas import cli  # noqa: E402
 
 
@@ -209,9 +206,8 @@ class Checks(unittest.TestCase):
         self.assertEqual(cli.cannot_write("out.json", OSError(28, "No space left on device"), "--json"),
                          "cannot write --json 'out.json': No space left on device")
         self.assertEqual(cli.cannot_write("out", "it is a directory"), "cannot write 'out': it is a directory")
-        code = ("import sys; sys.path.insert(0, sys.argv[1]); from shockgas import cli; "
-                "cli.check_output_file(sys.argv[2], '--json', 'some_script.py')")
-        result = sc.run([sc.PYTHON, "-c", code, sc.script("python"), self.dir], cwd=WORK)
+        code = "import sys; from shockgas import cli; cli.check_output_file(sys.argv[1], '--json', 'some_script.py')"
+        result = sc.run([sc.PYTHON, "-c", code, self.dir], cwd=WORK)
         line = sc.one_line_error(self, result, "some_script.py")
         self.assertEqual(line, f"some_script.py: error: cannot write --json '{self.dir}': it is a directory")
 

@@ -30,7 +30,6 @@ import time
 import unittest
 from unittest import mock
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))
 try:
     import h5py  # only to damage copies of files (schema_version) for the refusal tests
     import numpy as np

@@ -56,19 +56,16 @@ import math
 import os
 import re
 import shutil
-import sys
 import unittest
 from unittest import mock
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 numpy, _ = sc.require("numpy", "scipy")
 
 WORK = sc.arguments(1)
 TOOL = sc.script("python", "sticky_pav.py")
 NAME = "sticky_pav.py"
-sys.path.insert(0, sc.script("python"))
 import exact_ballistic  # noqa: E402
 import sticky_pav  # noqa: E402
 
@@ -401,7 +398,6 @@ class InitFile(unittest.TestCase):
 
     def test_an_hdf5_init_file_is_the_same_start_as_its_text(self):
         try:
-            sys.path.insert(0, sc.script("python"))
             import shockgas
         except ImportError as error:  # h5py missing: this test alone cannot make its file
             self.skipTest("needs h5py to write an HDF5 init file (%s)" % error)
