@@ -87,8 +87,10 @@ class MissingModule(unittest.TestCase):
     def setUpClass(cls):
         cls.share = path("prefix", "share", "shockgas")
         shutil.rmtree(path("prefix"), ignore_errors=True)
+        # As cmake/Install.cmake lays them out: the scripts in tools/ with tools/shockgas_path.py.
         for folder, name in [("python", "refit_check.py"), ("python", "reference_gas.py"),
-                             ("tools", "reproduce-check"), ("tools", "fidelity_report.py")]:
+                             ("tools", "reproduce-check"), ("tools", "fidelity_report.py"),
+                             ("tools", "shockgas_path.py")]:
             os.makedirs(os.path.join(cls.share, folder), exist_ok=True)
             shutil.copy2(sc.script(folder, name), os.path.join(cls.share, folder, name))
         # Installed on this Python's own path (a .deb's /usr/lib/python3/dist-packages), the module
