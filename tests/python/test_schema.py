@@ -19,13 +19,14 @@ import sys
 
 SKIP = 77
 try:
+    import h5py  # noqa: F401  (shockgas's; imported here so that its absence is a skip)
     import numpy as np
-
-    import shockgas  # python/shockgas, on PYTHONPATH (set by ctest)
-    from shockgas.cli import ArgumentParser  # a bad option in one line, exit status 2
 except ImportError as error:  # pragma: no cover
     print("SKIP: test_schema.py needs h5py and numpy (%s); run with Debian's /usr/bin/python3" % error)
     sys.exit(SKIP)
+# python/shockgas from PYTHONPATH (ctest's): missing, the test fails rather than skips.
+import shockgas  # noqa: E402
+from shockgas.cli import ArgumentParser  # noqa: E402  (a bad option in one line, exit status 2)
 
 # Attribute kinds the readers rely on (analysis/, python/): strings are parsed as text, the rest as numbers.
 STRING_ATTRIBUTES = {"subthreshold", "sample_times", "snapshot_times", "histogram_times", "init_file",
