@@ -91,6 +91,9 @@ install(PROGRAMS "${PROJECT_SOURCE_DIR}/python/exact_ballistic.py" "${PROJECT_SO
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/shockgas-look" DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/fidelity_report.py" "${PROJECT_SOURCE_DIR}/tools/reproduce-check"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/tools COMPONENT runtime)
+# How those two find the module (beside them, as in the source tree).
+install(FILES "${PROJECT_SOURCE_DIR}/tools/shockgas_path.py" DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/tools
+        COMPONENT runtime)
 
 # The Python module `shockgas`, into the prefix's own module folder, chosen at
 # install time (the prefix can be changed by `cmake --install --prefix` and is

@@ -92,7 +92,6 @@ event is included), and the number of events by rule (inelastic, elastic, merge)
 """
 import decimal
 import math
-import os
 import sys
 
 COMPLETE, COLLAPSED, STOPPED = "complete", "collapsed", "stopped"
@@ -272,7 +271,6 @@ def log_grid(t_max, per_decade):
 
 def read_initial_condition(path):
     """(position, velocity, mass or None, ring_length) from a shockgas-sim --init file."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import shockgas  # the project's one HDF5 reader
     position, velocity, mass, ring_length = shockgas.read_initial_condition(path)
     # Plain floats: the decimal arithmetic (--digits) converts each exactly.

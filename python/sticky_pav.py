@@ -140,7 +140,6 @@ def read_initial(path, L=None):
                 raise ValueError("an HDF5 file: reading it needs h5py (Debian's python3-h5py)") from None
         h5py = None
     if h5py is not None and h5py.is_hdf5(path):
-        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
         import shockgas  # the project's one reader of --init files
         x, v, m, ring_length = shockgas.read_initial_condition(path)
         if L is not None and float(L) != ring_length:
@@ -419,7 +418,6 @@ def histogram_chi2(hist, theory):
 def write_histogram_comparison(ens, out_dir):
     """Write z and m histograms (mean +- counting error over the realizations) next to the exact
     bin-averaged theory; return chi^2 per time (histogram_chi2)."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import exact_ballistic as eb
     os.makedirs(out_dir, exist_ok=True)
     R = ens["realizations"]
@@ -581,7 +579,6 @@ def solve(args):
         for k, t in enumerate(ens["times"]):
             print("%g %.8e %.8e" % (t, ens["T"][:, k].mean(), ens["n"][:, k].mean()))
         return 0
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import exact_ballistic as eb
     const = eb.compute_constants(check_resolution=False)
     ratios = per_realization_ratios(ens, const["kappa"], const["nu"])

@@ -43,7 +43,6 @@ realizations may differ: they are what is compared, or only change the error bar
 sample times; different histogram times or bins; fewer than 2 realizations in either file (the
 standard error needs two).
 """
-import os
 import sys
 
 SCRIPT = "compare_engine_ensembles.py"
@@ -51,9 +50,9 @@ try:
     import numpy as np
     from scipy import stats
 
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
-    import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
-    from shockgas.cli import ArgumentParser, fail  # noqa: E402  (a user's mistake in one line, exit 2)
+    import shockgas_path  # noqa: F401  (python/ of this source tree on Python's path: tools/shockgas_path.py)
+    import shockgas  # python/shockgas of this source tree, else the installed module
+    from shockgas.cli import ArgumentParser, fail  # a user's mistake in one line, exit 2
 except ImportError as error:  # pragma: no cover - depends on the machine
     print(f"{SCRIPT}: error: {error.name or error} is missing (needs numpy, scipy and h5py): "
           f"run it with Debian's /usr/bin/python3", file=sys.stderr)

@@ -85,30 +85,13 @@ if "-h" in sys.argv[1:] or "--help" in sys.argv[1:]:  # before the imports: help
     print_help()
     sys.exit(0)
 
-# A python3 without numpy or h5py, or an installed copy (share/shockgas/tools) run where the module is
-# not on Python's path (installed at another prefix): one line naming what is missing, exit status 2.
-try:
-    import h5py  # noqa: F401  (the shockgas module's; imported here to be named when missing)
-    import numpy  # noqa: F401
-except ImportError as error:  # pragma: no cover - depends on the machine
-    print(f"fidelity_report.py: error: {error.name or error} is missing (needs numpy and h5py): run it with "
-          f"Debian's /usr/bin/python3 (python3-numpy, python3-h5py)", file=sys.stderr)
-    sys.exit(2)
-try:
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python"))
-    import shockgas  # noqa: E402  (python/shockgas of this source tree, else the installed module)
-    # A user's mistake: one line on stderr, exit 2 (exit 1 is --check-readme's stale rows).
-    from shockgas.cli import fail  # noqa: E402
-except ImportError as error:
-    if error.name == "shockgas":
-        why = (f"the Python module shockgas is missing (not in ../python beside this script, nor on Python's "
-               f"path): set PYTHONPATH to the folder `cmake --install` put it in (such as <prefix>/lib/python"
-               f"{sys.version_info[0]}.{sys.version_info[1]}/site-packages; docs/python.md), or run the source "
-               f"tree's tools/fidelity_report.py")
-    else:
-        why = f"the Python module shockgas does not import ({error}): another version of it on Python's path?"
-    print(f"fidelity_report.py: error: {why}", file=sys.stderr)
-    sys.exit(2)
+import shockgas_path  # noqa: E402  (python/ of this source tree on Python's path: tools/shockgas_path.py)
+
+# numpy, h5py or the module missing: one line naming it, exit status 2.
+shockgas_path.require("fidelity_report.py")
+import shockgas  # noqa: E402
+# A user's mistake: one line on stderr, exit 2 (exit 1 is --check-readme's stale rows).
+from shockgas.cli import fail  # noqa: E402
 
 check_readme = None
 argv = sys.argv[1:]

@@ -10,15 +10,13 @@ first order, which bounds the true shift from above) and the measured Phi over t
 docs/far-tail.md were read off with it. Exit code 2 with one line on a file it cannot read.
 """
 import argparse
-import os
 import sys
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "python"))
-import exact_ballistic as eb  # noqa: E402
-import shockgas  # noqa: E402
+import shockgas_path  # noqa: F401  (python/ of this source tree on Python's path: tools/shockgas_path.py)
+import exact_ballistic as eb
+import shockgas
 
 
 def rows(tail, zs):

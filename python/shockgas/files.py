@@ -26,7 +26,7 @@ import os
 import h5py
 import numpy as np
 
-from ._h5 import Group, decode, decode_attributes, open_file, read_group
+from ._h5 import Group, decode, decode_attributes, open_file, read_dataset, read_group
 from .cli import atomic_output_path
 from .schema import SchemaError, check_schema_version
 
@@ -342,6 +342,10 @@ def _refuse_to_replace(path, overwrite):
         raise FileExistsError(errno.EEXIST, "exists; pass overwrite=True to replace it", path)
 
 
+# Values per chunk of a dataset, at most: sim/src/h5.cpp's max_chunk_elements (8 MiB of doubles).
+_MAX_CHUNK_VALUES = 1 << 20
+
+
 def write_initial_condition(path, position, velocity, mass=None, ring_length=None, overwrite=False):
     """Writes a start for `shockgas-sim --init FILE` (docs/cli-and-output.md): N >= 2 non-decreasing
     finite positions in [0, L), N finite velocities, optional masses (> 0, default 1), ring length L
@@ -361,12 +365,16 @@ def write_initial_condition(path, position, velocity, mass=None, ring_length=Non
     if not os.path.isdir(directory):
         raise FileNotFoundError(errno.ENOENT, f"no directory {directory} to write it in", path)
     with atomic_output_path(path, replace=overwrite) as temporary:  # never replaces when not asked
-        with h5py.File(temporary, "w") as handle:
+        # As shockgas-sim writes every file (sim/src/h5.cpp): the HDF5 1.10 format, whose metadata carry
+        # checksums, and each dataset chunked (at most 2^20 values a chunk) with the Fletcher32 checksum,
+        # which HDF5 checks whenever the data are read; no object times, so the same start gives the
+        # same bytes.
+        with h5py.File(temporary, "w", libver=("v110", "v110")) as handle:
             handle.attrs["ring_length"] = ring_length
-            handle["position"] = position
-            handle["velocity"] = velocity
-            if mass is not None:
-                handle["mass"] = mass
+            for name, values in (("position", position), ("velocity", velocity), ("mass", mass)):
+                if values is not None:
+                    handle.create_dataset(name, data=values, chunks=(min(len(values), _MAX_CHUNK_VALUES),),
+                                          fletcher32=True, track_times=False)
         _refuse_to_replace(path, overwrite)  # again: something may have appeared meanwhile
 
 
@@ -389,7 +397,7 @@ def _initial_item(handle, name):
         raise ValueError(f"{name} is a dataset {shape}; it must be one-dimensional (N numbers)")
     if item.dtype.kind not in "iuf":
         raise ValueError(f"{name} holds {item.dtype} values, not numbers")
-    return np.asarray(item[()], dtype=float)
+    return np.asarray(read_dataset(handle.file.filename, item), dtype=float)  # a failed checksum: DamagedFile
 
 
 def read_initial_condition(path):

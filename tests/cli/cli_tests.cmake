@@ -363,7 +363,7 @@ if(SHOCKGAS_PYTHON)
   add_test(NAME cli.progress_report
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress_report_test.sh ${_sim} ${SHOCKGAS_PYTHON}
                    ${PROJECT_SOURCE_DIR}/tools/fidelity_report.py "${_cli_dir}/progress_report")
-  set_tests_properties(cli.progress_report PROPERTIES LABELS cli TIMEOUT 120)
+  set_tests_properties(cli.progress_report PROPERTIES LABELS cli TIMEOUT 120 ENVIRONMENT "${SHOCKGAS_TEST_PYTHONPATH}")
   # A provisional Fig. 4 from the finished parts of a paper build (tools/provisional-fig4); with r = 0.5
   # left out, r = 0.9's points under r = 0.9's label (the legend read back from an SVG of the same plot).
   add_test(NAME cli.provisional_fig4
@@ -391,7 +391,7 @@ foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries l
   # 300 s as the other fault tests: hangup and resume_other_build make three N = 20 000 runs, which
   # the sanitizer build took 81 s and 95 s for on their own, and over 120 s each beside other tests
   # on 2 cores (fresh-clone .ci/run, 2026-11-27); a hang still ends in a timeout.
-  set_tests_properties(cli.faults.${_case} PROPERTIES LABELS cli TIMEOUT 300)
+  set_tests_properties(cli.faults.${_case} PROPERTIES LABELS cli TIMEOUT 300 ENVIRONMENT "${SHOCKGAS_TEST_PYTHONPATH}")
 endforeach()
 if(NOT SHOCKGAS_PYTHON)  # these compare outputs (and resume_other_build and resume_complete_output edit files) with Python
   set_tests_properties(cli.faults.file_size_checkpoint cli.faults.hangup cli.faults.resume_other_build

@@ -29,8 +29,8 @@
 set -u
 case_name=$1 sim=$2 dir=$3 python=${4:-} same=${5:-}
 source "$(dirname "$0")/checkpoint_helpers.sh"
-# python/shockgas of this source tree reads outputs' attributes (resume_complete_output).
-export PYTHONPATH="$(cd "$(dirname "$0")/../../python" && pwd)${PYTHONPATH:+:$PYTHONPATH}"
+# python/shockgas of this source tree reads outputs' attributes (resume_complete_output): on
+# PYTHONPATH, set by ctest.
 mkdir -p "$dir/$case_name"
 cd "$dir/$case_name" || exit 1
 rm -rf ./*

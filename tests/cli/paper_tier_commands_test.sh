@@ -9,7 +9,7 @@
 #  2. Make takes outputs put in place by such commands as made: with r = 0.5's 20 parts present, the rule
 #     of r0.5.h5 merges them and runs no simulation; with them absent it runs them (the control).
 #  3. One command run for real: fig3's (CI_BUILD's quick tree, built by the figures fixture), its output
-#     moved to WORK_DIR, equals the pipeline's own file bit for bit (tests/compare_outputs.py; the
+#     moved to WORK_DIR, equals the pipeline's own file bit for bit (shockgas.compare.identical_runs; the
 #     version attribute aside, see below).
 set -u
 tool=$1 python=$2 source=$3 ci_build=$4 work=$5
@@ -86,11 +86,10 @@ bash -c "$command" || fail "the command failed: $command"
 # Bit for bit but for `version`: the pipeline reruns a run only when the simulator's sources change (its
 # stamp), so a tree rebuilt at a later commit keeps files that name the commit they were made at. The
 # simulator_sha256 attribute, which hashes those sources, is compared with everything else.
-"$python" - "$source/tests" "$fig3/worldlines.h5" "$work/fig3/worldlines.h5" <<'EOF' ||
+"$python" - "$fig3/worldlines.h5" "$work/fig3/worldlines.h5" <<'EOF' ||
 import sys
-sys.path.insert(0, sys.argv[1])
-from compare_outputs import compare
-problems, datasets = compare(sys.argv[2], sys.argv[3], None)
+from shockgas.compare import identical_runs
+problems, datasets = identical_runs(sys.argv[1], sys.argv[2])
 problems = [p for p in problems if not p.startswith("attribute version of / differs")]
 for problem in problems:
     print(f"FAIL: {problem}")

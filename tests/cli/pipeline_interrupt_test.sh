@@ -18,8 +18,7 @@ build=$1 target=$2 out=$3 python=$4
 staged="${out%.h5}.running.h5"
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-# python/shockgas of this source tree reads the file's status.
-export PYTHONPATH="$(cd "$(dirname "$0")/../../python" && pwd)${PYTHONPATH:+:$PYTHONPATH}"
+# python/shockgas of this source tree reads the file's status: on PYTHONPATH, set by ctest.
 status_of() { "$python" -c 'import shockgas, sys; print(shockgas.attributes(sys.argv[1])["status"])' "$1"; }
 
 running="--output ${out%.h5}"  # the run's shockgas-sim, whatever name it writes

@@ -64,11 +64,11 @@ grep -q "version other-run" report.md && fail "the checkpoint of another run is 
 grep -q '^| \*\*all\*\* | | | | \*\*1400\*\* | | \*\*18600\*\*' report.md || fail "the totals: $(grep '^| \*\*all' report.md)"
 # Once the sampler has written tail.h5, its row is done with that file's CPU seconds.
 mkdir -p "$work/paper_targets/paper/fig_tail" &&
-  "$python" -c 'import sys, h5py; sys.path.insert(0, sys.argv[2]); import shockgas.schema
+  "$python" -c 'import sys, h5py; import shockgas.schema
 with h5py.File(sys.argv[1], "w") as f:
     f.attrs.update({"program": "shockgas-tail", "schema_version": max(shockgas.schema.SCHEMA_VERSIONS),
-                    "cpu_seconds": 2029.0, "chains": 4})' "$work/paper_targets/paper/fig_tail/tail.h5" \
-    "$here/../../python" || fail "could not write tail.h5"
+                    "cpu_seconds": 2029.0, "chains": 4})' "$work/paper_targets/paper/fig_tail/tail.h5" ||
+  fail "could not write tail.h5"
 "$python" "$report" "$work" paper --progress >report2.md || fail "the second report failed: $(cat report2.md)"
 grep -q '^| fig_tail | tail (shockgas-tail) | 1/1 | 4 chains | 2029 | — | — |$' report2.md ||
   fail "fig_tail done: $(grep fig_tail report2.md)"

@@ -63,6 +63,13 @@ print(repr(float(run.temperature[0, k])))' "$prefix") || fail "reading run.h5 wi
 echo "shockgas-sim, read by the installed module: T(10) = $python_T"
 "$python" -c 'import sys; a, b = map(float, sys.argv[1:]); sys.exit(0 if a == b and 0 < a < 1 / 3 else 1)' \
   "$consumer_T" "$python_T" || fail "the library's T ($consumer_T) is not the program's ($python_T), or not in (0, 1/3)"
+# The installed reproduce-check (share/shockgas/tools, with shockgas_path.py beside it) runs on the
+# installed module's shockgas.archive and shockgas.compare: an archive that is not there is its one line.
+status=0
+line=$(cd "$outside" && PYTHONPATH="$module_dir" "$python" -s "$prefix/share/shockgas/tools/reproduce-check" \
+  no-such-archive.tar.gz 2>&1) || status=$?
+[ "$status" = 2 ] && [ "$line" = "reproduce-check: error: no-such-archive.tar.gz: no such file" ] ||
+  fail "the installed reproduce-check (exit $status): $line"
 
 # 4. The figures from the installed copy: Fig. 3 (a run of < 1 s and gnuplot).
 cmake -S "$prefix/share/shockgas" -B figures -DSHOCKGAS_PYTHON="$python" >figures.log 2>&1 \

@@ -102,8 +102,7 @@ interrupted)
   wait "$launcher" && fail "the interrupted job reported success"
   cat interrupted.stderr
   [ -s interrupted.h5 ] || fail "no output file after the interrupt"
-  status=$(PYTHONPATH="$here/../../python" "$python" -c \
-           'import shockgas, sys; print(shockgas.attributes(sys.argv[1])["status"])' interrupted.h5)
+  status=$("$python" -c 'import shockgas, sys; print(shockgas.attributes(sys.argv[1])["status"])' interrupted.h5)
   [ "$status" = interrupted ] || fail "the file's status is '$status', not interrupted"
   ;;
 failing_run)

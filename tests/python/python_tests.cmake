@@ -6,8 +6,10 @@ if(NOT SHOCKGAS_PYTHON)
 endif()
 set(_py_work "${CMAKE_CURRENT_BINARY_DIR}/work/python")
 file(MAKE_DIRECTORY "${_py_work}")
+# Every test below gets python/ on Python's path from ctest (SHOCKGAS_TEST_PYTHONPATH, at the end).
+get_property(_tests_before_python DIRECTORY PROPERTY TESTS)
 
-add_test(NAME python.exact_ballistic COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/test_exact_ballistic.py
+add_test(NAME python.exact_ballistic COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_exact_ballistic.py
          WORKING_DIRECTORY "${_py_work}")
 set_tests_properties(python.exact_ballistic PROPERTIES LABELS python TIMEOUT 600 SKIP_RETURN_CODE 77)
 
@@ -26,7 +28,7 @@ add_test(NAME python.refit_check COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR
                  "${_py_work}/decay.h5" --tolerance 1e-6 WORKING_DIRECTORY "${_py_work}")
 set_tests_properties(python.refit_check PROPERTIES FIXTURES_REQUIRED "python_run;python_decay" LABELS python
                      TIMEOUT 120 SKIP_RETURN_CODE 77)
-add_test(NAME python.schema COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/test_schema.py
+add_test(NAME python.schema COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_schema.py
                  "${_py_work}/small.h5" --doc ${PROJECT_SOURCE_DIR}/docs/cli-and-output.md WORKING_DIRECTORY "${_py_work}")
 set_tests_properties(python.schema PROPERTIES FIXTURES_REQUIRED python_run LABELS python TIMEOUT 60
                      SKIP_RETURN_CODE 77)
@@ -137,3 +139,7 @@ set_tests_properties(python.script_environment PROPERTIES LABELS python TIMEOUT 
 add_test(NAME python.atomic_output
          COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/python/test_atomic_output.py "${_py_work}/atomic_output")
 set_tests_properties(python.atomic_output PROPERTIES LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+
+get_property(_python_tests DIRECTORY PROPERTY TESTS)
+list(REMOVE_ITEM _python_tests ${_tests_before_python})
+set_property(TEST ${_python_tests} APPEND PROPERTY ENVIRONMENT "${SHOCKGAS_TEST_PYTHONPATH}")

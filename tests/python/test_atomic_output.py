@@ -33,17 +33,14 @@ import resource
 import shutil
 import stat
 import subprocess
-import sys
 import unittest
 from unittest import mock
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 numpy, h5py = sc.require("numpy", "h5py")
 
 WORK = sc.arguments(1)
-sys.path.insert(0, sc.script("python"))
 import exact_ballistic  # noqa: E402
 import sticky_pav  # noqa: E402
 import shockgas  # noqa: E402

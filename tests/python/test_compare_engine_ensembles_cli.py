@@ -23,11 +23,9 @@ skipped in silence. Now:
 import os
 import re
 import shutil
-import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 # h5py only to alter copies of runs (a time grid, a histogram group) on purpose
 h5py, *_ = sc.require("h5py", "numpy", "scipy")

@@ -18,11 +18,9 @@ that one and reported a C++-versus-scipy mismatch that was its own. Here:
 """
 import os
 import shutil
-import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 sc.require("h5py", "numpy", "scipy")
 

@@ -34,15 +34,12 @@ import json
 import os
 import shutil
 import subprocess
-import sys
 import tarfile
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 h5py, _ = sc.require("h5py", "numpy")
-sys.path.insert(0, sc.script("python"))
 import shockgas.schema  # noqa: E402
 
 WORK = sc.arguments(1)

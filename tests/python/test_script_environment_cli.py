@@ -28,16 +28,13 @@ module missing, an output path that cannot be written.
 """
 import os
 import shutil
-import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 sc.require("h5py", "numpy", "scipy")
 
 WORK = sc.arguments(1)
-sys.path.insert(0, sc.script("python"))
 from shockgas import cli  # noqa: E402
 
 
@@ -90,8 +87,10 @@ class MissingModule(unittest.TestCase):
     def setUpClass(cls):
         cls.share = path("prefix", "share", "shockgas")
         shutil.rmtree(path("prefix"), ignore_errors=True)
+        # As cmake/Install.cmake lays them out: the scripts in tools/ with tools/shockgas_path.py.
         for folder, name in [("python", "refit_check.py"), ("python", "reference_gas.py"),
-                             ("tools", "reproduce-check"), ("tools", "fidelity_report.py")]:
+                             ("tools", "reproduce-check"), ("tools", "fidelity_report.py"),
+                             ("tools", "shockgas_path.py")]:
             os.makedirs(os.path.join(cls.share, folder), exist_ok=True)
             shutil.copy2(sc.script(folder, name), os.path.join(cls.share, folder, name))
         # Installed on this Python's own path (a .deb's /usr/lib/python3/dist-packages), the module
@@ -209,9 +208,8 @@ class Checks(unittest.TestCase):
         self.assertEqual(cli.cannot_write("out.json", OSError(28, "No space left on device"), "--json"),
                          "cannot write --json 'out.json': No space left on device")
         self.assertEqual(cli.cannot_write("out", "it is a directory"), "cannot write 'out': it is a directory")
-        code = ("import sys; sys.path.insert(0, sys.argv[1]); from shockgas import cli; "
-                "cli.check_output_file(sys.argv[2], '--json', 'some_script.py')")
-        result = sc.run([sc.PYTHON, "-c", code, sc.script("python"), self.dir], cwd=WORK)
+        code = "import sys; from shockgas import cli; cli.check_output_file(sys.argv[1], '--json', 'some_script.py')"
+        result = sc.run([sc.PYTHON, "-c", code, self.dir], cwd=WORK)
         line = sc.one_line_error(self, result, "some_script.py")
         self.assertEqual(line, f"some_script.py: error: cannot write --json '{self.dir}': it is a directory")
 

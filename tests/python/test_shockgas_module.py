@@ -16,7 +16,9 @@ Each kind of file is made here with small runs (about 2 s of CPU in all) and rea
   * an initial condition written by write_initial_condition is run by shockgas-sim --init (and refused by crossover); what
     shockgas-sim's init reader refuses is refused when written (ValueError, no file left); an
     existing file is replaced only with overwrite=True, a shockgas run or results never; a write
-    that fails leaves neither the destination nor a temporary;
+    that fails leaves neither the destination nor a temporary; it carries the programs' checksums
+    (Fletcher32 on every dataset, the 1.10 superblock), so that a byte changed in its data is refused
+    as damaged by read_initial_condition and shockgas-sim --init (it was read and run as another start);
   * a path that does not exist raises FileNotFoundError saying so, not DamagedFile ("damaged,
     truncated or not HDF5");
   * unknown or missing schema_version, and the wrong reader for a kind, are refused by name.
@@ -30,15 +32,14 @@ import time
 import unittest
 from unittest import mock
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "python"))
 try:
     import h5py  # only to damage copies of files (schema_version) for the refusal tests
     import numpy as np
-
-    import shockgas
 except ImportError as error:  # pragma: no cover
     print("SKIP: needs numpy and h5py (%s)" % error)
     sys.exit(77)
+# python/shockgas from PYTHONPATH (ctest's): missing, the test fails rather than skips.
+import shockgas  # noqa: E402
 
 SIM, MERGE, ANALYZE, DRIFT, TAIL, WORK = sys.argv[1:7]
 del sys.argv[1:7]
@@ -254,6 +255,36 @@ class OtherKinds(unittest.TestCase):
         self.assertEqual(refused.returncode, 2, refused.stderr)
         self.assertIn("starts from the initial-condition file", refused.stderr)
         self.assertFalse(os.path.exists(path("init_crossover.h5")))
+
+    def test_initial_condition_carries_checksums(self):
+        # As every file shockgas-sim writes (sim/src/h5.cpp): the HDF5 1.10 format, whose metadata
+        # carry checksums, and every dataset chunked with Fletcher32. A byte changed in the data is
+        # then refused by both readers, named damaged, never read as another start.
+        n = 40
+        position, velocity, mass = np.arange(n) * 0.5 + 0.125, np.linspace(-1, 1, n), np.linspace(1, 2, n)
+        start = path("checksummed_start.h5")
+        shockgas.write_initial_condition(start, position, velocity, mass=mass, ring_length=0.5 * n, overwrite=True)
+        with shockgas.open_file(start, check_schema=False) as handle:
+            for name in ("position", "velocity", "mass"):
+                self.assertTrue(handle[name].fletcher32, f"{name}: no Fletcher32 checksum")
+        with open(start, "rb") as handle, open(path("whole.h5"), "rb") as run_file:
+            superblock_version = handle.read(9)[8]
+            self.assertEqual(superblock_version, run_file.read(9)[8], "not the superblock shockgas-sim writes")
+        with open(start, "rb") as handle:
+            raw = bytearray(handle.read())
+        where = raw.find(position.tobytes())
+        self.assertGreater(where, 0)
+        raw[where + 8 * 3] ^= 0x01  # the last bit of position[3]'s mantissa
+        damaged = path("damaged_start.h5")
+        with open(damaged, "wb") as handle:
+            handle.write(raw)
+        with self.assertRaisesRegex(shockgas.DamagedFile, "position"):
+            shockgas.read_initial_condition(damaged)
+        refused = subprocess.run([SIM, "--init", damaged, "-t", "1", "-q", "-o", path("never.h5")], cwd=WORK,
+                                 capture_output=True, text=True)
+        self.assertEqual(refused.returncode, 2, refused.stderr)
+        self.assertIn("damaged", refused.stderr)
+        self.assertFalse(os.path.exists(path("never.h5")))
 
     def leftovers(self):
         return sorted(name for name in os.listdir(WORK) if ".tmp." in name)

@@ -11,18 +11,15 @@ python; about 25 s of CPU, most of it the exact Phi's quadrature).
 """
 import math
 import os
-import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import script_checks as sc  # noqa: E402
+import script_checks as sc
 
 sc.require("h5py", "numpy", "scipy")
 
 TAIL, WORK = sc.arguments(2)
 TOOL = sc.script("tools", "tail_against_exact.py")
 NAME = "tail_against_exact.py"
-sys.path.insert(0, sc.script("python"))
 import exact_ballistic as eb  # noqa: E402
 
 

@@ -2,7 +2,7 @@
 """Schema drift check: a shockgas-sim output against the "Output files" section of
 docs/cli-and-output.md, and the Python module shockgas against both.
 
-    /usr/bin/python3 python/test_schema.py RUN.h5 [--doc docs/cli-and-output.md]
+    PYTHONPATH=python /usr/bin/python3 tests/python/test_schema.py RUN.h5 [--doc docs/cli-and-output.md]
 
 The names come from the documentation itself (every `backticked` name in the "Root attributes" list
 and every row of the datasets table), so the test fails when the C++ writer, the documentation, or
@@ -19,13 +19,14 @@ import sys
 
 SKIP = 77
 try:
+    import h5py  # noqa: F401  (shockgas's; imported here so that its absence is a skip)
     import numpy as np
-
-    import shockgas  # python/shockgas: this script's folder
-    from shockgas.cli import ArgumentParser  # a bad option in one line, exit status 2
 except ImportError as error:  # pragma: no cover
     print("SKIP: test_schema.py needs h5py and numpy (%s); run with Debian's /usr/bin/python3" % error)
     sys.exit(SKIP)
+# python/shockgas from PYTHONPATH (ctest's): missing, the test fails rather than skips.
+import shockgas  # noqa: E402
+from shockgas.cli import ArgumentParser  # noqa: E402  (a bad option in one line, exit status 2)
 
 # Attribute kinds the readers rely on (analysis/, python/): strings are parsed as text, the rest as numbers.
 STRING_ATTRIBUTES = {"subthreshold", "sample_times", "snapshot_times", "histogram_times", "init_file",
@@ -59,7 +60,7 @@ def expand(path):
 def main(argv=None):
     ap = ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("run")
-    ap.add_argument("--doc", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "docs",
+    ap.add_argument("--doc", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs",
                                                   "cli-and-output.md"))
     args = ap.parse_args(argv)
     attributes, rows = documented_schema(args.doc)

@@ -1,12 +1,10 @@
 #!/usr/bin/python3
-"""Unit test of reproduce-check's HDF5 comparison rules on synthetic results files
-(label archive): same toolchain -> bit-identical required; another compiler ->
-numbers X with X_sigma must agree within k sqrt(sigma_a^2 + sigma_b^2); date, host
-and timings are never compared, in HDF5 attributes, gnuplot variable dumps and data
-columns alike; a figure without a run parameter file is packed with its rule."""
+"""Unit test of reproduce-check's HDF5 comparison rules (shockgas.compare, shockgas.archive) on
+synthetic results files (label archive): same toolchain -> bit-identical required; another compiler
+-> numbers X with X_sigma must agree within k sqrt(sigma_a^2 + sigma_b^2); date, host and timings
+are never compared, in HDF5 attributes, gnuplot variable dumps and data columns alike; a figure
+without a run parameter file is packed with its rule."""
 import argparse
-import importlib.machinery
-import importlib.util
 import json
 import os
 import sys
@@ -15,11 +13,7 @@ import tempfile
 
 import h5py
 
-here = os.path.dirname(os.path.abspath(__file__))
-loader = importlib.machinery.SourceFileLoader("reproduce_check", os.path.join(here, "..", "..", "tools", "reproduce-check"))
-spec = importlib.util.spec_from_loader("reproduce_check", loader)
-rc = importlib.util.module_from_spec(spec)
-loader.exec_module(rc)
+from shockgas import archive, compare  # tools/reproduce-check's work (python/ on PYTHONPATH, set by ctest)
 
 work = tempfile.mkdtemp(prefix="archive-compare-")
 failures = []
@@ -43,12 +37,12 @@ def results_file(name, exponent, sigma, compiler="GNU 12.2.0", date="2026-01-01T
     return path
 
 
-old = rc.PathNormalizer("/old/build", "/old/src")
-new = rc.PathNormalizer("/new/build", "/new/src")
+old = compare.PathNormalizer("/old/build", "/old/src")
+new = compare.PathNormalizer("/new/build", "/new/src")
 
 
 def expect(label, a, b, exact, differences):
-    got_exact, got, _ = rc.compare_h5(a, b, old, new, 3.0)
+    got_exact, got, _ = compare.compare_h5(a, b, old, new, 3.0)
     if got_exact != exact or len(got) != differences:
         failures.append(f"{label}: exact={got_exact} differences={got}")
     print(f"{label}: exact={got_exact}, {len(got)} difference(s) {got}")
@@ -94,7 +88,7 @@ def text_file(name, text):
 
 
 def expect_bytes(label, a, b, same):
-    why = rc.compare_bytes(a, b, "data", old, new)
+    why = compare.compare_bytes(a, b, "data", old, new)
     if (why is None) != same:
         failures.append(f"{label}: {why}")
     print(f"{label}: {'identical' if why is None else why}")
@@ -133,7 +127,7 @@ with h5py.File(os.path.join(build, "paper_targets", "quick", "fig_tail", "tail.h
     f.attrs["schema_version"] = 1
 for extension in ("png", "pdf"):
     text_file(os.path.join("build", "figures", "quick", f"fig_tail.{extension}"), "figure\n")
-packed = rc.pack(argparse.Namespace(output_dir=work, build_dir=build, source_dir=source, figures="fig_tail",
+packed = archive.pack(argparse.Namespace(output_dir=work, build_dir=build, source_dir=source, figures="fig_tail",
                                     fidelity="quick", max_raw_mb=50.0, suffix="", toolchain=[]))
 archives = [n for n in os.listdir(work) if n.endswith(".tar.gz")]
 if packed != 0 or len(archives) != 1:

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Checks of python/exact_ballistic.py and python/sticky_pav.py (plain asserts, no pytest).
 
-    /usr/bin/python3 python/test_exact_ballistic.py        (about 30 s on one core)
+    PYTHONPATH=python /usr/bin/python3 tests/python/test_exact_ballistic.py     (about 30 s on one core)
+
+(ctest python.exact_ballistic sets PYTHONPATH to python/ itself.)
 
 Exit code 0 only if every check passes; prints '<P> passed, <F> failed' at the end.
 """
@@ -12,9 +14,8 @@ import traceback
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import exact_ballistic as eb   # noqa: E402
-import sticky_pav as sp        # noqa: E402
+import exact_ballistic as eb
+import sticky_pav as sp
 
 RESULTS = []
 
