@@ -184,6 +184,8 @@ void run_decay(const AnalysisInvocation& invocation, const std::string& input, c
                         : "";
     if (windows.empty() && options.scan_required) throw InputError(fmt::format("{}, in '{}'", no_scan, input));
     const Measured systematic = window_systematic(history, fit.t_lo, fit.t_hi);
+    const std::string window_note = short_window_note(fit.t_lo, fit.t_hi, manual, history.time.back(), run.particles,
+                                                      run.velocity_threshold, options.rule);
     ResultsFile results(output, invocation, {input});
     auto group = results.section("decay");
     group.set_attribute("exponent", fit.exponent);
@@ -196,6 +198,7 @@ void run_decay(const AnalysisInvocation& invocation, const std::string& input, c
     group.set_attribute("t_hi", fit.t_hi);
     group.set_attribute("points", static_cast<std::int64_t>(fit.points));
     group.set_attribute("window_rule", manual ? "manual" : "automatic");
+    if (!window_note.empty()) group.set_attribute("window_note", window_note);
     std::vector<double> centre, exponent, sigma;
     for (const auto& w : windows) {
         centre.push_back(std::sqrt(w.t_lo * w.t_hi));
@@ -234,6 +237,7 @@ void run_decay(const AnalysisInvocation& invocation, const std::string& input, c
                format_measured({fit.exponent_sigma, fit.exponent_sigma_note}, "{:.4f}", "jackknife"),
                format_measured(systematic, "{:.4f}", "window"), format_measured({fit.chi2_per_dof, fit.fit_note}, "{:.2f}"),
                fit.t_lo, fit.t_hi, fit.points);
+    if (!window_note.empty()) fmt::print("note: {}\n", window_note);
 }
 
 void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,

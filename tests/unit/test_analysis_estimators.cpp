@@ -256,6 +256,31 @@ TEST(AnalysisDecay, WindowRuleAndScan) {
     for (const auto& w : scan) EXPECT_NEAR(w.exponent, 2.0 / 3.0, 5.0 * w.exponent_sigma);
 }
 
+// A window under a decade says so, and names what gives one: the bounds of the automatic window
+// (t_max, 0.01 N^3/2, delta^-3) that stop short of 10 t_lo, or --t-hi for a chosen window.
+TEST(AnalysisDecay, WindowUnderADecadeSaysWhatGivesOne) {
+    const auto has = [](const std::string& note, const std::string& part) {
+        EXPECT_NE(note.find(part), std::string::npos) << note;
+    };
+    constexpr double t_lo = 316.227766;  // r = 0.8: 10 eps^-3/2
+    // A decade or more: nothing to say.
+    EXPECT_EQ(sa::short_window_note(t_lo, 10.0 * t_lo, false, 1e4, 1e4, 1e-2), "");
+    EXPECT_EQ(sa::short_window_note(100.0, 1000.0, true, 1000.0, 1e4, 1e-2), "");
+    // The run: N = 10^4, delta = 10^-2, t_max = 1000; only t_max closes it.
+    const std::string by_t_max = sa::short_window_note(t_lo, 1000.0, false, 1000.0, 1e4, 1e-2);
+    has(by_t_max, "the fit window spans 0.50 decades, under one");
+    has(by_t_max, "a run with t_max >= 3200 would give the automatic window a decade");
+    EXPECT_EQ(by_t_max.find("N >="), std::string::npos) << by_t_max;
+    EXPECT_EQ(by_t_max.find('\n'), std::string::npos) << "one line: " << by_t_max;
+    // 0.01 N^3/2 = 894 at N = 2000 and delta^-3 = 1000 at delta = 0.1: N >= 4700 and delta <= 0.068.
+    const std::string by_all = sa::short_window_note(t_lo, 894.4, false, 1000.0, 2000.0, 0.1);
+    has(by_all, "t_max >= 3200 and N >= 4700 and delta <= 0.068 would give");
+    // A chosen window: --t-hi where the run reaches 10 t_lo, else a longer run.
+    has(sa::short_window_note(100.0, 500.0, true, 1000.0, 1e4, 1e-2), "--t-hi 1000 would give a decade");
+    has(sa::short_window_note(200.0, 1000.0, true, 1000.0, 1e4, 1e-2),
+        "a decade from --t-lo 200 needs a run to t_max >= 2000");
+}
+
 namespace {
 
 // Pure Haff cooling, Eq. (2): T = T0 / (1 + a t)^2 with T0 = 1/3 (its samples
