@@ -163,6 +163,11 @@ if(GNUPLOT_EXECUTABLE)
   set_tests_properties(cli.analyze.plots_without_fits PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases
                        TIMEOUT 60 PASS_REGULAR_EXPRESSION "fig_collapse and fig_crossovers drawn where their fits are n/a"
                        FAIL_REGULAR_EXPRESSION "FAIL|undefined")
+  # ...and what the figures' keys and titles say (fig4, fig4_sticky, fig_tail, shockgas-look), read from SVG.
+  add_test(NAME cli.figure_keys
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/figure_keys_test.sh ${_analyze_program}
+                   $<TARGET_FILE:shockgas-dump> ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR} "${_analyze_dir}")
+  set_tests_properties(cli.figure_keys PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 120)
 endif()
 
 # 7. --hazard: refused where it cannot be written, written for one N.
