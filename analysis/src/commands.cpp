@@ -459,9 +459,11 @@ void run_shocks(const AnalysisInvocation& invocation, const std::string& input, 
         set_estimate(group, "density_corrected_slope_times_t", summary.density_corrected_slope_times_t);
         group.set_attribute("segments", static_cast<std::int64_t>(summary.segments));
         group.set_attribute("dense_segments", static_cast<std::int64_t>(summary.dense_segments));
-        fmt::print("t {:g}: shocks {} (N t^-2/3 = {:.2f}); segment slope x t = {} ({} sparse segments; {} dense runs "
-                   "left out)\n",
-                   summary.time, format_estimate(summary.shocks, "{:.2f}"), summary.expected_shocks,
+        // What a shock is, said where the count is: shockgas-burgers counts the same snapshot's shocks
+        // by the same rule (ShockRule's; cells serve only the segment fits).
+        fmt::print("t {:g}: shocks {} (velocity drops >= {:g} v_rms, one per cluster or bunch; N t^-2/3 = {:.2f}); "
+                   "segment slope x t = {} ({} sparse segments; {} dense runs left out)\n",
+                   summary.time, format_estimate(summary.shocks, "{:.2f}"), rule.jump_fraction, summary.expected_shocks,
                    format_estimate(summary.slope_times_t, "{:.3f}"), summary.segments, summary.dense_segments);
     }
     std::unique_ptr<DataFile> file;
