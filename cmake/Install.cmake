@@ -28,6 +28,12 @@ mark_as_advanced(SHOCKGAS_INSTALL_CMAKEDIR)
 
 set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail)
 
+# First of all the rules: the built files are all there, or nothing is installed
+# (cmake/InstallCheck.cmake; install-needs.txt is written at the end of this file).
+install(CODE "set(SHOCKGAS_BUILD_DIR \"${PROJECT_BINARY_DIR}\")
+  include(\"${PROJECT_SOURCE_DIR}/cmake/InstallCheck.cmake\")"
+  ALL_COMPONENTS)
+
 # Libraries, programs and headers. The programs are exported too, apart
 # (shockgasPrograms.cmake, in the runtime component, needing nothing found): the
 # installed figure project runs them by target name as the source build does,
@@ -131,3 +137,16 @@ install(DIRECTORY "${PROJECT_SOURCE_DIR}/docs/" DESTINATION ${CMAKE_INSTALL_DOCD
 install(FILES analysis/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}/analysis COMPONENT runtime)
 
 include(ManPages)
+
+# What cmake/InstallCheck.cmake looks for: the files the rules above take from the build tree.
+set(_install_needs)
+foreach(library IN ITEMS shockgas_sim shockgas_analysis)
+  string(APPEND _install_needs "dev\t$<TARGET_FILE:${library}>\n")
+endforeach()
+foreach(program IN LISTS SHOCKGAS_PROGRAMS)
+  string(APPEND _install_needs "runtime\t$<TARGET_FILE:${program}>\n")
+endforeach()
+foreach(page IN LISTS SHOCKGAS_MAN_PAGE_FILES)
+  string(APPEND _install_needs "runtime\t${page}\n")
+endforeach()
+file(GENERATE OUTPUT "${PROJECT_BINARY_DIR}/install-needs.txt" CONTENT "${_install_needs}")

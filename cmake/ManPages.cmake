@@ -56,4 +56,11 @@ foreach(program IN LISTS SHOCKGAS_PROGRAMS)
   list(APPEND _man_pages "${page}.gz")
 endforeach()
 add_custom_target(man_pages ALL DEPENDS ${_man_pages})
+# The README's first build makes only the figures (`--target figures`), which need every program
+# already; the pages come with them (help2man runs each program's --help, about a second), so that
+# `cmake --install` works from that build as from a full one.
+if(TARGET figures)
+  add_dependencies(figures man_pages)
+endif()
+set(SHOCKGAS_MAN_PAGE_FILES ${_man_pages})  # for cmake/Install.cmake's check before installing
 install(FILES ${_man_pages} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT runtime)

@@ -11,7 +11,7 @@ exponent(i) = value('fit_'.word(ids, i).'_exponent')
 sigma(i) = value('fit_'.word(ids, i).'_exponent_sigma')
 window_lo(i) = value('fit_'.word(ids, i).'_t_lo')
 window_hi(i) = value('fit_'.word(ids, i).'_t_hi')
-curve_title(i) = sprintf('%s:  T ∝ t^{-%.3f%s}  (fit on [%.0f, %.0f])', word(names, i), exponent(i), plus_minus(sigma(i), '%.3f'), window_lo(i), window_hi(i))
+curve_title(i) = sprintf('%s:  T ∝ t^{-%.3f%s}  (fit on [%s, %s])', word(names, i), exponent(i), plus_minus(sigma(i), '%.3f'), short_number(window_lo(i)), short_number(window_hi(i)))
 
 set logscale xy
 @decades

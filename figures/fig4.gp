@@ -14,7 +14,8 @@ set logscale y
 set format y "10^{%L}"
 set xrange [-3.2:3.2]
 set yrange [1e-5:2]
-set key top right
+# Below the curves, where no point lies (Φ < 1e-4 at |z| < 1).
+set key bottom center
 set label 1 sprintf("scaling exponent β = %.3f%s (1/3 expected)\ncollapse distance at β = 1/3: %.2g", \
     collapse_beta, plus_minus(collapse_beta_sigma, '%.3f'), collapse_distance_at_one_third) at graph 0.03, graph 0.95 left font ',10'
 # Nine blocks in the order r = 0, 0.5, 0.9, each at three increasing times. A caller that passes other
@@ -24,8 +25,15 @@ if (!exists('rnames')) rnames = '"r = 0" "r = 0.5" "r = 0.9"'
 if (!exists('rtypes')) rtypes = '1 2 3'
 if (!exists('ntimes')) ntimes = 3
 times_note = (ntimes == 3 ? ', three times' : sprintf(', %d times', ntimes))
+# The marker says the time: the times of the first run's blocks, from their comment lines in phi.dat
+# ("# r=0 t=1000"; every run has the same times), each named in the key with its marker.
+in_single_quotes(s) = strstrt(s, "'") == 0 ? s : s[1:strstrt(s, "'") - 1]."'\\''".in_single_quotes(s[strstrt(s, "'") + 1:])
+block_times = system(sprintf("sed -n 's/^# .*t=\\([0-9.e+-]*\\)$/\\1/p' '%s' | head -n %d", \
+                             in_single_quotes(datadir.'/phi.dat'), ntimes))
 plot for [b = 0:words(rnames) * ntimes - 1] datadir.'/phi.dat' index b using 1:($2 > 0 ? $2 : NaN) with points \
          lt (word(rtypes, b / ntimes + 1) + 0) pt (7 + 2 * (b % ntimes)) ps 0.6 \
          title (b % ntimes == 0 ? word(rnames, b / ntimes + 1).times_note : ''), \
+     for [k = 1:ntimes] keyentry with points lc rgb '#555555' pt (7 + 2 * (k - 1)) ps 0.6 \
+         title sprintf('t = %s', word(block_times, k)), \
      theorydir.'/phi.dat' using 1:2 with lines lc rgb '#000000' lw 2 title 'exact sticky gas', \
      theorydir.'/phi.dat' using 1:3 with lines lt 8 title sprintf('Gaussian, same variance κ = %.4f', exact_kappa)

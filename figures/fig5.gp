@@ -42,7 +42,7 @@ set yrange [y_low - 0.05 * span : STATS_max + 0.3 * span]
 set arrow 1 from 0.62 * L, y_low to 0.62 * L + tooth, y_low + tooth / t nohead lt 4 lw 2.5 front
 set label 2 'slope 1/t' at 0.62 * L + tooth, y_low + tooth / t left offset 0.5,0 tc lt 4 font ',9' front
 set key bottom left
-set label 1 sprintf("%.0f shocks (|Δv| ≥ v_{rms}, cells of 20 particles); N t^{-2/3} = %.1f; exact clusters ν N t^{-2/3} = %.1f; Burgers (|Δv| ≥ v_{rms}): %d\nsegment slope × t = %.2f ± %.2f (density-corrected %.2f ± %.2f)", \
+set label 1 sprintf("%.0f shocks (|Δv| ≥ v_{rms}, one per cluster or bunch); N t^{-2/3} = %.1f; exact clusters ν N t^{-2/3} = %.1f; Burgers (|Δv| ≥ v_{rms}): %d\nsegment slope × t = %.2f ± %.2f (density-corrected %.2f ± %.2f)", \
     s_shocks0_shock_count, s_shocks0_expected_shock_count, exact_nu * s_shocks0_expected_shock_count, \
     burgers_shock_count, s_shocks0_slope_times_t, s_shocks0_slope_times_t_sigma, \
     s_shocks0_density_corrected_slope_times_t, s_shocks0_density_corrected_slope_times_t_sigma) \

@@ -10,7 +10,12 @@ load styledir.'/style.gp'
 have_fit = (varsfile ne '')
 if (have_fit) { load varsfile }
 if (phifile ne '') {
-    set terminal pngcairo size 1600,700 font 'Sans,12'
+    # Two panels side by side: a wider canvas.
+    if (format eq 'svg') {
+        set terminal svg size 1600,700 font 'Sans,12' enhanced
+    } else {
+        set terminal pngcairo size 1600,700 font 'Sans,12'
+    }
     set output outbase.'.'.format
     set multiplot layout 1,2 title run
 }
@@ -19,7 +24,7 @@ set logscale xy
 set xlabel 't'
 set ylabel 'T(t)'
 set key bottom left
-set title 'temperature' . (have_fit ? sprintf(': T ∝ t^{−α}, α = %.3f%s on [%g, %g]', fit_exponent, plus_minus(fit_exponent_sigma, '%.3f'), fit_t_lo, fit_t_hi) : ' (no fit)')
+set title 'temperature' . (have_fit ? sprintf(': T ∝ t^{−α}, α = %.3f%s on [%s, %s]', fit_exponent, plus_minus(fit_exponent_sigma, '%.3f'), short_number(fit_t_lo), short_number(fit_t_hi)) : ' (no fit)')
 if (have_fit) {
     set arrow 1 from fit_t_lo, graph 0 to fit_t_lo, graph 1 nohead lc rgb '#999999' dt 3
     set arrow 2 from fit_t_hi, graph 0 to fit_t_hi, graph 1 nohead lc rgb '#999999' dt 3
@@ -42,7 +47,9 @@ if (phifile ne '') {
     # stats counts as one more (empty) block, so the labels give the count where they exist.
     stats phifile using 1 nooutput
     blocks = words(labels) > 0 ? words(labels) : STATS_blocks
+    # 't=1000' in the key as 't = 1000'.
+    time_label(w) = (w[1:2] eq 't=') ? 't = '.w[3:] : w
     plot for [b = 0:blocks - 1] phifile index b using 1:($2 > 0 ? $2 : 1/0) with linespoints \
-         lt (b % 7) + 1 pt 7 ps 0.4 title word(labels, b + 1)
+         lt (b % 7) + 1 pt 7 ps 0.4 title time_label(word(labels, b + 1))
     unset multiplot
 }

@@ -1,19 +1,26 @@
 # Shared style for every shockgas figure. CMake runs each figure script twice,
 # with format = 'png' and format = 'pdf'; loading this file sets the terminal
-# and the output file, so the scripts themselves only plot.
+# and the output file, so the scripts themselves only plot. format = 'svg'
+# draws the same as text (the tests read its titles and keys).
 # Variables passed by CMake (-e): datadir, outbase, styledir, theorydir,
 # fidelity, format, version_program.
 set encoding utf8
 if (format eq 'pdf') {
     set terminal pdfcairo size 6in,4.5in font 'Sans,9'
 } else {
-    set terminal pngcairo size 1000,760 font 'Sans,12'
+    if (format eq 'svg') {
+        set terminal svg size 1000,760 font 'Sans,12' enhanced
+    } else {
+        set terminal pngcairo size 1000,760 font 'Sans,12'
+    }
 }
 set output outbase.'.'.format
 set termoption enhanced
 set border lw 1.2
 set grid lt 1 lc rgb '#dddddd' lw 0.8
-set key top right box opaque samplen 2.5 spacing 1.15 font ',10'
+# width 1: gnuplot sizes the box from a character count, and a label of wide characters (digits,
+# κ, ±) reached its left edge.
+set key top right box opaque samplen 2.5 spacing 1.15 width 1 font ',10'
 set tics out nomirror
 set mxtics 10
 set mytics 10
@@ -39,5 +46,8 @@ fidelity_note = (shockgas_version eq '') ? sprintf('%s fidelity', fidelity) \
 # ' ± sigma' printed with format f, or ' ± n/a' where shockgas-analyze stored NaN
 # (one or two realizations; its note in the results file says why).
 plus_minus(sigma, f) = (sigma == sigma) ? sprintf(' ± '.f, sigma) : ' ± n/a'
+# A time such as a fit window's bound, as it is worth reading: to the unit from 100 to 10^6
+# (10^2.5 = 316.228 as 316, 3162.28 as 3162), else three significant digits (31.6, 0.316, 3.16e+06).
+short_number(x) = (abs(x) >= 100 && abs(x) < 1e6) ? sprintf('%.0f', x) : sprintf('%.3g', x)
 # A number printed with format f, or 'n/a' where it is NaN (a chi2/dof of two points).
 number_or_na(x, f) = (x == x) ? sprintf(f, x) : 'n/a'

@@ -184,6 +184,8 @@ void run_decay(const AnalysisInvocation& invocation, const std::string& input, c
                         : "";
     if (windows.empty() && options.scan_required) throw InputError(fmt::format("{}, in '{}'", no_scan, input));
     const Measured systematic = window_systematic(history, fit.t_lo, fit.t_hi);
+    const std::string window_note = short_window_note(fit.t_lo, fit.t_hi, manual, history.time.back(), run.particles,
+                                                      run.velocity_threshold, options.rule);
     ResultsFile results(output, invocation, {input});
     auto group = results.section("decay");
     group.set_attribute("exponent", fit.exponent);
@@ -196,6 +198,7 @@ void run_decay(const AnalysisInvocation& invocation, const std::string& input, c
     group.set_attribute("t_hi", fit.t_hi);
     group.set_attribute("points", static_cast<std::int64_t>(fit.points));
     group.set_attribute("window_rule", manual ? "manual" : "automatic");
+    if (!window_note.empty()) group.set_attribute("window_note", window_note);
     std::vector<double> centre, exponent, sigma;
     for (const auto& w : windows) {
         centre.push_back(std::sqrt(w.t_lo * w.t_hi));
@@ -234,6 +237,7 @@ void run_decay(const AnalysisInvocation& invocation, const std::string& input, c
                format_measured({fit.exponent_sigma, fit.exponent_sigma_note}, "{:.4f}", "jackknife"),
                format_measured(systematic, "{:.4f}", "window"), format_measured({fit.chi2_per_dof, fit.fit_note}, "{:.2f}"),
                fit.t_lo, fit.t_hi, fit.points);
+    if (!window_note.empty()) fmt::print("note: {}\n", window_note);
 }
 
 void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,
@@ -455,9 +459,11 @@ void run_shocks(const AnalysisInvocation& invocation, const std::string& input, 
         set_estimate(group, "density_corrected_slope_times_t", summary.density_corrected_slope_times_t);
         group.set_attribute("segments", static_cast<std::int64_t>(summary.segments));
         group.set_attribute("dense_segments", static_cast<std::int64_t>(summary.dense_segments));
-        fmt::print("t {:g}: shocks {} (N t^-2/3 = {:.2f}); segment slope x t = {} ({} sparse segments; {} dense runs "
-                   "left out)\n",
-                   summary.time, format_estimate(summary.shocks, "{:.2f}"), summary.expected_shocks,
+        // What a shock is, said where the count is: shockgas-burgers counts the same snapshot's shocks
+        // by the same rule (ShockRule's; cells serve only the segment fits).
+        fmt::print("t {:g}: shocks {} (velocity drops >= {:g} v_rms, one per cluster or bunch; N t^-2/3 = {:.2f}); "
+                   "segment slope x t = {} ({} sparse segments; {} dense runs left out)\n",
+                   summary.time, format_estimate(summary.shocks, "{:.2f}"), rule.jump_fraction, summary.expected_shocks,
                    format_estimate(summary.slope_times_t, "{:.3f}"), summary.segments, summary.dense_segments);
     }
     std::unique_ptr<DataFile> file;

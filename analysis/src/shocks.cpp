@@ -84,7 +84,17 @@ Snapshot coarse_grained(const Snapshot& snapshot, double cell_mass) {
 }
 
 ShockProfile find_shocks(const Snapshot& input, const ShockRule& rule) {
-    const Snapshot snapshot = rule.coarse_grain_mass > 0.0 ? coarse_grained(input, rule.coarse_grain_mass) : input;
+    if (rule.coarse_grain_mass > 0.0) {
+        // The segments from the cells, the shocks from the clusters themselves (ShockRule).
+        ShockRule on_clusters = rule;
+        on_clusters.coarse_grain_mass = 0.0;
+        ShockProfile profile = find_shocks(coarse_grained(input, rule.coarse_grain_mass), on_clusters);
+        ShockProfile shocks = find_shocks(input, on_clusters);
+        profile.shock_position = std::move(shocks.shock_position);
+        profile.shock_drop = std::move(shocks.shock_drop);
+        return profile;
+    }
+    const Snapshot& snapshot = input;
     const std::size_t n = snapshot.velocity.size();
     ShockProfile profile;
     profile.time = snapshot.time;

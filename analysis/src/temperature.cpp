@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
@@ -195,6 +196,40 @@ DecayWindow automatic_decay_window(double restitution, double velocity_threshold
                                            window.t_hi, rule.end_factor, advice));
     }
     return window;
+}
+
+namespace {
+
+// x to two significant digits, rounded up (or down): a bound to ask for, not one a hair short.
+double two_digits(double x, bool up) {
+    const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
+    return (up ? std::ceil(x / unit * (1.0 - 1e-12)) : std::floor(x / unit * (1.0 + 1e-12))) * unit;
+}
+
+}  // namespace
+
+std::string short_window_note(double t_lo, double t_hi, bool manual, double last_time, double particles,
+                              double velocity_threshold, const WindowRule& rule) {
+    constexpr double decade = 10.0;
+    constexpr double rounding = 1e-9;  // a window of 10^k to 10^(k+1) is a decade
+    if (!(t_hi < decade * t_lo * (1.0 - rounding))) return "";
+    const double wanted = decade * t_lo;
+    const std::string head = fmt::format("the fit window spans {:.2f} decades, under one: its exponent has no window "
+                                         "systematic and may still carry the crossover; ",
+                                         std::log10(t_hi / t_lo));
+    if (manual)
+        return head + (wanted <= last_time
+                           ? fmt::format("--t-hi {:g} would give a decade", two_digits(wanted, true))
+                           : fmt::format("a decade from --t-lo {:g} needs a run to t_max >= {:g}", t_lo,
+                                         two_digits(wanted, true)));
+    // The automatic t_hi is min(t_max, end_factor N^3/2, delta^-3): each bound below 10 t_lo is named.
+    std::vector<std::string> needs;
+    if (last_time < wanted) needs.push_back(fmt::format("t_max >= {:g}", two_digits(wanted, true)));
+    if (rule.end_factor * std::pow(particles, 1.5) < wanted)
+        needs.push_back(fmt::format("N >= {:g}", two_digits(std::pow(wanted / rule.end_factor, 2.0 / 3.0), true)));
+    if (velocity_threshold > 0.0 && std::pow(velocity_threshold, -3.0) < wanted)
+        needs.push_back(fmt::format("delta <= {:g}", two_digits(std::pow(wanted, -1.0 / 3.0), false)));
+    return head + fmt::format("a run with {} would give the automatic window a decade", fmt::join(needs, " and "));
 }
 
 DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, double t_hi) {

@@ -24,6 +24,7 @@ has not_measured_shocks.h5 /shocks0 '^v_shock_count_sigma_note = "one snapshot'
 "$analyze" decay a.h5 --t-lo 1 --t-hi 5 -o not_measured_decay.h5 >/dev/null || fail "decay failed"
 has not_measured_decay.h5 /decay '^v_exponent_window_systematic = NaN$'
 has not_measured_decay.h5 /decay '^v_exponent_window_systematic_note = "no one-decade window'
+has not_measured_decay.h5 /decay '^v_window_note = "the fit window spans 0.70 decades, under one: .*--t-hi 10 would give a decade"$'
 # Power laws through two points: no chi2/dof.
 "$analyze" crossover e05.h5 e10.h5 -o not_measured_crossover.h5 >/dev/null || fail "crossover failed"
 has not_measured_crossover.h5 /scaling_in_eps '^v_t_stick_chi2_per_dof = NaN$'

@@ -16,7 +16,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$analyze" shocks snap1.h5 -o options_default.h5 >/dev/null || fail "shocks failed"
 "$analyze" shocks snap1.h5 --jump-fraction 2 --merge-gap 3 -o options_jump.h5 >/dev/null || fail "shocks --jump-fraction 2 failed"
 has options_default.h5 /options '^v_jump_fraction = 1$'
-has options_default.h5 /options '^v_merge_gap = 0$'
+has options_default.h5 /options '^v_merge_gap = 2$'  # the default (analysis/README.md, Shocks)
 has options_default.h5 /options '^v_segment_break = 0.1$'
 has options_default.h5 /options '^v_coarse_grain = 0$'
 # Only options of the run: not the flags that print and exit (--help-all, inherited by every subcommand).

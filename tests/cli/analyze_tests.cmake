@@ -142,6 +142,14 @@ shockgas_analyze_reports(shocks_no_segment "t 10: .*segment slope x t = n/a \\(n
                          "nan|0\\.000 \\+- 0\\.000" shocks snap1.h5 -o "${_analyze_dir}/no_segment_shocks.h5")
 shockgas_analyze_reports(decay_short_window "\\+- n/a \\(window: no one-decade window .* \\[1, 5\\]\\)"
                          "nan|\\+- 0\\.0000 \\(window\\)" decay a.h5 --t-lo 1 --t-hi 5 -o "${_analyze_dir}/short_window.h5")
+# An automatic window under a decade says so in one line, and what run gives one: hist.h5 (N = 2000,
+# t_max = 1000) ends at 0.01 N^3/2 = 894, t_lo = 100; with --start-factor 20 --end-factor 1 at t_max.
+shockgas_analyze_reports(decay_window_under_a_decade_particles
+                         "\nnote: the fit window spans 0\\.95 decades, under one: [^\n]*; a run with N >= 2200 would give the automatic window a decade\n"
+                         "nan" decay hist.h5 -o "${_analyze_dir}/under_a_decade_particles.h5")
+shockgas_analyze_reports(decay_window_under_a_decade_t_max
+                         "\nnote: the fit window spans 0\\.70 decades, under one: [^\n]*; a run with t_max >= 2000 would give the automatic window a decade\n"
+                         "nan" decay hist.h5 --start-factor 20 --end-factor 1 -o "${_analyze_dir}/under_a_decade_t_max.h5")
 add_test(NAME cli.analyze.not_measured_stored
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/analyze_not_measured_test.sh ${_analyze_program}
                  $<TARGET_FILE:shockgas-dump> "${_analyze_dir}")
@@ -155,6 +163,11 @@ if(GNUPLOT_EXECUTABLE)
   set_tests_properties(cli.analyze.plots_without_fits PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases
                        TIMEOUT 60 PASS_REGULAR_EXPRESSION "fig_collapse and fig_crossovers drawn where their fits are n/a"
                        FAIL_REGULAR_EXPRESSION "FAIL|undefined")
+  # ...and what the figures' keys and titles say (fig4, fig4_sticky, fig_tail, shockgas-look), read from SVG.
+  add_test(NAME cli.figure_keys
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/figure_keys_test.sh ${_analyze_program}
+                   $<TARGET_FILE:shockgas-dump> ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR} "${_analyze_dir}")
+  set_tests_properties(cli.figure_keys PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 120)
 endif()
 
 # 7. --hazard: refused where it cannot be written, written for one N.

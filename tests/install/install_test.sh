@@ -41,6 +41,17 @@ if command -v gnuplot >/dev/null; then
   shockgas-sim -N 2000 -r 0.5 -t 3000 -R 2 -q -o look.h5 2>/dev/null || fail "the run for shockgas-look"
   shockgas-look look.h5 -o look.png >look.log 2>&1 || { cat look.log; fail "shockgas-look"; }
   [ -s look.png ] || fail "shockgas-look wrote no look.png"
+  # ...and with the prefix off PATH, from a PATH holding only the commands it needs besides ours:
+  # it runs the shockgas-analyze and shockgas-dump installed beside it.
+  mkdir bare-path
+  for command in bash readlink dirname mktemp rm sed tr basename cat gnuplot; do
+    ln -s "$(command -v "$command")" bare-path/
+  done
+  PATH="$outside/bare-path" "$prefix/bin/shockgas-look" --version | grep "^shockgas-look [^ ]" >/dev/null \
+    || fail "shockgas-look off PATH: --version: $(PATH="$outside/bare-path" "$prefix/bin/shockgas-look" --version 2>&1)"
+  PATH="$outside/bare-path" "$prefix/bin/shockgas-look" look.h5 -o look-off-path.png >look-off-path.log 2>&1 \
+    || { cat look-off-path.log; fail "shockgas-look with the prefix off PATH"; }
+  [ -s look-off-path.png ] || fail "shockgas-look off PATH wrote no look-off-path.png"
 fi
 
 # 2. A project of the user's own, built against the installed package.

@@ -256,6 +256,31 @@ TEST(AnalysisDecay, WindowRuleAndScan) {
     for (const auto& w : scan) EXPECT_NEAR(w.exponent, 2.0 / 3.0, 5.0 * w.exponent_sigma);
 }
 
+// A window under a decade says so, and names what gives one: the bounds of the automatic window
+// (t_max, 0.01 N^3/2, delta^-3) that stop short of 10 t_lo, or --t-hi for a chosen window.
+TEST(AnalysisDecay, WindowUnderADecadeSaysWhatGivesOne) {
+    const auto has = [](const std::string& note, const std::string& part) {
+        EXPECT_NE(note.find(part), std::string::npos) << note;
+    };
+    constexpr double t_lo = 316.227766;  // r = 0.8: 10 eps^-3/2
+    // A decade or more: nothing to say.
+    EXPECT_EQ(sa::short_window_note(t_lo, 10.0 * t_lo, false, 1e4, 1e4, 1e-2), "");
+    EXPECT_EQ(sa::short_window_note(100.0, 1000.0, true, 1000.0, 1e4, 1e-2), "");
+    // The run: N = 10^4, delta = 10^-2, t_max = 1000; only t_max closes it.
+    const std::string by_t_max = sa::short_window_note(t_lo, 1000.0, false, 1000.0, 1e4, 1e-2);
+    has(by_t_max, "the fit window spans 0.50 decades, under one");
+    has(by_t_max, "a run with t_max >= 3200 would give the automatic window a decade");
+    EXPECT_EQ(by_t_max.find("N >="), std::string::npos) << by_t_max;
+    EXPECT_EQ(by_t_max.find('\n'), std::string::npos) << "one line: " << by_t_max;
+    // 0.01 N^3/2 = 894 at N = 2000 and delta^-3 = 1000 at delta = 0.1: N >= 4700 and delta <= 0.068.
+    const std::string by_all = sa::short_window_note(t_lo, 894.4, false, 1000.0, 2000.0, 0.1);
+    has(by_all, "t_max >= 3200 and N >= 4700 and delta <= 0.068 would give");
+    // A chosen window: --t-hi where the run reaches 10 t_lo, else a longer run.
+    has(sa::short_window_note(100.0, 500.0, true, 1000.0, 1e4, 1e-2), "--t-hi 1000 would give a decade");
+    has(sa::short_window_note(200.0, 1000.0, true, 1000.0, 1e4, 1e-2),
+        "a decade from --t-lo 200 needs a run to t_max >= 2000");
+}
+
 namespace {
 
 // Pure Haff cooling, Eq. (2): T = T0 / (1 + a t)^2 with T0 = 1/3 (its samples
@@ -531,8 +556,9 @@ TEST(AnalysisTail, TwoRealizationsHaveGammaWithoutJackknifeSigma) {
 
 // Eq. (7): segments v = (x - q_s)/t of 20 sparse particles each, and between
 // them heavy clusters (the shocks) at the segment ends. With dense_run = s the
-// shock after segment s is replaced by a cluster that is not (yet) a shock:
-// ten particles within 0.09 of a spacing whose velocities rise across it.
+// shock after segment s is replaced by a dense run that is not (yet) a shock:
+// ten particles 0.1 apart (0.03 spacings: dense, but not one cluster, whose
+// members lie within ShockRule::cluster_gap) whose velocities rise across it.
 sa::Snapshot ideal_sawtooth(double time, double ring_length, int segments, int dense_run = -1) {
     sa::Snapshot snapshot;
     snapshot.time = time;
@@ -548,7 +574,7 @@ sa::Snapshot ideal_sawtooth(double time, double ring_length, int segments, int d
         }
         if (s == dense_run) {
             for (int i = 0; i < 10; ++i) {
-                snapshot.position.push_back((s + 1) * length - 0.5 + 0.01 * i);
+                snapshot.position.push_back((s + 1) * length - 0.9 + 0.1 * i);
                 snapshot.velocity.push_back(-0.02 + 0.004 * i);
                 snapshot.mass.push_back(1.0);
             }
@@ -611,6 +637,41 @@ TEST(AnalysisShocks, IdealSawtooth) {
         for (const auto& segment : rotated_profile.segments)
             EXPECT_NEAR(segment.slope * time, 1.0, 1e-9) << "from " << first;
     }
+}
+
+// A shock whose mass has not merged: a bunch of particles bouncing below the threshold, about 1e-4
+// spacings apart, half their pairs expanding, moving at the mean of the two streams that feed it (the
+// quick Fig. 5 at t = 10^5, elastic below delta = 1e-4). Its drop is one shock, counted once, with or
+// without cells for the segments, as shockgas-burgers counts it; the detector counted it at both edges
+// (Fig. 5: 15 shocks, 12 in cells of 20 particles, for 7 bunches).
+TEST(AnalysisShocks, UnmergedBunchIsOneShock) {
+    constexpr double time = 1e5, tooth = 2000.0, bunch_spacing = 1e-4, jitter = 1e-6;
+    constexpr int teeth = 5, stream = 500, bunch = 1000;  // the streams sparse (density 1/4), the bunches dense
+    sa::Snapshot snapshot;
+    snapshot.time = time;
+    snapshot.ring_length = teeth * tooth;
+    std::mt19937_64 random(11);
+    std::uniform_real_distribution<double> noise(-jitter, jitter);
+    for (int s = 0; s < teeth; ++s) {
+        const double q = s * tooth + tooth / 2.0;  // segment centre: v = 0 there
+        for (int i = 0; i < stream; ++i) {  // a sparse rarefaction segment, v = (x - q)/t
+            const double x = s * tooth + 10.0 + i * (tooth - 20.0) / stream;
+            snapshot.position.push_back(x);
+            snapshot.velocity.push_back((x - q) / time);
+            snapshot.mass.push_back(1.0);
+        }
+        for (int i = 0; i < bunch; ++i) {  // the bunch at the tooth's end, at the streams' mean velocity
+            snapshot.position.push_back((s + 1) * tooth - 5.0 + i * bunch_spacing);
+            snapshot.velocity.push_back(noise(random));
+            snapshot.mass.push_back(1.0);
+        }
+    }
+    EXPECT_EQ(sa::find_shocks(snapshot).shock_position.size(), static_cast<std::size_t>(teeth));
+    sa::ShockRule in_cells;
+    in_cells.coarse_grain_mass = 20.0;  // Fig. 5's cells, for the segment fits
+    const auto with_cells = sa::summarize_shocks({snapshot}, in_cells);
+    EXPECT_EQ(with_cells.shocks.value, static_cast<double>(teeth));
+    EXPECT_EQ(with_cells.segments, static_cast<std::size_t>(teeth));
 }
 
 // --- What the data cannot determine is refused or reported missing, never a

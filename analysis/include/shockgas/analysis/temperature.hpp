@@ -85,6 +85,14 @@ DecayWindow automatic_decay_window(double restitution, double velocity_threshold
                                    double last_time, const WindowRule& rule = {},
                                    const std::string& run_status = "complete");
 
+// Empty when the fit window [t_lo, t_hi] spans a decade or more; else one line saying it spans
+// less (so its exponent has no window systematic and may still carry the crossover) and what
+// gives a decade: for the automatic window (manual false) the run that makes the rule's t_hi reach
+// 10 t_lo (t_max, N, delta as the bounds require); for a chosen one, --t-hi (or a longer run).
+// last_time: the last sample time every realization reached.
+std::string short_window_note(double t_lo, double t_hi, bool manual, double last_time, double particles,
+                              double velocity_threshold, const WindowRule& rule = {});
+
 // The decay exponent alpha of T ~ t^(-alpha) over a window.
 struct DecayFit {
     double t_lo = 0.0, t_hi = 0.0;   // the window
