@@ -258,7 +258,7 @@ CASES = generated_cases() + hand_cases()
 # ------------------------------------------------------------------------------------ engine rules
 def engine_refusal(engine, c):
     """None if the documentation says `engine` runs case c, else the fragments one of which its error
-    line must contain (docs/engines.md, docs/passthrough-engine.md, docs/exact_engine.md)."""
+    line must contain (docs/engines.md, docs/passthrough-engine.md, docs/exact-engine.md)."""
     equal_masses = c["mass"] is None or bool(np.all(c["mass"] == c["mass"][0]))
     if engine == "exact":
         return None if c["r"] == 0 else ["--engine exact solves only the sticky gas r = 0"]
