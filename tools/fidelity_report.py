@@ -9,14 +9,17 @@ analysis results next to them (decay exponents, crossover and scaling fits,
 shocks, the speed/accuracy comparison), and prints what the README's results and
 cost tables and docs/figures-and-fidelity.md show. Reads only; computes nothing but sums and ratios.
 
---readme prints instead the rows of the README's results table (| id | quantity | measured | paper /
-theory |) that the build measured, ready to paste, so the README's numbers come from the build at
-that commit rather than from memory.
+--readme prints instead the rows of the README's results table (| claim | quick tier | paper tier |
+paper / theory |) whose numbers this build measured, ready to paste, so the README's numbers come from
+a build rather than from memory: the claim, this tier's cell and the paper / theory cell from the
+build's files, the other tier's cell as the README.md of this source tree (beside tools/) has it in the
+row of the same claim ("—" where it has none).
 
---check-readme README.md exits 1, naming each row, unless every one of those rows stands verbatim in
-README.md: the test that keeps the README's numbers from going stale (ctest figures.readme_numbers,
-after the figures are built; the simulations are deterministic, so a build at the same commit
-measures the same numbers on any machine).
+--check-readme README.md exits 1, naming each row, unless for every one of those rows README.md has a
+table row of the same claim whose cell of this tier and paper / theory cell are the build's: the test
+that keeps the README's numbers from going stale (ctest figures.readme_numbers, after the figures are
+built; the simulations are deterministic, so a build at the same commit measures the same numbers on
+any computer). The other tier's cell is not checked: a quick build cannot measure it.
 
 --progress prints instead where a build that is still running stands (a paper build can take days): for
 every run of every figure's parameter file (paper_targets/<figure>.<fidelity>.json), the parts and
@@ -56,8 +59,8 @@ USAGE = "usage: fidelity_report.py [-h] BUILD_DIR [quick|paper] [--readme | --ch
 
 def stick_expectation(scaling_in_eps):
     """The paper/theory cell of the t_stick exponent: -3/2 as eps -> 0, and, where the results file has it
-    (shockgas-analyze since 2026-11-27), what the same rule reads on an exact eps^(-3/2) crossover at the
-    run's eps (Haff's finite-eps terms tilt it)."""
+    (files of an older shockgas-analyze do not), what the same rule reads on an exact eps^(-3/2) crossover
+    at the run's eps (Haff's finite-eps terms tilt it)."""
     reference = scaling_in_eps.get("t_stick_reference_exponent")
     if reference is None or reference != reference:
         return "−3/2"
@@ -77,7 +80,7 @@ def print_help():
           "  -h, --help            show this help message and exit\n"
           "  --readme              print the README's results rows this build measured\n"
           "  --check-readme README.md\n"
-          "                        exit 1 unless README.md holds every one of those rows\n"
+          "                        exit 1 unless README.md holds every one of those numbers\n"
           "  --progress            where a build still running stands")
 
 
@@ -157,8 +160,15 @@ def power(x):
     return tail if mantissa == "1" else f"{mantissa}·{tail}"
 
 
+def sizes(attributes, decay):
+    """N, realizations and fit window of a decay fit, as the README's cells give them."""
+    return (f"N = {power(attributes['particles'])}, {attributes['realizations']} real., "
+            f"t ∈ [{power(decay['t_lo'])}, {power(decay['t_hi'])}]")
+
+
 def readme_rows():
-    """The README's results rows this build measured, in its column order."""
+    """(claim, this tier's cell, paper / theory cell) of each README results row this build measured,
+    in the README's order."""
     rows = []
     for run, paper in [("r0", "0.67 / 2/3"), ("r0.5", "0.67"), ("r0.9", "0.66")]:
         path = os.path.join(base, "fig1", run + ".decay.h5")
@@ -166,67 +176,100 @@ def readme_rows():
             continue
         results = shockgas.read_results(path)
         d, a = results["decay"].attrs, results.inputs()[0]
-        rows.append(f"| P1 | T ~ t^−α, r = {a['restitution']:g} (N = {power(a['particles'])}, {a['realizations']} "
-                    f"realizations, t ∈ [{power(d['t_lo'])}, "
-                    f"{power(d['t_hi'])}]) | α = {d['exponent']:.3f} ± {d['exponent_sigma']:.3f} ± "
-                    f"{window(d)} (window) | {paper} |")
+        rows.append((f"P1: T ~ t^−α, r = {a['restitution']:g}",
+                     f"α = {d['exponent']:.3f} ± {d['exponent_sigma']:.3f} ± {window(d)} ({sizes(a, d)})", paper))
     path = os.path.join(base, "fig_crossovers", "crossovers.h5")
     if os.path.exists(path):
         d = attrs(path, "scaling_in_eps")
-        rows.append(f"| P2/P3 | t_stick ∝ ε^x | x = {d['t_stick_exponent']:.3f} ± {d['t_stick_exponent_sigma']:.3f} | "
-                    f"{stick_expectation(d)} |")
-        rows.append(f"| P3 | T(t_stick) ∝ ε^x | x = {d['temperature_at_stick_exponent']:.3f} ± "
-                    f"{d['temperature_at_stick_exponent_sigma']:.3f} | +1 |")
+        rows.append(("P2/P3: t_stick ∝ ε^x", f"x = {d['t_stick_exponent']:.3f} ± {d['t_stick_exponent_sigma']:.3f}",
+                     stick_expectation(d)))
+        rows.append(("P3: T(t_stick) ∝ ε^x", f"x = {d['temperature_at_stick_exponent']:.3f} ± "
+                     f"{d['temperature_at_stick_exponent_sigma']:.3f}", "+1"))
     # Fig. 4, then the same with sticky sub-threshold collisions (fig4_sticky, P5's other mechanism).
-    for figure, ids, variant in [("fig4", ("P7", "P7/P8"), ""), ("fig4_sticky", ("P5/P7", "P5/P8"), "sticky below δ: ")]:
+    for figure, ids, variant in [("fig4", ("P7", "P7/P8"), ""), ("fig4_sticky", ("P5/P7", "P5/P8"), ", sticky below δ")]:
         path = os.path.join(base, figure, "scaling.h5")
         if not os.path.exists(path):
             continue
         results = shockgas.read_results(path)
         d = results["collapse"].attrs
         histograms = [results[g].attrs for g in results.sections if g.startswith("histogram")]
-        rows.append(f"| {ids[0]} | {variant}P(v,t) = t^(1/3) Φ(v t^(1/3)), best exponent over {len(histograms)} "
-                    f"histograms | β = {d['beta']:.3f} ± {d['beta_sigma']:.3f} | 1/3 |")
+        rows.append((f"{ids[0]}: P(v,t) = t^(1/3) Φ(v t^(1/3)){variant}, best β",
+                     f"β = {d['beta']:.3f} ± {d['beta_sigma']:.3f} ({len(histograms)} histograms)", "1/3"))
         if histograms:
             kurtosis = [h["kurtosis"] for h in histograms]
-            rows.append(f"| {ids[1]} | {variant}kurtosis of Φ, {len(histograms)} histograms | {min(kurtosis):.2f} … "
-                        f"{max(kurtosis):.2f} | 3.041 (exact) |")
+            rows.append((f"{ids[1]}: kurtosis of Φ{variant}",
+                         f"{min(kurtosis):.2f} … {max(kurtosis):.2f} ({len(histograms)} histograms)", "3.041 (exact)"))
     path = os.path.join(base, "fig5", "shocks.h5")
     if os.path.exists(path):
         results = shockgas.read_results(path)
         d, a = results["shocks0"].attrs, results.inputs()[0]
-        rows.append(f"| P9 | shocks at t = {power(d['time'])}, N = {power(a['particles'])}, r = {a['restitution']:g}, "
-                    f"δ = {power(a['velocity_threshold'])} | {d['shock_count']:.0f} | N t^(−2/3) ≈ "
-                    f"{d['expected_shock_count']:.0f} |")
+        rows.append((f"P9: shocks at t = {power(d['time'])} (N = {power(a['particles'])}, r = {a['restitution']:g}, "
+                     f"δ = {power(a['velocity_threshold'])})", f"{d['shock_count']:.0f}",
+                     f"N t^(−2/3) ≈ {d['expected_shock_count']:.0f}"))
         # The paper's reference line is the raw slope 1/t; the density-corrected one is this project's
         # (Eq. (7) for particles that stream in one stream: analysis/README.md), so both are shown.
-        rows.append(f"| P9 | tooth slope × t (Eq. 7), density-corrected; raw | {d['density_corrected_slope_times_t']:.2f} ± "
-                    f"{d['density_corrected_slope_times_t_sigma']:.2f}; raw {d['slope_times_t']:.2f} ± "
-                    f"{d['slope_times_t_sigma']:.2f} | 1 |")
+        rows.append(("P9: tooth slope × t (Eq. 7), density-corrected; raw",
+                     f"{d['density_corrected_slope_times_t']:.2f} ± {d['density_corrected_slope_times_t_sigma']:.2f}; "
+                     f"raw {d['slope_times_t']:.2f} ± {d['slope_times_t_sigma']:.2f}", "1"))
     return rows
 
 
+def cells(line):
+    """The cells of a Markdown table row (an escaped \\| stays inside its cell), or None."""
+    line = line.strip()
+    if not (line.startswith("|") and line.endswith("|")):
+        return None
+    return [cell.strip() for cell in re.split(r"(?<!\\)\|", line[1:-1])]
+
+
+def readme_table(path):
+    """claim -> the cells of that claim's row in the results table of the README at `path` ({} if none)."""
+    table = {}
+    if path and os.path.isfile(path):
+        with open(path, encoding="utf-8") as handle:
+            for line in handle:
+                row = cells(line)
+                if row and len(row) == 4:
+                    table.setdefault(row[0], row)
+    return table
+
+
+# The column of each tier in the README's results table: | claim | quick tier | paper tier | paper / theory |.
+COLUMN = {"quick": 1, "paper": 2}
+HEADER = "| claim | quick tier | paper tier | paper / theory |"
+
+
+def full_row(claim, value, theory, known):
+    """The README row of a claim with this tier's value, the other tier's cell as the README has it."""
+    row = ["—", "—"]
+    if claim in known:
+        row = list(known[claim][1:3])
+    row[COLUMN[fidelity] - 1] = value
+    return f"| {claim} | {row[0]} | {row[1]} | {theory} |"
+
+
 if check_readme is not None:
-    with open(check_readme, encoding="utf-8") as handle:
-        lines = {line.rstrip("\n") for line in handle}
     rows = readme_rows()
-    stale = [row for row in rows if row not in lines]
     if not rows:
         fail(f"none of the README's results in {base} (fig1/r*.decay.h5, fig_crossovers/crossovers.h5, "
              f"fig4/scaling.h5, fig5/shocks.h5): build the figures first")
-    for row in stale:
-        print(f"{check_readme} lacks this row measured by {build} (paste it in place of the stale one):\n{row}")
+    known = readme_table(check_readme)
+    stale = [(claim, value, theory) for claim, value, theory in rows
+             if claim not in known or known[claim][COLUMN[fidelity]] != value or known[claim][3] != theory]
+    for claim, value, theory in stale:
+        print(f"{check_readme} lacks this row measured by {build} (paste it in place of the stale one):\n"
+              f"{full_row(claim, value, theory, known)}")
     print(f"{len(rows) - len(stale)} of {len(rows)} measured rows stand in {check_readme}")
     sys.exit(1 if stale else 0)
 
 if readme:
+    known = readme_table(os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "README.md"))
     print(f"<!-- {fidelity} fidelity, measured by the build in {build}: "
           f"/usr/bin/python3 tools/fidelity_report.py {build} {fidelity} --readme -->")
-    print("| id | quantity | measured (quick) | paper / theory |" if fidelity == "quick"
-          else "| id | quantity | measured (paper) | paper / theory |")
+    print(HEADER)
     print("|---|---|---|---|")
-    for row in readme_rows():
-        print(row)
+    for claim, value, theory in readme_rows():
+        print(full_row(claim, value, theory, known))
     sys.exit(0)
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Checks on the tracked files of the source tree (label docs).
 
-    check_repository.py SOURCE_DIR machine-paths | hdf5-readers | doc-links
+    check_repository.py SOURCE_DIR machine-paths | hdf5-readers | doc-links | readme-entry
 
 machine-paths  no tracked file points outside the repository: at the folder it was cloned into,
                at a sibling checkout's shared folder, or at a user's home or this machine's own
@@ -12,6 +12,16 @@ hdf5-readers   Python opens shockgas's HDF5 files for reading in one place, pyth
                mode ("w", "r+", "a", "x", "w-"): tests that make or damage files on purpose.
 doc-links      every relative link in a tracked Markdown file reaches a tracked file, and every
                #anchor a heading of its page (GitHub's heading slugs).
+readme-entry   README.md stays an entry point for users, not a log of measurements:
+               - at most 150 lines;
+               - the test command stands where .ci/run reads it (an indented line two lines after
+                 "Install, build and run the tests");
+               - the word "machine" only as the reader's own: "your machine(s)" or "a fresh Debian
+                 machine" (the first command's). The computers a measurement ran on are hardware in
+                 docs/measurements.md, never a "machine" of the README;
+               - dates (YYYY-MM-DD) and commit hashes (7 to 40 hex digits, at least one a digit and
+                 one a letter) only on the version line of the results table: the first non-blank line
+                 after the table whose header is "| claim | quick tier | paper tier | paper / theory |".
 Exit status 0 ok, 1 a problem (each printed with file and line), 77 (SKIP) outside a git checkout.
 """
 import os
@@ -101,6 +111,37 @@ elif check == "doc-links":
                 elif anchor and resolved.endswith(".md") and anchor not in slugs(resolved):
                     problems.append(f"{name}:{number}: link to {target}: {resolved} has no heading #{anchor}")
     print(f"{links} relative links checked")
+
+elif check == "readme-entry":
+    lines = text_lines("README.md")
+    if len(lines) > 150:
+        problems.append(f"README.md: {len(lines)} lines, more than 150: the details belong in docs/")
+    heading = [i for i, line in enumerate(lines) if line.startswith("Install, build and run the tests")]
+    if not heading or len(lines) <= heading[0] + 2 or not lines[heading[0] + 2].startswith("    "):
+        problems.append("README.md: no indented test command two lines after 'Install, build and run the tests' "
+                        "(.ci/run reads it there)")
+    header = "| claim | quick tier | paper tier | paper / theory |"
+    version_line = None
+    if header in lines:
+        after = lines.index(header)
+        while after < len(lines) and lines[after].startswith("|"):
+            after += 1
+        version_line = next((i for i in range(after, len(lines)) if lines[i].strip()), None)
+    else:
+        problems.append(f"README.md: no results table (header {header})")
+    machine = re.compile(r"machines?\b", re.I)
+    own = re.compile(r"(?:\byour|\bDebian) machines?\b", re.I)
+    date = re.compile(r"\b\d{4}-\d{2}-\d{2}\b")
+    commit = re.compile(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}\b")
+    for number, line in enumerate(lines, 1):
+        if len(machine.findall(line)) > len(own.findall(line)):
+            problems.append(f"README.md:{number}: 'machine' not as the reader's own (name hardware in "
+                            f"docs/measurements.md): {line.strip()}")
+        if number - 1 != version_line:
+            for found in date.findall(line) + commit.findall(line):
+                problems.append(f"README.md:{number}: {found} outside the results table's version line "
+                                f"(dated measurements go in docs/measurements.md): {line.strip()}")
+    print(f"README.md: {len(lines)} lines checked")
 
 else:
     sys.exit(f"unknown check {check!r}")
