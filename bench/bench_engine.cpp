@@ -201,7 +201,7 @@ void BM_hybrid(benchmark::State& state) {
 }
 
 // The pure inelastic gas (delta = 0) of fig_haff's smallest epsilon, r = 0.998:
-// collapse is possible, so the windowed engine keeps its copy to go back to
+// collapse is possible, so the event engine keeps its copy to go back to
 // (event_engine.hpp); to t = 300 no realization collapses at these sizes.
 const shockgas::CollisionModel pure_gas{0.998, 0.0, shockgas::Subthreshold::elastic};
 

@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
                  "exit 1 if the momentum drift or an energy rise exceeds its rounding bound, ring order breaks, a "
                  "value is non-finite or the run ends early (equal masses, no merges only)");
     app.add_option("--engine", p.engine,
-                   "engine as for shockgas-sim: event (the windowed engine where it applies), passthrough, hybrid, auto")
+                   "engine as for shockgas-sim: event (the event engine where it applies), passthrough, hybrid, auto")
         ->capture_default_str();
     app.add_flag("--reference", o.reference,
                  "run ReferenceEventEngine, the global-order loop the fast engine is bit-identical to (slower), and read its "

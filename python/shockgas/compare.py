@@ -32,7 +32,7 @@ RUN_DEPENDENT_ATTRIBUTES = {"date", "host", "wall_seconds", "cpu_seconds", "peak
 # (since 2026-11-28: the SHA-256 of the simulator's sources, compiler and flags;
 # analysis results copy it as input_simulator_sha256) says which simulator made a
 # file: two files that both have it are of the same simulator when it is the same,
-# whatever their `version` (sim/src/provenance.cpp same_simulator).
+# whatever their `version` (sim/io/src/provenance.cpp same_simulator).
 TOOLCHAIN_ATTRIBUTES = ("compiler", "compiler_flags", "build_type", "hdf5_version")
 PROVENANCE_ATTRIBUTES = {"program", "version", "simulator_sha256", "merged_by", *TOOLCHAIN_ATTRIBUTES}
 INPUT_PREFIX = re.compile(r"^input\d*_")
@@ -250,7 +250,7 @@ def compare_bytes(archived, rerun, category, archived_norm, rerun_norm):
 
 def same_simulator(archived, compared):
     """Whether two files' root attributes (dicts) name the same code, as shockgas-sim decides it
-    (sim/src/provenance.cpp same_simulator): "same simulator" when both have the same simulator_sha256,
+    (sim/io/src/provenance.cpp same_simulator): "same simulator" when both have the same simulator_sha256,
     "different simulator" when both have one and they differ, else None: the `version`s decide. Two
     hashes that differ where the compiler, flags or build type differ too (--cxx, another build) may
     differ by the toolchain alone, which selects the tolerant comparison and is no code difference:

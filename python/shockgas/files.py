@@ -342,7 +342,7 @@ def _refuse_to_replace(path, overwrite):
         raise FileExistsError(errno.EEXIST, "exists; pass overwrite=True to replace it", path)
 
 
-# Values per chunk of a dataset, at most: sim/src/h5.cpp's max_chunk_elements (8 MiB of doubles).
+# Values per chunk of a dataset, at most: sim/io/src/h5.cpp's max_chunk_elements (8 MiB of doubles).
 _MAX_CHUNK_VALUES = 1 << 20
 
 
@@ -365,7 +365,7 @@ def write_initial_condition(path, position, velocity, mass=None, ring_length=Non
     if not os.path.isdir(directory):
         raise FileNotFoundError(errno.ENOENT, f"no directory {directory} to write it in", path)
     with atomic_output_path(path, replace=overwrite) as temporary:  # never replaces when not asked
-        # As shockgas-sim writes every file (sim/src/h5.cpp): the HDF5 1.10 format, whose metadata carry
+        # As shockgas-sim writes every file (sim/io/src/h5.cpp): the HDF5 1.10 format, whose metadata carry
         # checksums, and each dataset chunked (at most 2^20 values a chunk) with the Fletcher32 checksum,
         # which HDF5 checks whenever the data are read; no object times, so the same start gives the
         # same bytes.

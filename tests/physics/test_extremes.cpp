@@ -11,7 +11,7 @@
 //   * kinetic energy never increases beyond rounding;
 //   * ring order never violated: every gap between neighbouring clusters is
 //     >= -(rounding of an absolute coordinate) and the gaps close the ring.
-// Engines are built through make_engine (fast windowed engine where it
+// Engines are built through make_engine (event engine where it
 // applies, the reference loop otherwise, the exact engine for r = 0 with
 // --engine exact), and for small N the reference ReferenceEventEngine is also run
 // directly so that the global loop is covered on the cases the fast engine
@@ -305,7 +305,7 @@ TEST_P(Extremes, FiniteAndInvariantsOrCollapse) {
         try {
             reached = engine->advance_to(t);
         } catch (const StallUndecidable&) {
-            // Documented: the windowed engine cannot decide the stall
+            // Documented: the event engine cannot decide the stall
             // detector; run_ensemble redoes the realization with the global
             // loop, and so does this test.
             ASSERT_EQ(c.engine, "event");
@@ -388,7 +388,7 @@ std::vector<Case> matrix() {
     return cases;
 }
 
-// The case that made the windowed engine throw out of a worker thread (and
+// The case that made the event engine throw out of a worker thread (and
 // abort the process) before run_ensemble learnt to fall back to the global
 // loop: a collapse regularized only by delta = 1e-12 at r = 1e-6.
 TEST(ExtremesEnsemble, UndecidableStallFallsBackToReferenceAndReportsCollapse) {

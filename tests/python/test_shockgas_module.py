@@ -257,7 +257,7 @@ class OtherKinds(unittest.TestCase):
         self.assertFalse(os.path.exists(path("init_crossover.h5")))
 
     def test_initial_condition_carries_checksums(self):
-        # As every file shockgas-sim writes (sim/src/h5.cpp): the HDF5 1.10 format, whose metadata
+        # As every file shockgas-sim writes (sim/io/src/h5.cpp): the HDF5 1.10 format, whose metadata
         # carry checksums, and every dataset chunked with Fletcher32. A byte changed in the data is
         # then refused by both readers, named damaged, never read as another start.
         n = 40

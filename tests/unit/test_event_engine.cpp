@@ -128,7 +128,7 @@ using shockgas::testing::expect_identical;
 struct Mode {
     const char* name;
     CollisionModel model;
-    bool fast_path;  // whether make_engine must pick the windowed engine
+    bool fast_path;  // whether make_engine must pick the event engine
 };
 
 // Runs make_engine("event") and the reference side by side and compares them
@@ -167,14 +167,14 @@ void compare(const Mode& mode, const InitialCondition& initial, const std::vecto
 
 const std::vector<double> sample_times = {0.0, 0.5, 1.0, 3.0, 10.0, 31.6, 100.0, 300.0};
 
-TEST(FastEngine, BitIdenticalToReferenceInThePapersGas) {
+TEST(EventEngine, BitIdenticalToReferenceInThePapersGas) {
     // r = 0.9, delta = 1e-2, elastic sub-threshold: the benchmark workload.
     const Mode mode{"r0.9-elastic", {0.9, 1e-2, Subthreshold::elastic}, true};
     for (std::uint64_t seed = 1; seed <= 3; ++seed)
         compare(mode, shockgas::generate_initial_condition(20000, 20000.0, seed, 0), sample_times);
 }
 
-TEST(FastEngine, BitIdenticalToReferenceAtStrongInelasticity) {
+TEST(EventEngine, BitIdenticalToReferenceAtStrongInelasticity) {
     // r = 0.5 clusters strongly: long quiet stretches, dense clusters, cuts in
     // between, and many events on block boundaries.
     const Mode mode{"r0.5-elastic", {0.5, 5e-2, Subthreshold::elastic}, true};
@@ -182,7 +182,7 @@ TEST(FastEngine, BitIdenticalToReferenceAtStrongInelasticity) {
         compare(mode, shockgas::generate_initial_condition(10000, 10000.0, seed, 0), sample_times);
 }
 
-TEST(FastEngine, BitIdenticalToReferenceInTheStickyGas) {
+TEST(EventEngine, BitIdenticalToReferenceInTheStickyGas) {
     // r = 0: every collision merges; merges across block boundaries move the
     // cut pairs' left ends. Unequal masses appear at once.
     const Mode mode{"r0-sticky-gas", {0.0, 1e-2, Subthreshold::elastic}, true};
@@ -191,7 +191,7 @@ TEST(FastEngine, BitIdenticalToReferenceInTheStickyGas) {
                 {0.0, 1.0, 10.0, 100.0, 1000.0, 1e4, 1e5});
 }
 
-TEST(FastEngine, BitIdenticalFromRandomPositions) {
+TEST(EventEngine, BitIdenticalFromRandomPositions) {
     // Non-lattice start (positions uniform on the ring, sorted): gaps of all
     // sizes from t = 0, including a ring seam inside a block.
     for (std::uint64_t seed = 9; seed <= 10; ++seed) {
@@ -205,7 +205,7 @@ TEST(FastEngine, BitIdenticalFromRandomPositions) {
     }
 }
 
-TEST(FastEngine, FallsBackAndStaysIdenticalWhereWindowsCannotBeExact) {
+TEST(EventEngine, FallsBackAndStaysIdenticalWhereWindowsCannotBeExact) {
     // Sticky sub-threshold with r > 0: unequal masses collide inelastically,
     // |v|max can grow, so make_engine keeps the global loop.
     compare({"r0.9-sticky", {0.9, 1e-2, Subthreshold::sticky}, false},
@@ -218,12 +218,12 @@ TEST(FastEngine, FallsBackAndStaysIdenticalWhereWindowsCannotBeExact) {
 
 // delta = 0: the first slow inelastic collision with three clusters in
 // contact, in global time order, ends the run, and the ring at that instant
-// is reported. The windowed engine goes back to its copy and runs that window
+// is reported. The event engine goes back to its copy and runs that window
 // as the global loop (event_engine.hpp), so the collapse report and the ring
 // are the reference's bit for bit. Sizes and r chosen so that the runs
 // collapse (r = 0.5 near t ~ 1-10 at N = 5000; r = 0.9, 0.99 later) after
 // many windows, with the samples after the collapse checked too.
-TEST(FastEngine, BitIdenticalThroughInelasticCollapse) {
+TEST(EventEngine, BitIdenticalThroughInelasticCollapse) {
     const std::vector<double> long_times = {0.0, 1.0, 10.0, 100.0, 1e3, 1e4, 1e5};
     std::uint64_t collapsed = 0;
     for (const double r : {0.5, 0.9, 0.99}) {
@@ -242,10 +242,10 @@ TEST(FastEngine, BitIdenticalThroughInelasticCollapse) {
 
 // A ring of a few particles at delta = 0 cools by Haff's law until pairs
 // collide slower than the collapse speed with no third cluster in contact
-// (not a collapse, ReferenceEventEngine's rule): the windowed engine goes back and runs
+// (not a collapse, ReferenceEventEngine's rule): the event engine goes back and runs
 // those windows as the global loop, and goes on identically. A ring of 3 at
 // r = 0.5 has pairs below 10^-12 by t ~ 10^12.
-TEST(FastEngine, SlowPairsThatAreNoCollapseStayIdentical) {
+TEST(EventEngine, SlowPairsThatAreNoCollapseStayIdentical) {
     const std::vector<double> times = {1.0, 1e2, 1e4, 1e6, 1e8, 1e10, 1e12, 1e14, 1e16};
     for (const std::int64_t particles : {2, 3, 4}) {
         for (std::uint64_t seed = 1; seed <= 3; ++seed) {
@@ -264,7 +264,7 @@ TEST(FastEngine, SlowPairsThatAreNoCollapseStayIdentical) {
     }
 }
 
-TEST(FastEngine, SmallRingsAreIdentical) {
+TEST(EventEngine, SmallRingsAreIdentical) {
     // Rings too small for more than one block run as one block (no cuts).
     for (const std::int64_t particles : {2, 3, 5, 50, 200}) {
         for (std::uint64_t seed = 1; seed <= 3; ++seed) {
@@ -282,7 +282,7 @@ TEST(FastEngine, SmallRingsAreIdentical) {
 // to t = 1e-2 (the same as t = 10^4 at unit spacing) was one window, and a real run of that kind
 // answered neither Ctrl-C nor the progress line for minutes. Results are the
 // reference's bit for bit, whatever the windows.
-TEST(FastEngine, ADenseStartGetsWindowsOfItsOwnScale) {
+TEST(EventEngine, ADenseStartGetsWindowsOfItsOwnScale) {
     const std::int64_t particles = 100;
     const auto dense = shockgas::generate_initial_condition(particles, 1e-6 * particles, 14, 0);
     const CollisionModel model{0.9, 1e-2, Subthreshold::elastic};

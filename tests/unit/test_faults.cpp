@@ -250,7 +250,7 @@ TEST(MemoryPlan, FewerRealizationsAtOnceWhenAllDoNotFitAndNoneWhenOneDoesNot) {
     EXPECT_EQ(plan_for(probe.need_bytes(1) - 1.0).realizations_at_once, 0);
     EXPECT_EQ(shockgas::plan_memory(p, 4, false, 1e15).per_realization_bytes, 1e6 * 128.0)
         << "without checkpoints a realization needs only its engine";
-    // delta = 0 (collapse possible): the windowed engine's copy to go back to, 176 bytes in all.
+    // delta = 0 (collapse possible): the event engine's copy to go back to, 176 bytes in all.
     p.collision.velocity_threshold = 0.0;
     EXPECT_EQ(shockgas::plan_memory(p, 4, false, 1e15).per_realization_bytes, 1e6 * 176.0);
 }

@@ -56,7 +56,7 @@ void Engine::restore(const EngineSnapshot& snapshot) {
                                  snapshot.kind));
 }
 
-// A snapshot names the class that wrote it: the windowed engine's and the
+// A snapshot names the class that wrote it: the event engine's and the
 // reference loop's states differ (the windowed one also carries its window
 // history), and a realization may have fallen back to the reference loop.
 std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const SimulationParameters& parameters,
@@ -85,7 +85,7 @@ std::unique_ptr<Engine> make_engine(const SimulationParameters& parameters, cons
                                     LiveStatus* live) {
     const std::string name = resolve_engine_name(parameters, &initial);
     if (name == "event") {
-        // The windowed engine gives bit-identical results, faster, wherever it
+        // The event engine gives bit-identical results, faster, wherever it
         // can be exact (EventEngine::supports); the global loop otherwise.
         if (EventEngine::supports(initial, parameters.collision, parameters.collapse))
             return std::make_unique<EventEngine>(initial, parameters.collision, parameters.collapse, live);

@@ -10,9 +10,9 @@
 //   records()                         the per-slot records (velocity, gap, clock, mass, next, prev)
 //   gap_at(slot, t), move_anchor_clock(slot, t)
 //   reschedule(slot), reschedule_collided(i, left, right) (left/right -1: a cut), unschedule(slot)
-//   left_is_cut(i), right_is_cut(j)   the windowed engine's block ends; false in the reference loop
+//   left_is_cut(i), right_is_cut(j)   the event engine's block ends; false in the reference loop
 //   log_left(t, i, v), log_right(t, i, end, v, contact_gap), became_block_end(i)
-//                                     the windowed engine's boundary logs; no-ops in the reference loop
+//                                     the event engine's boundary logs; no-ops in the reference loop
 //   collisions_, alive_, anchor_, anchor_position_, ring_length_
 #pragma once
 

@@ -91,7 +91,7 @@ private:
     static void log_left(double, std::int32_t, double) {}
     static void log_right(double, std::int32_t, std::int32_t, double, double) {}
     static void became_block_end(std::int32_t) {}
-    // detail::contact_cluster (shared with the windowed engine) reads these.
+    // detail::contact_cluster (shared with the event engine) reads these.
     template <class Engine>
     friend ContactCluster detail::contact_cluster(const Engine& engine, std::int32_t i, double t);
     const std::vector<Cluster>& records() const { return cluster_; }

@@ -1,5 +1,5 @@
 // The kinematics every event engine shares, written once so that the
-// reference loop and the windowed engine do the same arithmetic (their
+// reference loop and the event engine do the same arithmetic (their
 // results are compared bit for bit): the gap between neighbours at a later
 // time, the contact time of an approaching pair, and the walk around the ring
 // that turns gaps into positions. See ARCHITECTURE.md, "Gaps, not positions".

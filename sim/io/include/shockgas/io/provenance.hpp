@@ -17,9 +17,9 @@ struct BuildInfo {
     std::string compiler_flags;  // CMAKE_CXX_FLAGS plus the build type's flags
     std::string build_type;
     std::string hdf5_version;
-    // SHA-256 over the simulator's sources (sim/src, sim/include, sim/app,
-    // sim/CMakeLists.txt) and how they are built (SHOCKGAS_SIM_COMPILER_INFO in the
-    // top-level CMakeLists.txt; cmake/SourceHash.cmake): what decides its numbers.
+    // SHA-256 over what decides the simulator's numbers (sim/model, sim/io,
+    // sim/engines, sim/run) and how they are built (SHOCKGAS_SIM_COMPILER_INFO in the
+    // top-level CMakeLists.txt; cmake/SourceHash.cmake).
     std::string simulator_sha256;
 };
 

@@ -6,7 +6,7 @@
 // (E, Rykov & Sinai, Commun. Math. Phys. 177, 349 (1996)) makes a cluster a
 // level set of the mass-weighted isotonic regression of y = x + t v.
 //
-// Two callers: the exact engine (sim/src/exact_engine.cpp), which supplies a
+// Two callers: the exact engine (sim/engines/src/exact_engine.cpp), which supplies a
 // double-double violation test and runs on the ring, and the open-line solver
 // below, used by the far-tail sampler (sim/tail/include/shockgas/tail/tail_sampler.hpp).
 #pragma once
