@@ -26,6 +26,8 @@ set(SHOCKGAS_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/shockgas"
 set(SHOCKGAS_INSTALL_DATADIR "${CMAKE_INSTALL_DATADIR}/shockgas")
 mark_as_advanced(SHOCKGAS_INSTALL_CMAKEDIR)
 
+# The libraries, one a room (the umbrella shockgas_sim is an interface target, no file of its own).
+set(SHOCKGAS_LIBRARIES shockgas_model shockgas_io shockgas_engines shockgas_run shockgas_tail shockgas_analysis)
 set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail)
 
 # First of all the rules: the built files are all there, or nothing is installed
@@ -38,7 +40,7 @@ install(CODE "set(SHOCKGAS_BUILD_DIR \"${PROJECT_BINARY_DIR}\")
 # (shockgasPrograms.cmake, in the runtime component, needing nothing found): the
 # installed figure project runs them by target name as the source build does,
 # without the -dev package or a compiler.
-install(TARGETS shockgas_sim shockgas_model shockgas_io shockgas_engines shockgas_run shockgas_tail shockgas_analysis
+install(TARGETS shockgas_sim ${SHOCKGAS_LIBRARIES}
         EXPORT shockgasTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev
@@ -140,7 +142,7 @@ include(ManPages)
 
 # What cmake/InstallCheck.cmake looks for: the files the rules above take from the build tree.
 set(_install_needs)
-foreach(library IN ITEMS shockgas_sim shockgas_analysis)
+foreach(library IN LISTS SHOCKGAS_LIBRARIES)
   string(APPEND _install_needs "dev\t$<TARGET_FILE:${library}>\n")
 endforeach()
 foreach(program IN LISTS SHOCKGAS_PROGRAMS)

@@ -153,7 +153,7 @@ shockgas_cli_error(first_realization_overflow "first realization 922337203685477
                    -N 10 -t 1 -R 3 --first-realization 9223372036854775807)
 # More realizations than an int holds: CLI11 said only "Could not convert" (CLI audit 2026-11-27).
 shockgas_cli_error(realizations_beyond_int
-                   "^shockgas-sim: error: --realizations: must be an integer from 1 to 2\\^31 - 1 = 2147483647, not '1e12' \\(a larger ensemble runs as parts: --first-realization, then shockgas-merge\\)$"
+                   "^shockgas-sim: error: --realizations: must be an integer from 1 to 2\\^31 - 1 = 2147483647, not '1000000000000' \\(a larger ensemble runs as parts: --first-realization, then shockgas-merge\\)$"
                    -N 10 -t 1 -R 1e12)
 add_test(NAME cli.error.unwritable_output
          COMMAND ${_expect} "directory .* does not exist" "${_cli_dir}/absent_dir/out.h5" --
@@ -318,6 +318,14 @@ shockgas_cli_error(engine_unknown "engine must be" --engine warp -N 10)
 shockgas_cli_error(engine_passthrough_sticky "engine passthrough cannot run this: sticky sub-threshold"
                    --engine passthrough -r 0.5 -d 0.01 --subthreshold sticky -N 10)
 shockgas_cli_error(particles_not_a_number "particles|abc" -N abc)
+# Counts in scientific notation are the whole numbers they write (-N 1e5); a fraction is refused by name.
+shockgas_cli_error(particles_fraction "^shockgas-sim: error: --particles: must be a whole number, not '1.5e0'$" -N 1.5e0)
+shockgas_cli_error(realizations_fraction "^shockgas-sim: error: --realizations: must be a whole number, not '2.25e1'$"
+                   -N 10 -R 2.25e1)
+add_test(NAME cli.counts_in_scientific_notation
+         COMMAND ${CMAKE_COMMAND} -DSIM=$<TARGET_FILE:shockgas-sim> -DDUMP=$<TARGET_FILE:shockgas-dump>
+                 -DWORK=${_cli_dir}/scientific -P ${CMAKE_CURRENT_LIST_DIR}/scientific_counts_test.cmake)
+set_tests_properties(cli.counts_in_scientific_notation PROPERTIES LABELS cli)
 shockgas_cli_error(particles_too_many "below 2\\^31" -N 3000000000)
 shockgas_cli_error(unknown_option "frobnicate" -N 10 --frobnicate 3)
 shockgas_cli_error(restitution_nan "restitution" -N 10 -r nan)

@@ -4,6 +4,8 @@
 // the executables (the libraries do not depend on CLI11).
 #pragma once
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -208,11 +210,83 @@ inline const CLI::Validator realizations_in_range(
     },
     "1 .. 2^31-1");
 
+// A count written as an exact decimal, in scientific notation or with a
+// fraction of zeros (-N 1e5, -R 2.5e3, --chains 4.0), is that whole number: its
+// digits, computed from the text (no floating point, so 12345678901234567e2
+// stays exact), for CLI11 to convert and range-check. A number with a
+// fraction is refused as not a whole number, naming the text; plain integers
+// and text that is no number pass unchanged, to the option's own checks.
+inline std::string whole_number_digits(const std::string& text, std::string& error) {
+    error.clear();
+    std::size_t i = 0;
+    std::string sign;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) sign = text[i++] == '-' ? "-" : "";
+    std::string digits;
+    std::size_t after_point = 0;
+    bool plain = true;  // digits only, no point and no exponent
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0) digits += text[i++];
+    if (i < text.size() && text[i] == '.') {
+        ++i;
+        plain = false;
+        while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0) digits += text[i++], ++after_point;
+    }
+    long long exponent = 0;
+    bool exponent_ok = true;
+    if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+        ++i;
+        plain = false;
+        const char* first = text.data() + i;
+        if (i < text.size() && text[i] == '+') ++first;
+        const auto [end, code] = std::from_chars(first, text.data() + text.size(), exponent);
+        exponent_ok = code == std::errc() && end == text.data() + text.size() && end != first;
+        i = text.size();
+    }
+    const auto refuse = [&](const char* why) {
+        error = fmt::format("must be a whole number{}, not '{}'", why, text);
+        return text;
+    };
+    if (digits.empty() || i != text.size() || !exponent_ok) return text;  // no number: the option's checks say so
+    if (plain) return text;  // a plain integer: CLI11's to convert
+    // value = digits x 10^shift
+    const long long shift = exponent - static_cast<long long>(after_point);
+    constexpr long long most_digits = 30;  // beyond every count's range; CLI11 then says "too large"
+    if (shift < 0) {
+        const auto cut = static_cast<std::size_t>(std::min<long long>(-shift, static_cast<long long>(digits.size())));
+        if (digits.find_first_not_of('0', digits.size() - cut) != std::string::npos) return refuse("");
+        digits.resize(digits.size() - cut);
+        if (digits.empty()) digits = "0";
+    } else {
+        if (shift > most_digits) return refuse(" in range");
+        digits.append(static_cast<std::size_t>(shift), '0');
+    }
+    const std::size_t lead = std::min(digits.find_first_not_of('0'), digits.size() - 1);
+    return sign + digits.substr(lead);
+}
+
+inline const CLI::Validator whole_number(
+    [](std::string& text) -> std::string {
+        std::string error;
+        text = whole_number_digits(text, error);
+        return error;
+    },
+    "", "whole_number");
+
+// Gives every integer option of app and its subcommands (CLI11's type names
+// INT and UINT) the whole_number rewriting, before its own checks.
+inline void accept_whole_numbers(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        const std::string type = option->get_type_name();
+        if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) option->transform(whole_number);
+    }
+    for (CLI::App* sub : app.get_subcommands({})) accept_whole_numbers(*sub);
+}
+
 // Parses; returns -1 to go on, or the exit status: 0 after --help or
 // --version, bad_input after a parse error (printed as one line). exclusions:
 // the program's exclude() declarations, whose breach is named with its reason.
 inline int parse(CLI::App& app, int argc, char** argv, const std::string& program,
                  const std::vector<Exclusion>& exclusions = {}) {
+    accept_whole_numbers(app);
     try {
         app.parse(argc, argv);
         return -1;
