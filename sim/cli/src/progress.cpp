@@ -23,20 +23,97 @@ bool ProgressLog::due(const Progress& p) {
 std::string format_progress(const Progress& p) {
     const std::string eta = p.eta_seconds < 0 ? "--" : fmt::format("{:.0f} s", p.eta_seconds);
     return fmt::format("t = {:.4g}  realizations {}/{}  {:.1f}%  {:.3g} collisions/s  elapsed {:.0f} s  ETA {}",
-                       p.latest_time, p.realizations_done, p.realizations, 100.0 * p.fraction_done,
+                       p.shown_time, p.realizations_done, p.realizations, 100.0 * p.fraction_done,
                        p.collisions_per_second, p.elapsed_seconds, eta);
 }
 
 namespace cli {
 
+namespace {
+// A realization's growth exponent a of c(t) ~ t^a is read between the time it
+// has reached and the last report at or before this fraction of it: far enough
+// back that a second's jitter does not decide it.
+constexpr double history_reach = 0.5;
+// The exponent is held to this range: the collision count of every setting
+// grows no faster than linearly in t once its first collisions are done (an
+// elastic gas: constant rate; clustering gases: slower), and a short history
+// at the very start can read anything.
+constexpr double slowest_growth = 0.2, fastest_growth = 1.0;
+}  // namespace
+
+double ProgressEstimator::expected_total(std::size_t k, const RealizationProgress& r, double t_max) const {
+    const auto now = static_cast<double>(r.collisions);
+    if (r.time <= 0.0 || r.time >= t_max || now <= 0.0) return now;
+    double growth = fastest_growth;
+    const std::vector<Sample>& seen = history_[k];
+    for (auto it = seen.rbegin(); it != seen.rend(); ++it)
+        if (it->time <= history_reach * r.time) {
+            if (it->time > 0.0 && it->collisions > 0.0)
+                growth = std::clamp(std::log(now / it->collisions) / std::log(r.time / it->time), slowest_growth,
+                                    fastest_growth);
+            break;
+        }
+    return now * std::pow(t_max / r.time, growth);
+}
+
+void ProgressEstimator::update(Progress& p) {
+    using State = RealizationProgress::State;
+    history_.resize(p.realization.size());
+    double finished_total = 0.0, running_done = 0.0, running_expected = 0.0;
+    std::int64_t finished = 0, running = 0, waiting = 0;
+    double slowest = p.t_max;
+    bool any_running = false;
+    for (std::size_t k = 0; k < p.realization.size(); ++k) {
+        const RealizationProgress& r = p.realization[k];
+        if (r.state == State::finished) {
+            finished_total += static_cast<double>(r.collisions);
+            ++finished;
+        } else if (r.state == State::running) {
+            running_done += static_cast<double>(r.collisions);
+            running_expected += expected_total(k, r, p.t_max);
+            slowest = any_running ? std::min(slowest, r.time) : r.time;
+            any_running = true;
+            ++running;
+        } else {
+            ++waiting;
+        }
+        if (r.state == State::running &&
+            (history_[k].empty() || r.time > history_[k].back().time))
+            history_[k].push_back({r.time, static_cast<double>(r.collisions)});
+    }
+    p.shown_time = slowest;
+    // What one realization costs: measured once one has finished, else the running ones' extrapolations.
+    const double per_realization = finished > 0   ? finished_total / static_cast<double>(finished)
+                                   : running > 0 ? running_expected / static_cast<double>(running)
+                                                 : 0.0;
+    double remaining = static_cast<double>(waiting) * per_realization;
+    for (std::size_t k = 0; k < p.realization.size(); ++k) {
+        const RealizationProgress& r = p.realization[k];
+        if (r.state != State::running) continue;
+        const double expected = finished > 0 ? std::max(per_realization, static_cast<double>(r.collisions))
+                                             : expected_total(k, r, p.t_max);
+        remaining += std::max(0.0, expected - static_cast<double>(r.collisions));
+    }
+    const double done = finished_total + running_done;
+    p.fraction_done = done + remaining > 0.0 ? done / (done + remaining) : (waiting + running == 0 ? 1.0 : 0.0);
+    p.eta_seconds = p.collisions_per_second > 0.0 && per_realization > 0.0 ? remaining / p.collisions_per_second
+                    : waiting + running == 0                               ? 0.0
+                                                                           : -1.0;
+}
+
 ProgressCallback progress_printer(const std::string& program, double log_interval_seconds) {
+    auto estimator = std::make_shared<ProgressEstimator>();
     if (isatty(STDERR_FILENO) != 0)
-        return [](const Progress& status) {
+        return [estimator](const Progress& report) {
+            Progress status = report;
+            estimator->update(status);
             fmt::print(stderr, "\r{:<110}", format_progress(status));
             std::fflush(stderr);
         };
     auto log = std::make_shared<ProgressLog>(log_interval_seconds);
-    return [log, program](const Progress& status) {
+    return [estimator, log, program](const Progress& report) {
+        Progress status = report;
+        estimator->update(status);
         if (!log->due(status)) return;
         fmt::print(stderr, "{}: progress: {}\n", program, format_progress(status));
         std::fflush(stderr);

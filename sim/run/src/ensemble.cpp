@@ -475,29 +475,30 @@ private:
         return t;
     }
 
+    // The facts of the moment; estimates are the caller's (cli::ProgressEstimator).
     Progress snapshot_progress(std::chrono::steady_clock::time_point start) const {
         Progress p;
         p.realizations = parameters_.realizations;
+        p.t_max = parameters_.t_max;
         p.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        double work = 0.0;
-        std::uint64_t collisions = 0;  // by this process: not those done before the checkpoint it resumed from
+        p.realization.resize(live_.size());
         for (std::size_t k = 0; k < live_.size(); ++k) {
-            const double t = live_[k].time.load(std::memory_order_relaxed);
-            const std::uint64_t count = live_[k].collisions.load(std::memory_order_relaxed);
-            collisions += count - std::min(count, collisions_before_[k].load(std::memory_order_relaxed));
-            p.latest_time = std::max(p.latest_time, t);
+            RealizationProgress& r = p.realization[k];
+            r.time = live_[k].time.load(std::memory_order_relaxed);
+            r.collisions = live_[k].collisions.load(std::memory_order_relaxed);
+            p.collisions_this_process += r.collisions - std::min(r.collisions, collisions_before_[k].load(std::memory_order_relaxed));
             // A realization stopped by a signal has finished running but is not done: the
             // last line of a stopped run must not read "1/1 100.0% ETA 0 s". (outputs_[k] is
             // written before finished_[k] is set, so it is complete once that reads true.)
-            const bool done = finished_[k].load() && outputs_[k].status != RealizationStatus::interrupted;
+            const bool finished = finished_[k].load();
+            const bool done = finished && outputs_[k].status != RealizationStatus::interrupted;
+            r.state = done                    ? RealizationProgress::State::finished
+                      : started_[k].load() && !finished ? RealizationProgress::State::running
+                                                       : RealizationProgress::State::waiting;
             p.realizations_done += done ? 1 : 0;
-            // Collisions up to time t grow roughly as t^(2/3) once the gas
-            // clusters, so (t / t_max)^(2/3) estimates the share of work done.
-            work += done ? 1.0 : std::pow(std::min(1.0, t / parameters_.t_max), 2.0 / 3.0);
         }
-        p.fraction_done = std::min(1.0, work / parameters_.realizations);
-        p.collisions_per_second = p.elapsed_seconds > 0 ? static_cast<double>(collisions) / p.elapsed_seconds : 0.0;
-        p.eta_seconds = p.fraction_done > 0.01 ? p.elapsed_seconds * (1.0 - p.fraction_done) / p.fraction_done : -1.0;
+        p.collisions_per_second =
+            p.elapsed_seconds > 0 ? static_cast<double>(p.collisions_this_process) / p.elapsed_seconds : 0.0;
         return p;
     }
 

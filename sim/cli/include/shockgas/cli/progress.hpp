@@ -2,8 +2,10 @@
 // terminal, and which reports a batch job's log gets.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "shockgas/run/progress.hpp"
 
@@ -29,7 +31,31 @@ private:
 
 namespace cli {
 
-// How a program (e.g. "shockgas-sim") shows the driver's reports on stderr: on
+// Estimates a run's progress from the driver's facts (Progress::realization):
+// fills fraction_done, shown_time and eta_seconds. The work is counted in
+// collisions, whose cost is what the engines' speed is: what remains is each
+// running realization's expected total less what it has done, and a full
+// realization for each waiting one, at the rate collisions are being computed
+// now. A realization's expected total is the mean total of those finished;
+// before any has finished, each running one's collisions are extrapolated to
+// t_max along its own c(t) ~ t^a, with a measured between the time it has
+// reached and half of it (a = 1, collisions at a constant rate, until it has
+// history). Stateful: keep one estimator for a run and give it every report.
+class ProgressEstimator {
+public:
+    void update(Progress& progress);
+
+private:
+    struct Sample {
+        double time = 0.0;
+        double collisions = 0.0;
+    };
+    std::vector<std::vector<Sample>> history_;  // per realization, times increasing
+    double expected_total(std::size_t k, const RealizationProgress& r, double t_max) const;
+};
+
+// How a program (e.g. "shockgas-sim") shows the driver's reports on stderr,
+// estimated by a ProgressEstimator of its own: on
 // a terminal one line, rewritten in place; in a log (stderr not a terminal: a
 // batch job's file) "<program>: progress: ..." lines when ProgressLog says one
 // is due (every log_interval_seconds, at each tenth done, and at the end).
