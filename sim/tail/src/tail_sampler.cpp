@@ -248,7 +248,7 @@ TaggedClusterVelocity::TaggedClusterVelocity(std::int64_t half_window, double ti
     // The instanton starts hold one window per bias (8 bytes a site): 23
     // biases of 2·10^6 + 1 sites are 370 MB. A cluster at time t spans
     // ~ t^(2/3) particles, so 10^6 on each side would serve t ~ 10^9, far
-    // beyond what the chains reach; 10^8 took 7.5 GB within 20 s (2026-11-26).
+    // beyond what the chains reach, while 10^8 would take 7.5 GB within 20 s.
     constexpr std::int64_t most_half_window = 1'000'000;
     if (half_window > most_half_window)
         throw InputError(fmt::format("tagged cluster: the half window must hold at most {} particles, got {}",
