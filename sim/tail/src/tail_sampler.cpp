@@ -51,7 +51,7 @@ double standard_normal(std::mt19937_64& engine) {
 // F the law's distribution function and G the latent one's. For the Gaussian
 // v = g. For the uniform law on [-1, 1], F^-1(G(g)) = erf(g sqrt(3/2)): every
 // latent state is a valid window, so the collective (block) moves the tail
-// needs are never refused at the law's edge, as they were when the chains
+// needs are never refused at the law's edge, as they would be if the chains
 // moved the velocities themselves and rejected any move leaving [-1, 1]
 // (docs/far-tail.md, "The uniform start"). The map is monotone, so the
 // law of any observable is unchanged: only the chain's coordinates are.
