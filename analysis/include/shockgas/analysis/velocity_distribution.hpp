@@ -34,8 +34,8 @@ struct VelocityHistogram {
 // A realization stopped before a histogram time (an interrupted run: Ctrl-C,
 // or a realization that never started) left a row of zeros there, which
 // counted as a realization would bias every mean, standard error, jackknife
-// and tail fit (an audit: kurtosis sigma 0.206 instead of 0.168, no usable
-// tail bin instead of 12). Which realizations reached time t is what the run
+// and tail fit (in one interrupted run: kurtosis sigma 0.206 instead of 0.168,
+// no usable tail bin instead of 12). Which realizations reached time t is what the run
 // recorded: T(t) in /timeseries/temperature is a number exactly for them
 // (NaN otherwise); for a time the series does not hold, a row with mass.
 // Their rows are kept in realization order, so with the usual interruption
