@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # damaged_checkpoint_test.sh SIM PYTHON COMPARE_OUTPUTS DIR
 # A damaged or truncated checkpoint never ends a run and never changes its
-# result (issue 19):
+# result (docs/reliability.md):
 #   1. an uninterrupted reference run;
 #   2. the same run with a checkpoint every 0.1 s, stopped (SIGINT) after its
 #      third checkpoint: both generations, OUT.h5.checkpoint and

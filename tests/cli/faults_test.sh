@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # faults_test.sh CASE SIM DIR [PYTHON COMPARE_OUTPUTS]
-# One fault per CASE (issue 19); each says what must happen and fails otherwise.
+# One fault per CASE (docs/reliability.md); each says what must happen and fails otherwise.
 #   file_size_output      a file-size limit (ulimit -f) during the output write: one line naming the
 #                         file and "File too large", exit 2 (not killed by SIGXFSZ), nothing left behind
 #   file_size_checkpoint  a resumed run whose next checkpoint exceeds the limit: one line naming the

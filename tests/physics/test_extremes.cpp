@@ -1,4 +1,4 @@
-// Extremes (issue 8): every engine path at the edges of parameter space.
+// Extremes: every engine path at the edges of parameter space.
 //
 // r in {0, 1e-6, 0.5, 1 - 1e-6, 1}, delta in {0, 1e-12, 1e-2, 1}, both
 // sub-threshold mechanisms, N in {2, 3, 10^7}, long times for small N. Every

@@ -1,4 +1,4 @@
-// Faults that must not lose work or change results silently (issue 19), at
+// Faults that must not lose work or change results silently (docs/reliability.md), at
 // the level of the library: the checkpoint unit's generations and fallback,
 // its lock, and the memory plan. End-to-end cases (damaged files resumed bit
 // for bit, file-size limits, stale temporaries, two processes) are the
