@@ -41,7 +41,7 @@ set_tests_properties(cli.analyze.setup.short_tail PROPERTIES FIXTURES_SETUP anal
 # the arguments and -o <name>.out.h5 must fail as bad input with one line
 # matching regex and leave no <name>.out.h5 (the pattern of shockgas_tool_error
 # in cli_tests.cmake; one output name per test, as tests run in parallel). The
-# timeout catches a hang (a scan step of 0 once looped forever).
+# timeout catches a hang (a scan step of 0 would loop forever).
 function(shockgas_analyze_error name regex)
   set(_output "${_analyze_dir}/${name}.out.h5")
   add_test(NAME cli.analyze.${name}
@@ -237,7 +237,7 @@ shockgas_analyze_reports(decay_one_realization_chi2
                          "chi2/dof 0\\.00|nan" decay e10_one.h5 --t-lo 10 --t-hi 1000 -o "${_analyze_dir}/one_decay.h5")
 
 # 13b. One realization, crossover: the times with sigma n/a, and the powers of eps, weighted by the
-# inputs' sigmas, n/a naming the input (the command refused the run, exit status 2, until 2026-11-27).
+# inputs' sigmas, n/a naming the input: the run is analysed, not refused.
 shockgas_analyze_reports(crossover_one_realization
                          "eps 0\\.1 +t_dissip [0-9.]+ \\+- n/a \\(one realization: the jackknife has nothing to leave out"
                          "nan|shockgas-analyze: error" crossover e10_one.h5 -o "${_analyze_dir}/one_crossover.h5")
@@ -246,8 +246,8 @@ shockgas_analyze_reports(crossover_one_realization_no_fit_over_eps
                          "nan|shockgas-analyze: error" crossover e05.h5 e10_one.h5 -o "${_analyze_dir}/one_crossover_eps.h5")
 
 # 13c. One realization, collapse: its time and mass with sigma n/a (and the spread n/a), and the fits
-# across inputs, weighted by their sigmas, n/a naming the input, against eps and against N (the
-# command refused the run, exit status 2, until 2026-11-27).
+# across inputs, weighted by their sigmas, n/a naming the input, against eps and against N: the run
+# is analysed, not refused.
 shockgas_analyze_reports(collapse_one_realization
                          "eps 0\\.25 +N 2000 +collapse time [0-9.]+ \\+- n/a \\(one realization: the jackknife has nothing to leave out; run -R 2 or more\\) \\(spread n/a\\), cluster mass [0-9.]+ \\+- n/a \\(one realization.*\\(1/1 collapsed\\)"
                          "nan|shockgas-analyze: error" collapse col_one.h5 -o "${_analyze_dir}/one_collapse.h5")
@@ -287,8 +287,8 @@ if(GNUPLOT_EXECUTABLE)
                    ${PROJECT_SOURCE_DIR}/tools/shockgas-look "${_analyze_dir}/col.h5" -o "${_analyze_dir}/look_refused.png"
                    --t-lo 50 --t-hi 100)
   set_tests_properties(cli.analyze.look_window_refused PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
-  # Before any work, one line each (the CLI audit of 2026-11-27: a missing output directory gave
-  # gnuplot's error after the analysis, a file that is not a run two contradictory lines).
+  # Before any work, one line each (not gnuplot's error after the analysis for a missing output
+  # directory, nor two contradictory lines for a file that is not a run).
   foreach(_case IN ITEMS
           "output_directory_missing|^shockgas-look: error: cannot write '.*/no_such_directory/look\\.png': directory '.*/no_such_directory' does not exist$|${_analyze_dir}/col.h5|${_analyze_dir}/no_such_directory/look.png"
           "not_a_run|^shockgas-look: error: .*typo\\.toml' is not a readable HDF5 file|${CMAKE_CURRENT_SOURCE_DIR}/cli/typo.toml|${_analyze_dir}/look_not_a_run.png")
@@ -337,10 +337,10 @@ shockgas_analyze_refused_by(checkpoint_refused interrupted.h5.checkpoint
   "^shockgas-analyze: error: 'interrupted\\.h5\\.checkpoint' is a shockgas-sim checkpoint \\(a run in progress\\), not an output: continue the run with shockgas-sim --resume and the same options$"
   ${_every_subcommand})
 # 17b. A file that is not a run is named for what it is, in one line, by every subcommand: an analysis
-# results file (`scaling dec.h5` said "missing attribute /restitution in 'dec.h5'") before any work, and a
-# far-tail file (`decay tail.h5` said "missing group /timeseries") where the run is read (crossover and
-# scaling: where they read its restitution, run_parameters); the user review of 2026-11-27. far-tail reads
-# the far-tail file, so it is not in the second list.
+# results file before any work (not as "missing attribute /restitution in 'dec.h5'"), and a far-tail
+# file where the run is read (not as "missing group /timeseries"; crossover and scaling: where they
+# read its restitution, run_parameters). far-tail reads the far-tail file, so it is not in the second
+# list.
 add_test(NAME cli.analyze.setup.results_input
          COMMAND $<TARGET_FILE:shockgas-analyze> decay a.h5 ${_window} -o results_input.h5
          WORKING_DIRECTORY "${_analyze_dir}")
@@ -351,7 +351,7 @@ list(REMOVE_ITEM _every_subcommand_of_a_run "far_tail|far-tail")
 shockgas_analyze_refused_by(results_refused results_input.h5
   "^shockgas-analyze: error: 'results_input\\.h5' is not a shockgas-sim output: it is an analysis results file \\(made by shockgas-analyze decay\\)$"
   ${_every_subcommand_of_a_run})
-# far-tail reads a shockgas-tail file, and says so (it said "not a shockgas-sim output" too, a review found).
+# far-tail reads a shockgas-tail file, and says so (not "not a shockgas-sim output").
 shockgas_analyze_refused_by(results_refused results_input.h5
   "^shockgas-analyze: error: 'results_input\\.h5' is not a far-tail sampler file \\(made by shockgas-tail\\): it is an analysis results file \\(made by shockgas-analyze decay\\)$"
   "far_tail|far-tail")

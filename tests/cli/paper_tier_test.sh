@@ -49,7 +49,7 @@ EOF
 cmake -S "$work/project" -B "$work/build" -DSIM="$sim" >/dev/null || fail "the test project did not configure"
 build=$work/build
 # Up to 300 s of wall time: the builds run at the lowest priority, so under other load (a CI run beside
-# simulations, 2026-12-02: load 10 on 2 cores) they take far longer than the seconds they need idle.
+# simulations: a load of 10 on 2 cores) they take far longer than the seconds they need idle.
 stop_wait=300
 wait_until_stopped() {
   local deadline=$((SECONDS + stop_wait))
@@ -140,7 +140,7 @@ done
 pgrep -g "$pid" -f "run.h5" >/dev/null || fail "the simulation did not start"
 # Stop it only once it catches SIGTERM (signal 15: bit 14 of SigCgt): its handler writes the last checkpoint, and a
 # signal before the handler is installed ends it with nothing to save. Under a sanitizer on a loaded
-# machine the start can take longer than the second below (CI, 2026-11-26: "left no checkpoint").
+# computer the start can take longer than a second (then the test would fail with "left no checkpoint").
 sim_pid=$(pgrep -g "$pid" -x shockgas-sim | head -n 1)
 [ -n "$sim_pid" ] || fail "no shockgas-sim process in the build's group"
 for ((i = 0; i < 600; ++i)); do
