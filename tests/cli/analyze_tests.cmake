@@ -196,7 +196,7 @@ foreach(_case IN ITEMS "merge_gap_negative|--merge-gap must be a whole number at
   shockgas_analyze_error(${_name} "^shockgas-analyze: error: ${_regex}$" ${_arguments})
 endforeach()
 
-# 9b. A misspelt subcommand names the nearest one and all of them (CLI11 said "A subcommand is
+# 9b. A misspelt subcommand names the nearest one and all of them (CLI11 alone says "A subcommand is
 # required"), through the shared shockgas::cli::parse; -o and its value (added by the helper) are not it.
 set(_subcommands "the subcommands are decay, crossover, scaling, shocks, collapse, compare, far-tail")
 shockgas_analyze_error(subcommand_misspelt

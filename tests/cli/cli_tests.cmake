@@ -445,7 +445,7 @@ shockgas_cli_error(progress_interval_nan "--progress-interval: must be a finite 
 shockgas_cli_error(progress_interval_inf "--progress-interval: must be a finite number >= 0" -N 10 --progress-interval inf)
 shockgas_cli_error(checkpoint_interval_nan "--checkpoint-interval: must be a finite number >= 0"
                    -N 10 --checkpoint-interval nan)
-# A config file's [section] header said "unknown option 'section.++'".
+# A config file's [section] header is refused in words, not as "unknown option 'section.++'".
 file(WRITE "${_cli_dir}/config_section.toml" "[run]\nparticles = 10\n")
 file(WRITE "${_cli_dir}/config_dotted_key.toml" "particles = 10\nrun.t-max = 10\n")
 shockgas_cli_error(config_section

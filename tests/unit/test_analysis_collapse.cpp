@@ -145,8 +145,8 @@ TEST(AnalysisCollapse, ARealizationListedTwiceIsRefused) {
 }
 
 // One realization: its collapse time and mass stand, their sigmas and the spread are n/a with the
-// jackknife's reason, as crossover's times. Until 2026-11-27 summarize_collapse threw, and collapse
-// on an R = 1 run stopped with exit status 2. A run of one that did not collapse has no time at all.
+// jackknife's reason, as crossover's times: summarize_collapse does not throw, so collapse analyses an
+// R = 1 run instead of stopping with exit status 2. A run of one that did not collapse has no time at all.
 TEST(AnalysisCollapse, OneRealizationHasTimeAndMassWithoutSigma) {
     const auto path = write_synthetic_run("single", 5000, 0.9, 1, {10.0}, {50});
     const auto summary = sa::summarize_collapse(sa::read_collapse_events(path));
