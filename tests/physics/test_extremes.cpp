@@ -14,7 +14,7 @@
 // Engines are built through make_engine (event engine where it
 // applies, the reference loop otherwise, the exact engine for r = 0 with
 // --engine exact), and for small N the reference ReferenceEventEngine is also run
-// directly so that the global loop is covered on the cases the fast engine
+// directly so that the global loop is covered on the cases the event engine
 // takes.
 //
 // Built twice: test_extremes (label extremes, CI-sized: small N, t_max 1e6)

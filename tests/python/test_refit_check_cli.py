@@ -108,8 +108,8 @@ class TooFewToWeigh(unittest.TestCase):
     def test_one_realization(self):
         self.expect_unweighted_on_both_sides(1)
 
-    # Two: the C++ fits unweighted with sigma and chi2 n/a since 2026-11-27; the refit weighed by the
-    # two-value standard error and failed on every R = 2 result until a review found it.
+    # Two: the C++ fits unweighted with sigma and chi2 n/a, and so must the refit (weighed by the
+    # two-value standard error, it would fail on every R = 2 result).
     def test_two_realizations(self):
         self.expect_unweighted_on_both_sides(2)
 
