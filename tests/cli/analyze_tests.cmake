@@ -75,7 +75,8 @@ add_test(NAME cli.analyze.output_is_input
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/analyze_output_is_input_test.sh ${_analyze_program} "${_analyze_dir}")
 set_tests_properties(cli.analyze.output_is_input PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
 
-# 2. The window scan: a step of 0 looped forever; an empty scan was written with status 0.
+# 2. The window scan: a step of 0 (which would loop forever) and an empty scan (which would be written with
+# status 0) are refused.
 foreach(_step IN ITEMS 0 -0.1 1e-9 nan)
   shockgas_analyze_error(scan_step_${_step} "^shockgas-analyze: error: --scan-step must be finite and at least 0.001 decades"
                          decay a.h5 ${_window} --scan-step ${_step})
@@ -107,9 +108,9 @@ shockgas_analyze_error(data_full_disk_large
 # A device is written through, not replaced: the table arrives on standard output.
 shockgas_analyze_reports(data_to_standard_output "# decay exponent in moving windows.*decay exponent" "error"
                          decay a.h5 ${_window} -o "${_analyze_dir}/stdout_decay.h5" --scan /dev/stdout)
-# The same under a shell's `> file`: /dev/stdout is then that file, and opening it anew ("w") truncated it
-# and wrote at an offset of its own, so the report overwrote the table's start. It is written through the
-# program's own standard output now (sim/io/src/text_file.cpp), the table before the report.
+# The same under a shell's `> file`: /dev/stdout is then that file, and opening it anew ("w") would truncate
+# it and write at an offset of its own, so the report would overwrite the table's start. It is written
+# through the program's own standard output (sim/io/src/text_file.cpp), the table before the report.
 add_test(NAME cli.analyze.data_to_redirected_standard_output
          COMMAND sh -c "\"$1\" decay a.h5 --t-lo 1 --t-hi 100 -o stdout_file_decay.h5 --scan /dev/stdout > stdout_file.txt && cat stdout_file.txt"
                  sh ${_analyze_program} WORKING_DIRECTORY "${_analyze_dir}")
@@ -306,9 +307,9 @@ if(GNUPLOT_EXECUTABLE)
 endif()
 
 # 16. An interrupted run (Ctrl-C after 2 s: realization 0 of 3 reached the histogram times 1 and 10, 1 and
-# 2 never started) and the checkpoint it leaves. scaling counted the rows of zeros of the realizations that
-# never reached a histogram time as realizations (means, errors, the tail fit all wrong); now each time uses
-# the realizations that reached it, and says so.
+# 2 never started) and the checkpoint it leaves. scaling must not count the rows of zeros of the realizations
+# that never reached a histogram time as realizations (means, errors, the tail fit would all be wrong): each
+# time uses the realizations that reached it, and says so.
 add_test(NAME cli.analyze.setup.interrupted
          COMMAND bash -c "rm -f interrupted.h5 interrupted.h5.checkpoint interrupted.h5.checkpoint.previous; timeout -s INT 2 \"$0\" -N 100 -r 0.5 -d 0.01 -t 1e300 -R 3 -q -j 1 --histogram-times 1,10 -o interrupted.h5 2>/dev/null; test -e interrupted.h5 && test -e interrupted.h5.checkpoint"
                  $<TARGET_FILE:shockgas-sim>
@@ -320,7 +321,7 @@ shockgas_analyze_reports(scaling_interrupted_uses_reached
 shockgas_analyze_error(decay_interrupted_names_resume
                        "no sample time t > 0 was reached with T > 0 by every realization: the run was interrupted; continue it with shockgas-sim --resume and the same options, in 'interrupted.h5'$"
                        decay interrupted.h5)
-# 17. Every subcommand refuses a checkpoint (decay and compare printed results from one), in one check.
+# 17. Every subcommand refuses a checkpoint (decay and compare would print results from one), in one check.
 # shockgas_analyze_refused_by(<prefix> <file> <regex> <case>...): the test cli.analyze.<prefix>_<name> for
 # each case "name|subcommand[|arguments]", run on <file>, must fail with <regex>.
 set(_every_subcommand "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"

@@ -116,7 +116,8 @@ foreach(_case IN ITEMS "particles|--particles '500'|-N;500" "ring_length|--ring-
     "^shockgas-burgers: error: --run '[^']*burgers_sticky\\.h5' and ${_given} exclude each other: --run takes the initial condition from the run \\(its N, L, seed and law, or its init file\\); give one of them$"
     --run "${_cli_dir}/burgers_sticky.h5" ${_arguments})
 endforeach()
-# --init's file is the start itself: -N (like -L, -s and --realization) beside it was ignored as well.
+# --init's file is the start itself: -N (like -L, -s and --realization) beside it is refused as well, not
+# ignored.
 shockgas_burgers_error(init_and_particles burgers_sticky
   "^shockgas-burgers: error: --init '[^']*burgers_sticky\\.h5' and --particles '500' exclude each other: --init's file is the initial condition itself \\(its N, L and velocities\\); give one of them$"
   --init "${_cli_dir}/burgers_sticky.h5" -N 500)
@@ -456,8 +457,8 @@ shockgas_cli_error(config_dotted_key "unknown option 'run.t-max' in .*config_dot
 # --checkpoint naming the output: the run ended "complete" and left no output.
 shockgas_cli_error(checkpoint_is_output "checkpoint '.*checkpoint_is_output.h5' is the output '.*checkpoint_is_output.h5'"
                    -N 10 -t 1 --checkpoint "${_cli_dir}/checkpoint_is_output.h5")
-# shockgas-dump: a realization or snapshots the file does not have printed a
-# header alone with exit 0; the refusal leaves no output (it left an empty one).
+# shockgas-dump: a realization or snapshots the file does not have are refused
+# (not a header alone with exit 0), and the refusal leaves no output, not an empty one.
 add_test(NAME cli.setup.dump_input
          COMMAND ${_sim} -N 200 -t 10 -R 2 --sample-times 2 --snapshot-times 1,5 -q -o "${_cli_dir}/dump_input.h5")
 set_tests_properties(cli.setup.dump_input PROPERTIES FIXTURES_SETUP dump_input LABELS cli)

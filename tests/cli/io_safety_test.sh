@@ -120,7 +120,7 @@ output_is_init)
   ;;
 checkpoint_removed)
   # Stopped after its first checkpoint, then resumed to the end: the
-  # checkpoints it wrote are removed (only checkpoints are, now).
+  # checkpoints it wrote are removed (only checkpoints are).
   run_until_checkpoints 1 INT stopped.err -- "$sim" -N 20000 -r 0.8 -d 0.005 -t 400 -q --checkpoint-interval 0.1 -o run.h5
   [ -e run.h5.checkpoint ] || fail "no checkpoint to resume from"
   "$sim" -N 20000 -r 0.8 -d 0.005 -t 400 -q --checkpoint-interval 0 --resume -o run.h5 2>resumed.err ||

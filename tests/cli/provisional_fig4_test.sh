@@ -31,8 +31,8 @@ grep -q "r = 0.9: no part from part0 on is finished; left out" "$work/report.txt
 grep -q "^scaling exponent 0\.3" "$work/report.txt" || fail "no scaling exponent near 1/3"
 [ -s "$work/look/fig4.png" ] || fail "no figure"
 # r = 0.5 with no finished part and r = 0.9 with two (the order of a build that runs r = 0.9's parts
-# first): r = 0.9's points must be drawn under its own label. fig4.gp labelled phi.dat's blocks by
-# position, so they were "r = 0.5, three times" (and 2 times per run were read as 3). The figure is drawn
+# first): r = 0.9's points must be drawn under its own label. Labelled by position, phi.dat's blocks
+# would read "r = 0.5" three times (and 2 times per run would be read as 3). The figure is drawn
 # again from what the tool passed gnuplot (a gnuplot first on PATH records it), as SVG, whose legend is text.
 tree=$work/only09
 mkdir -p "$tree/paper_targets/paper/fig4" "$work/bin" "$work/svgstyle" || exit 1

@@ -223,7 +223,7 @@ class CompareWith(unittest.TestCase):
 
     def test_another_version_of_the_same_simulator_reproduces(self):
         # A bit-identical file made by another version of the same simulator (the same simulator_sha256: a
-        # commit that changed no simulator source). It was DIFFERENT CODE VERSION, NOT REPRODUCED.
+        # commit that changed no simulator source): reproduced, not DIFFERENT CODE VERSION, NOT REPRODUCED.
         result = self.compare_with_changed("same-simulator-build", version="v9.9-1-gdeadbee")
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         self.assertRegex(result.stdout, rf"(?m)^code +archive {self.version}, rerun v9.9-1-gdeadbee .*: same simulator "
@@ -237,7 +237,7 @@ class CompareWith(unittest.TestCase):
 
     def test_the_simulator_hash_is_provenance_not_data(self):
         # A result whose input came from another simulator (input_simulator_sha256), its own numbers
-        # bit-identical: the attribute is provenance, not compared as data (it was "DIFFERENT ... attribute
+        # bit-identical: the attribute is provenance, not compared as data (no "DIFFERENT ... attribute
         # input_simulator_sha256: archive 'aaa...', rerun 'bbb...'").
         result = self.compare_with_changed("input-build", input_simulator_sha256=OTHER_SIMULATOR)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)

@@ -364,7 +364,7 @@ TEST(AnalysisCollapse, FirstCollapseWithExponentialHazardIsGumbel) {
 
 TEST(AnalysisCollapse, GumbelFitOfOneNIsMissingNotDegenerate) {
     // Only the two runs of N = 10^5 have many regions: no slope in ln N to
-    // fit (the fit gave nan and inf), so the Gumbel fit is missing, with why.
+    // fit (the fit would give nan and inf), so the Gumbel fit is missing, with why.
     constexpr double tau = 100.0, rate = 1e-9;
     auto runs = synthetic_first_collapses(1519, [&](double hazard) { return tau * std::log(hazard / rate); }, 10.0);
     runs[3].particles = runs[2].particles;

@@ -723,7 +723,7 @@ TEST(AnalysisFit, UnsetEstimateIsNotANumberNotZero) {
 TEST(AnalysisDecay, ScanStepsAreCountedAndBounded) {
     std::mt19937_64 random(17);
     const auto history = synthetic_history(random, 2.0 / 3.0, 4);  // t = 1 ... 10^4
-    // A step of 0 looped forever, a tiny one for 10^9 windows: refused.
+    // A step of 0 would loop forever, a tiny one for 10^9 windows: refused.
     EXPECT_THROW(sa::scan_decay_windows(history, 1.0, 0.0), std::invalid_argument);
     EXPECT_THROW(sa::scan_decay_windows(history, 1.0, -0.1), std::invalid_argument);
     EXPECT_THROW(sa::scan_decay_windows(history, 1.0, 1e-9), std::invalid_argument);
@@ -819,7 +819,7 @@ std::string refusal(const std::string& path, Read read) {
 }  // namespace
 
 TEST(AnalysisReaders, DamagedSnapshotsAndHistogramsAreRefusedByName) {
-    // A snapshot without mass gave nan shocks (v_rms = 0/0).
+    // A snapshot without mass would give nan shocks (v_rms = 0/0).
     shockgas::SnapshotRecord massless;
     massless.state.time = 10.0;
     massless.state.position = {0.0, 1.0, 2.0, 3.0};
@@ -831,7 +831,7 @@ TEST(AnalysisReaders, DamagedSnapshotsAndHistogramsAreRefusedByName) {
     EXPECT_NE(snapshot_message.find("/snapshots/0"), std::string::npos) << snapshot_message;
     EXPECT_NE(snapshot_message.find("mass"), std::string::npos) << snapshot_message;
     EXPECT_NE(snapshot_message.find(snapshot_path), std::string::npos) << snapshot_message;
-    // A histogram of zeros gave a "scaling exponent" of 0.0625 (the grid's edge).
+    // A histogram of zeros would give a "scaling exponent" of 0.0625 (the grid's edge).
     shockgas::HistogramRecord empty;
     empty.time = 10.0;
     empty.edges = {-1.0, -0.5, 0.0, 0.5, 1.0};
@@ -849,7 +849,7 @@ TEST(AnalysisReaders, DamagedSnapshotsAndHistogramsAreRefusedByName) {
 TEST(AnalysisReaders, TemperatureRunNeedsRealizationsAndCommonTimes) {
     const auto path = write_run("timeseries", {}, {});
     EXPECT_EQ(sa::read_temperature_run(path).history.time.size(), 3u);
-    // No realization: compare reported perfect agreement with such a file.
+    // No realization: refused (compare would report perfect agreement with such a file).
     const auto empty = write_run("no_realization", {}, {}, 0);
     EXPECT_THROW(sa::read_temperature_run(empty), sa::InsufficientData);
     // No sample time with T > 0: nothing to fit or compare.
@@ -961,8 +961,8 @@ TEST(AnalysisReaders, HistogramRowsThatDisagreeWithTheTimeSeriesAreRefused) {
 }
 
 TEST(AnalysisResults, EveryInputIsCheckedForACheckpoint) {
-    // decay and compare printed results from a checkpoint (a run in
-    // progress); scaling and shocks refused it. One check for every subcommand.
+    // A checkpoint (a run in progress) is refused by every subcommand alike
+    // (decay and compare would print results from one): one check for all.
     const auto directory = std::filesystem::temp_directory_path() / "shockgas_results_checkpoint";
     std::filesystem::create_directories(directory);
     const auto checkpoint = (directory / "run.h5.checkpoint").string();
@@ -1223,7 +1223,7 @@ TEST(AnalysisResults, OutputsAreCheckedAgainstInputsAndEachOther) {
 
 // A bounded search that ends at an end of its range measures the range, not
 // the data: the estimate is n/a with the bound named, never the bound itself
-// (the tail fit printed gamma = 0.500 +- 0.000, 0.5 being its lower end).
+// (the tail fit would print gamma = 0.500 +- 0.000, 0.5 being its lower end).
 TEST(AnalysisBounds, CollapseExponentAtTheSearchBoundIsMissing) {
     std::mt19937_64 random(99);
     const std::vector<sa::VelocityHistogram> histograms{synthetic_histogram(random, 100.0, 1.0 / 3.0, 2.0, 20, 2000),
@@ -1298,7 +1298,7 @@ TEST(AnalysisTail, FarTailOfOneChainHasGammaWithoutSigma) {
 }
 
 // With one realization the fit's weights (standard errors of <T> over
-// realizations) do not exist: the equal weights put in their place gave
+// realizations) do not exist: the equal weights put in their place give
 // chi2/dof = 0.00 and a width from sigma(ln T) = 1. Both are n/a; the
 // exponent (the unweighted fit) stands.
 TEST(AnalysisDecay, OneRealizationHasNoChi2NorFitWidth) {

@@ -119,7 +119,7 @@ TEST(TailExponent, ExactTailWithoutNoiseGivesGammaToRounding) {
 }
 
 TEST(TailExponent, ShortTablesInAFileAreRefusedByName) {
-    // A log_phi shorter than z was read past its end and gave gamma = 1.000.
+    // A log_phi shorter than z would be read past its end and give gamma = 1.000.
     const auto path = (std::filesystem::temp_directory_path() / "shockgas_far_tail_short.h5").string();
     shockgas::h5::write_atomically(path, [](shockgas::h5::Group& root) {
         root.set_attribute("kind", "far_tail");

@@ -266,8 +266,8 @@ TEST(Provenance, TheSameSimulatorIsTheSameSourceHash) {
     EXPECT_FALSE(shockgas::made_by_this_simulator(build.version, b));
 }
 
-// A merged file merged again named only the merged file, so the parts it came from
-// were lost from the provenance: each part's own merged_from now follows its line.
+// A merged file merged again must name the parts it came from, not only the
+// merged file: each part's own merged_from follows its line.
 TEST(Output, MergeOfMergedFilesNamesEveryPart) {
     shockgas::SimulationParameters p;
     p.particles = 100;
