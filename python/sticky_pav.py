@@ -479,7 +479,7 @@ def fit_finite_time(rows, key, samples, tmin=0.0):
     errors are (analysis/README.md): the fit redone on the means without each realization, its
     weights kept, sigma^2 = (R - 1)/R sum_i (theta_(i) - mean theta)^2. The values of one realization
     at different times are correlated (its clusters only merge), which the fit's own widths,
-    r_inf_fit_err and a_fit_err, ignore by taking the times as independent: they came out about half
+    r_inf_fit_err and a_fit_err, ignore by taking the times as independent: they come out about half
     of the spread of r_inf over ensembles (module docstring). chi2 and dof are those of the same
     fit, a diagnostic of the shape rather than a goodness of fit. Where there is no fit to make, the
     numbers are None and `note` says why: fewer than MIN_FIT_REALIZATIONS realizations, a time with

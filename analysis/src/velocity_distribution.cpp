@@ -141,7 +141,7 @@ RunHistograms histograms_of_run(const EnsembleResult& result, const std::string&
             run.unreached_times.push_back(record.time);
             continue;
         }
-        // A histogram of zeros gave a "scaling exponent" of the grid's edge.
+        // A histogram of zeros would give a "scaling exponent" of the grid's edge.
         if (!any_mass) refuse(index, "every count is 0: no mass to form P(v,t) from");
         VelocityHistogram h;
         h.time = record.time;

@@ -79,7 +79,7 @@ std::string memory_refusal(const SimulationParameters& p, const MemoryPlan& plan
     // alone would fit, it is their number that does not: lowering N does not
     // help a million realizations of N = 1000.
     // The program itself is a fixed part that no N lowers: a budget below it
-    // ("--max-memory 1K") said "needs about 16 MiB ...; lower N".
+    // ("--max-memory 1K") is told to raise the budget, not to lower N.
     if (program_bytes >= budget_bytes)
         return fmt::format("not enough memory: any run needs more than {} (the program itself, whatever N), but {} "
                            "may be used ({}); {}",
