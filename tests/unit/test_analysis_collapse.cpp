@@ -261,7 +261,7 @@ TEST(AnalysisCollapse, FixedFormsWinWhenTheyAreTheTruth) {
     // parameter buys < ln 9 = 2.2 of chi2 when it is not needed, in expectation 1).
     const auto& winner = form(my_forms, "mcnamara_young");
     for (const auto& f : my_forms) EXPECT_LE(winner.fit.bic(), f.fit.bic() + 1e-12) << f.name;
-    // Prefactor within 3 sigma: the fit's relative sigma is sigma_intercept.
+    // Prefactor within 3 sigma: the fit's relative sigma is intercept_sigma().
     EXPECT_NEAR(winner.prefactor, 0.9, 3.0 * 0.9 * winner.fit.intercept_sigma());
     const auto paper_forms = sa::fit_collapse_forms(sa::CollapseQuantity::cluster_mass, sweep_eps, noisy(paper, random));
     EXPECT_GT(form(paper_forms, "mcnamara_young").fit.bic() - form(paper_forms, "paper").fit.bic(), 10.0);

@@ -14,7 +14,7 @@
 namespace shockgas::analysis {
 
 // One /histograms/<h> entry: mass-weighted counts of v - V per realization,
-// of the realizations that reached its time (reached_histogram_rows).
+// of the realizations that reached its time (histograms_of_run).
 struct VelocityHistogram {
     std::string label;          // e.g. "r=0.9 t=1000", for data files
     double time = 0.0;
@@ -56,7 +56,7 @@ std::vector<VelocityHistogram> histograms_from(const EnsembleResult& result, con
 // the file and the group).
 RunHistograms read_histograms(const std::string& path, const std::string& label_prefix = "");
 
-// Jackknife groups used for histogram estimators: min(R, max_groups) over all
+// Jackknife groups used for histogram estimators: min(R, max_jackknife_groups) over all
 // inputs; each group is every realization r with r % groups == g.
 constexpr std::size_t max_jackknife_groups = 20;  // enough for a 16%-accurate sigma, cheap to recompute
 
