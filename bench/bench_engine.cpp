@@ -9,17 +9,18 @@
 //   passthrough PassThroughEngine: elastic collisions counted, not processed
 //              (collisions per second count every collision, elastic ones
 //              included: "equivalent" collisions)
-//   hybrid     HybridEngine: fast until nearly all collisions are elastic,
+//   hybrid     HybridEngine: EventEngine until nearly all collisions are elastic,
 //              then passthrough (on this short workload it never switches)
 //
-// SHOCKGAS_BENCH_LONG=1 adds the side-by-side long workloads, one
-// thread, fast, passthrough and hybrid on the same start: r = 0.9, delta = 1e-2,
+// SHOCKGAS_BENCH_LONG=1 adds the speed goals' side-by-side long workloads
+// (docs/measurements.md, "The speed goals over time"), one thread, fast,
+// passthrough and hybrid on the same start: r = 0.9, delta = 1e-2,
 // N = 10^5 to t = 10^4 and to t = 10^5, and Fig. 5's r = 0.99, delta = 1e-4,
 // N = 2 10^4 to t = 10^4 and 10^5 (tens of CPU minutes), with the CPU seconds
 // and ratios printed.
 //
 // SHOCKGAS_BENCH_CROSSOVER=1 measures where the hybrid's switch should be
-// (HybridSwitchRule): the fast engine runs from check to check (the hybrid's
+// (HybridSwitchRule): EventEngine runs from check to check (the hybrid's
 // check times), and from its state at each check a pass-through engine runs the
 // same stretch; printed per stretch: the inelastic share of the stretch's
 // collisions (what the rule reads) and both engines' CPU seconds.

@@ -256,8 +256,9 @@ DriftReport run_drift(const SimulationParameters& p, const DriftOptions& options
             break;
         }
 
-        // Every row taken: done. (Sizing a next chunk here read one milestone past
-        // the end, found by AddressSanitizer in Drift.TheReferenceLoopKeepsTheRingLength.)
+        // Every row taken: done. (Sizing a next chunk here would read one milestone
+        // past the end; Drift.TheReferenceLoopKeepsTheRingLength under AddressSanitizer
+        // covers it.)
         if (next == milestones.size()) break;
         // Next chunk: about chunk_collisions at the rate just seen, within a
         // factor 4 of this chunk's length so one odd chunk cannot derail it.

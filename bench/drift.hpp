@@ -60,9 +60,8 @@ double momentum_rounding_bound(double collisions, double mass, double max_speed0
 // factor 20 covers gaps a few spacings wide and a 4-sigma excursion. It is not
 // a worst case (that, 3 C 2^-53 g_max, grows too fast to tell anything apart).
 // Measured at N = 1000, C = 10^7: 2.4e-13 L/N against a bound of 1.2e-11;
-// setting the contact gap to 0 instead, as the engines did until the contact
-// gap was kept, gives 1.3e-9, because it drops c * (t rounded - t exact) ~
-// c ulp(t) at every collision.
+// setting the contact gap to 0 instead of keeping it gives 1.3e-9, because it
+// drops c * (t rounded - t exact) ~ c ulp(t) at every collision.
 double ring_length_rounding_bound(double collisions, double spacing);
 
 // Worst-case energy increase over `collisions` collisions, relative to E: each

@@ -9,8 +9,8 @@
 #
 # DIRECTORIES is separated by "|", not ";": a ";" inside a -D value reaches
 # this script escaped ("\;"), which makes the whole value one directory that
-# does not exist, and the stamp then hashed no file at all (so until this was
-# found, changing the simulator never reran a simulation). STAMP.files lists
+# does not exist, and the stamp would hash no file at all (so changing the
+# simulator would never rerun a simulation). STAMP.files lists
 # what was hashed; ctest pipeline.stamp_covers_sim_sources checks it.
 include(${CMAKE_CURRENT_LIST_DIR}/SourceHash.cmake)
 string(REPLACE "|" ";" _directories "${DIRECTORIES}")

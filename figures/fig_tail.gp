@@ -15,7 +15,7 @@ set label 1 sprintf("γ = %.3f ± %.3f (chains) ± %.3f (window)\nfit over z ∈
     tail_gamma, tail_gamma_sigma, tail_gamma_window_systematic, tail_z_lo, tail_z_hi) at graph 0.03, graph 0.45 left font ',10'
 l10 = log(10)
 # The sampler's points in colour, under a thin exact curve: where they lie on it (nearly everywhere)
-# the points show either side of the line (drawn black and thick over black points, they were hidden).
+# the points show either side of the line (drawn black and thick over black points, they would be hidden).
 sampler = 4
 exact_line = 'lc rgb "#000000" lw 1'
 plot datadir.'/tail.dat' using 1:($2 / l10):($3 / l10) with yerrorbars lt sampler pt 7 ps 0.4 \

@@ -1,4 +1,4 @@
-# Archival reproduction (docs/archive.md, issue 9).
+# Archival reproduction (docs/archive.md).
 #   archive          every figure at this fidelity -> shockgas-<describe>-<fidelity>.tar.gz
 #   archive_fig3     Fig. 3 alone (< 1 s of simulation) -> ...-<fidelity>-fig3.tar.gz; used by the tests
 #   reproduce-check  checks the newest archive in this build directory, or -DSHOCKGAS_ARCHIVE=<file>

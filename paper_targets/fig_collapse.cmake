@@ -1,5 +1,5 @@
-# Inelastic collapse (delta = 0) against eps and N (issue 15,
-# docs/haff-and-collapse.md): collapse time and cluster mass per eps with the
+# Inelastic collapse (delta = 0) against eps and N
+# (docs/haff-and-collapse.md): collapse time and cluster mass per eps with the
 # competing forms fitted, and first-collapse statistics across N at one eps.
 # Runs named eps* make the eps sweep, runs named N* the N series.
 shockgas_figure_runs(fig_collapse)

@@ -1,11 +1,11 @@
-# The far tail of Phi (issue 14, docs/far-tail.md): the sticky gas's Phi(z) from
+# The far tail of Phi (docs/far-tail.md): the sticky gas's Phi(z) from
 # the biased-chain sampler down to ~1e-55 against the exact curve, with gamma
 # fitted and the local exponent. The sampler's options per fidelity are here
 # (it is not a shockgas-sim run, so it has no JSON run list): quick ~25 s CPU
 # at t = 100, paper ~34 min CPU at t = 1000. The paper tier's chains are long
 # because shorter ones fall below the exact Phi deep in the tail (a factor 2-3
-# at 1e-34 with 4 x 400 000 steps per bias) and these do not (docs/far-tail.md,
-# "Longer chains").
+# at 1e-34 with 4 x 400 000 steps per bias) and these do not (docs/far-tail.md;
+# the runs: docs/measurements.md, "Longer chains").
 if(SHOCKGAS_FIDELITY STREQUAL "paper")
   set(_tail_options -t 1000 --half-window 900 --focus 800 --block-max 400 --steps-per-bias 1600000
                     --burn-in 100000 --chains 4 --seed 9)

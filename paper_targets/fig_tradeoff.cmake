@@ -1,4 +1,4 @@
-# The speed/accuracy trade (issue 5): cost and accuracy of the threshold delta
+# The speed/accuracy trade (docs/figures-and-fidelity.md): cost and accuracy of the threshold delta
 # and of the sub-threshold mechanism against the most accurate run (delta =
 # 1e-4, elastic), and the decay exponent's statistical error against CPU.
 shockgas_figure_runs(fig_tradeoff)

@@ -214,8 +214,8 @@ endfunction()
 # (the far-tail sampler, an analysis, a dump), rerun also when its command changes. Make reruns a
 # rule when an input is newer than its outputs, not when its command line changes: an option edited
 # in a <figure>.cmake file (fig_tail's sampler options, fig5's --coarse-grain) or a run taken out of
-# an aggregate's input list (which makes no remaining input newer) left the outputs stale until
-# 2026-11-28. The call's arguments are written at configure time to <first output>.command, which
+# an aggregate's input list (which makes no remaining input newer) would leave the outputs stale.
+# The call's arguments are written at configure time to <first output>.command, which
 # file(CONFIGURE) rewrites only when they change, and the step depends on that file, as each run
 # depends on its .args file (above).
 function(shockgas_step)

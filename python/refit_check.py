@@ -18,7 +18,7 @@ the root attribute `input_path` (or --run). Estimator (analysis/src/temperature.
 With one realization there is no jackknife and no standard error to weight by: the C++ prints
 "+- n/a" and stores exponent_sigma and chi2_per_dof NaN; then the exponent (an unweighted fit) is
 compared and the other two are reported as n/a (they agree when both sides give none). Two
-realizations are treated the same way since 2026-11-27: a standard error from two values (one degree
+realizations are treated the same way: a standard error from two values (one degree
 of freedom) is no weight, and the jackknife's two one-realization replicas give a sigma of one degree
 of freedom, so the C++ fits unweighted and stores both NaN.
 

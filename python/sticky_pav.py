@@ -53,9 +53,9 @@ cluster is one count of weight its mass (Phi, m F(m)) or 1 (F(m)), so a bin's va
 its clusters' squared weights over all realizations, divided by R^2 (compound Poisson). It holds for
 any number of realizations, 2 as well as 40, because each realization holds many nearly independent
 clusters: measured, the realizations' own scatter is 0.8 to 1.05 of this variance (N = 2000 and
-20000, 20 to 40 realizations, t = 100 to 1000). The error bars once came from that scatter, per bin:
+20000, 20 to 40 realizations, t = 100 to 1000). Error bars from that scatter, per bin, would not do:
 with two realizations (mean - theory)/error is then Student's t with one degree of freedom (a Cauchy
-law), and chi2/bins of Phi at t = 100 to 800 (N = 20000, 200 pairs of seeds) came out 9 to 3000,
+law), and chi2/bins of Phi at t = 100 to 800 (N = 20000, 200 pairs of seeds) comes out 9 to 3000,
 median 93; with counting errors it is 0.6 to 2.3, median 1.01. With weights as broad as the masses
 and few clusters per bin it runs ~10% high (a bin's squared weights are estimated from its own
 clusters). Bins holding fewer than MIN_BIN_CLUSTERS clusters over all realizations are left out;
@@ -479,7 +479,7 @@ def fit_finite_time(rows, key, samples, tmin=0.0):
     errors are (analysis/README.md): the fit redone on the means without each realization, its
     weights kept, sigma^2 = (R - 1)/R sum_i (theta_(i) - mean theta)^2. The values of one realization
     at different times are correlated (its clusters only merge), which the fit's own widths,
-    r_inf_fit_err and a_fit_err, ignore by taking the times as independent: they came out about half
+    r_inf_fit_err and a_fit_err, ignore by taking the times as independent: they come out about half
     of the spread of r_inf over ensembles (module docstring). chi2 and dof are those of the same
     fit, a diagnostic of the shape rather than a goodness of fit. Where there is no fit to make, the
     numbers are None and `note` says why: fewer than MIN_FIT_REALIZATIONS realizations, a time with

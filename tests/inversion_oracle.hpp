@@ -3,8 +3,8 @@
 // lines by the one collision rule, a slower one passes), but with the elastic
 // crossings neither processed nor sorted, and the inelastic ones found by
 // another route. It checks the engine's exact collision count at sizes far
-// beyond the reference event loop's (docs/passthrough-engine.md, "Velocity
-// classes built: the count solved, the search not").
+// beyond the reference event loop's (docs/measurements.md, "Velocity classes
+// built: the count solved, the search not").
 //
 // Counting without sorting. Within a window (T0, T1] the ring is cut at gaps
 // no line can cross (wider than the whole spread times the window), and in a

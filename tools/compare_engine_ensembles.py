@@ -27,8 +27,7 @@ statistics:
     only for many realizations per file: each bin's error comes from the realizations' spread, so
     with R realizations a z-score is Student-t-like with R - 1 degrees of freedom, and with R = 4
     (Fig. 4's quick elastic runs) the sum is about twice its chi-square expectation when A and B
-    have the same law (measured 2026-12-02: chi-square p < 1e-3 where the permutation test gives
-    0.07-0.6). (Particles of one realization are not independent samples: clusters move together,
+    have the same law (chi-square p < 1e-3 where the permutation test gives 0.07-0.6). (Particles of one realization are not independent samples: clusters move together,
     so a chi-square on pooled particle counts would reject equal laws.)
 
 Prints one line per check and exits 1 if any check fails (|z| > 3, p < 1e-3, or a statistic that
@@ -124,7 +123,7 @@ def fails(z, dof=np.inf):
     themselves: with few realizations z is Student-t distributed (Welch), and the limit is the |z|
     of the same two-sided probability as Z_LIMIT under the normal law (3 sigma: 0.27%), so that 4
     realizations are not failed for the width of a t law with 3 degrees of freedom (|z| = 4.4 of
-    two same-law sticky-gas ensembles, seen 2026-12-02). Many realizations: |z| > Z_LIMIT."""
+    two same-law sticky-gas ensembles). Many realizations: |z| > Z_LIMIT."""
     if not np.isfinite(z):
         return True
     if not np.isfinite(dof):

@@ -477,7 +477,7 @@ for figure, title in [("fig4", "Fig. 4"), ("fig4_sticky", "Fig. 4, sticky below 
         # A short run's tail often has too few bins, or a fit or jackknife replica at the search
         # bound, or too few realizations to weigh the bins by (analysis/README.md, Tail): the reason is
         # the one shockgas-analyze scaling stored beside the NaN (tail_gamma_note, tail_gamma_sigma_note,
-        # tail_error); files written before it stored them get the old words (why_missing).
+        # tail_error); files without them get the report's own words (why_missing).
         if "tail_gamma" in a:
             line += ", tail γ"
             if math.isnan(a["tail_gamma"]):

@@ -19,7 +19,7 @@ namespace {
 
 // What is wrong with /collapse/realization, if anything: each realization collapses at most once and
 // is one of the run's R. A realization listed twice (a damaged or hand-made file) would count one
-// collapse twice and pass the all-collapsed check with one missing (an independent audit, 2026-11-27).
+// collapse twice and pass the all-collapsed check with one missing.
 std::optional<std::string> realization_index_problem(const h5::Group& group, std::size_t realizations) {
     if (!group.has("realization")) return std::nullopt;  // files without it: nothing to check
     std::vector<std::int64_t> index = group.read_integers("realization");
@@ -87,8 +87,8 @@ CollapseSummary summarize_collapse(const CollapseEvents& events) {
                                            "more particles: collapse needs N >~ ln(1/eps)/eps)");
         // One realization: its collapse time and mass stand, their errors and the spread are n/a
         // with the jackknife's reason, as crossover's times (the SE of a mean is the mean's
-        // delete-one jackknife; for R >= 2 it is computed directly below, as before). Until
-        // 2026-11-27 collapse refused such a run (exit status 2).
+        // delete-one jackknife; for R >= 2 it is computed directly below). The run is analysed,
+        // not refused.
         const auto alone = [](double value) {
             return jackknife(1, [value](std::optional<std::size_t>) { return value; });
         };

@@ -305,7 +305,7 @@ void run_crossover(const AnalysisInvocation& invocation, const std::vector<std::
     }
     if (inputs.size() < 2 || without_sigma.found()) {
         // The powers of eps are weighted fits: without an input's sigma there is no weight for it; one
-        // input has no slope (until 2026-11-27 it got neither the fits nor a word; collapse says so too).
+        // input has no slope. The note says which and why (collapse says so too).
         auto group = results.section("scaling_in_eps");
         const std::string why = inputs.size() < 2 ? std::string("one input: give runs of 2 or more eps")
                                                   : without_sigma.why_not("the fits over eps");

@@ -101,11 +101,10 @@ constexpr double gamma_min = 1.0, gamma_max = 6.0;  // brackets the Gaussian (2)
 // sigma(ln Phi) pooled (root mean square) over the bins within
 // +-sigma_pool_bins. The chains' jackknife gives each bin's sigma from only
 // 4-6 values (3-5 degrees of freedom), and weighing bins by the inverse
-// squares of such estimates made gamma scatter twice as much as pooled weights
+// squares of such estimates makes gamma scatter twice as much as pooled weights
 // do and its jackknife sigma four times too small (synthetic tails with
-// sampler-like errors, 4 chains, 2026-11-27: sd 0.0149 and sigma 0.0036, one-
-// sigma coverage 0.21; pooled over 11 bins sd 0.0069, coverage 0.60 with the
-// replicas' own weights; test TailExponent.JackknifeCoverageWithFourChains).
+// sampler-like errors, 4 chains; test TailExponent.JackknifeCoverageWithFourChains;
+// the numbers: docs/measurements.md, "Measurements behind constants in the code").
 // sigma changes slowly with z against a bin's 0.02, so pooling over +-0.1 in z
 // costs little bias. A bin without a sigma (one chain reached it) stays
 // without: it is not fitted.
@@ -234,9 +233,9 @@ TailExponent estimate_tail_exponent(const FarTail& tail, double z_lo, double z_h
     const std::size_t chains = tail.log_phi_leave_one_chain_out.size();
     result.window_note = clipped_window_note(tail.z, z_lo, z_hi, result.fit);
     if (chains < 3) {
-        // gamma is the fit's; its jackknife sigma is n/a, as the histogram tail's with R <= 2. Fewer
-        // than 2 chains (shockgas-tail refuses them; a hand-made file) used to stop the command
-        // after the fit had been made.
+        // gamma is the fit's; its jackknife sigma is n/a, as the histogram tail's with R <= 2, also
+        // for fewer than 2 chains (shockgas-tail refuses them; a hand-made file): the fit made, the
+        // command goes on.
         const char* const why =
             chains == 2 ? "two chains: each jackknife replica keeps one, which has no spread to weigh the bins by; "
                           "run 3 or more chains"

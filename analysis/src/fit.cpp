@@ -165,9 +165,9 @@ Estimate jackknife(std::size_t samples, const std::function<double(std::optional
     if (samples == 0) throw InsufficientData("the jackknife needs at least 1 realization, got none");
     Estimate result;
     result.value = estimator(std::nullopt);
-    // One realization: the estimate is measured, its error is not. Until 2026-11-27 this threw, and
-    // crossover on a one-realization run stopped with exit status 2 where decay, the kurtosis and
-    // beta report the value with sigma n/a (each of them had its own check before calling here).
+    // One realization: the estimate is measured, its error is not. The value stands with sigma n/a
+    // and the reason, so that every command (crossover, decay, the kurtosis, beta) treats a
+    // one-realization run alike instead of each checking for it before calling here.
     if (samples < 2) {
         result.note = "one realization: the jackknife has nothing to leave out; run -R 2 or more";
         return result;

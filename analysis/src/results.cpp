@@ -167,8 +167,8 @@ void check_inputs(const std::vector<std::string>& inputs, const std::string& exp
         const h5::Probe found = h5::probe(input);
         if (found.kind != h5::Probe::Kind::hdf5) continue;  // its reader names what it is not
         if (found.holds("checkpoint")) throw checkpoint_given_as_output(input);
-        // A results file given for a run said "missing attribute /restitution" (user review,
-        // 2026-11-27). A far-tail file is far-tail's input; any other subcommand's reader of a
+        // A results file given for a run is named as such (a reader would otherwise say only
+        // "missing attribute /restitution"). A far-tail file is far-tail's input; any other subcommand's reader of a
         // run (read_output, read_timeseries) refuses it as check_simulation_output words it.
         const auto file = h5::File::open_read(input);
         const auto root = file.root();

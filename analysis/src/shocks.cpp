@@ -182,10 +182,10 @@ ShockProfile find_shocks(const Snapshot& input, const ShockRule& rule) {
     };
     Walk walk = walk_from(start);
     // The walk must begin where a segment begins: just after a segment-breaking run, followed by more
-    // expanding pairs than a merge bridges. Begun inside a segment (the first expanding pair's point,
-    // as until 2026-11-27), it split that segment in two, and with --merge-gap it could count a shock
-    // whose parts lay at both ends of the walk twice (an independent audit: 306 segments for a
-    // 300-tooth sawtooth, 51 shocks for 50). So the first walk finds such a point and a second walk
+    // expanding pairs than a merge bridges. Begun inside a segment (e.g. at the first expanding pair's
+    // point), it would split that segment in two, and with --merge-gap it could count a shock whose
+    // parts lay at both ends of the walk twice (306 segments for a 300-tooth sawtooth, 51 shocks for
+    // 50). So the first walk finds such a point and a second walk
     // starts there; without one (no segment break at all) the first walk stands.
     auto expanding_stretch_from = [&](std::size_t point) {
         for (std::size_t j = 0; j <= rule.merge_gap_points; ++j)

@@ -54,8 +54,7 @@ TemperatureHistory::FitPoints TemperatureHistory::fit_points(const std::vector<s
                                                              std::optional<std::size_t> left_out,
                                                              double fallback_fraction) const {
     // A standard error this small relative to <T> is rounding in the mean of identical values, not
-    // scatter: weighing by it made chi2/dof 41 and a slope width of 1e-17 (an independent audit,
-    // 2026-11-27).
+    // scatter: weighing by it gave chi2/dof 41 and a slope width of 1e-17 on synthetic data.
     constexpr double rounding_level = 1e-12;
     FitPoints points;
     points.mean.reserve(indices.size());
@@ -240,9 +239,9 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
     // One realization (or identical ones): no scatter to weigh by; equal weights (sigma of ln T = 1).
     constexpr double equal_weights = 1.0;
     // Two realizations are not weighed either. A standard error of <T> from two values has one degree
-    // of freedom, so the weights swung by orders of magnitude between neighbouring times and the fit
-    // followed a few of them: 0.879 (chi2/dof 182) on a run whose two realizations give 0.802 each
-    // (a user review, 2026-11-27). And the jackknife's replicas, one realization each, have no weights
+    // of freedom, so the weights swing by orders of magnitude between neighbouring times and the fit
+    // follows a few of them: 0.879 (chi2/dof 182) on a run whose two realizations give 0.802 each.
+    // And the jackknife's replicas, one realization each, have no weights
     // of their own, so its sigma belonged to another estimator.
     constexpr std::int64_t fewest_to_weigh = 3;
     const bool weighted = history.realizations >= fewest_to_weigh;
@@ -284,9 +283,9 @@ DecayFit fit_temperature_decay(const TemperatureHistory& history, double t_lo, d
         return result;
     }
     // Each replica is the whole estimator on R - 1 realizations, its weights included: with the full
-    // sample's weights frozen the jackknife came out 35-40% small at R = 3 ... 6 (coverage of alpha
+    // sample's weights frozen the jackknife comes out 35-40% small at R = 3 ... 6 (coverage of alpha
     // +- sigma 0.42-0.55 where Student's t gives 0.58-0.64, against 0.64-0.67 with the weights
-    // recomputed; an independent audit's 200-400 synthetic ensembles per R, 2026-11-27).
+    // recomputed, over 200-400 synthetic ensembles per R).
     const Estimate jack = jackknife(history.realizations, [&](std::optional<std::size_t> left_out) {
         if (!left_out) return -full.slope;  // the full sample's fit, made above
         const auto replica = history.fit_points(inside, left_out, equal_weights);
@@ -334,8 +333,8 @@ Measured window_systematic(const TemperatureHistory& history, double t_lo, doubl
         ++inside;
     }
     // No window inside: the spread of nothing is not 0, it is unknown. Nor is the
-    // spread of one window (a fit window of 1 to 1.1 decades), which used to be
-    // reported as 0.000.
+    // spread of one window (a fit window of 1 to 1.1 decades): it is reported
+    // missing, never as 0.000.
     if (inside == 0)
         return Measured::missing(fmt::format("no one-decade window with 3 samples lies inside the fit window [{:g}, "
                                              "{:g}]",
@@ -440,7 +439,7 @@ Crossovers find_crossovers(const TemperatureHistory& history, const CrossoverRul
     };
     replicas.push_back(values_without(std::nullopt));
     // One realization has no replica (nothing to leave out): the values stand, their sigmas are n/a
-    // (jackknife's note). Until 2026-11-27 crossover refused such a run outright.
+    // (jackknife's note); the run is analysed, not refused.
     if (history.realizations >= 2)
         for (std::size_t i = 0; i < history.realizations; ++i) replicas.push_back(values_without(i));
     Crossovers result;

@@ -141,7 +141,7 @@ RunHistograms histograms_of_run(const EnsembleResult& result, const std::string&
             run.unreached_times.push_back(record.time);
             continue;
         }
-        // A histogram of zeros gave a "scaling exponent" of the grid's edge.
+        // A histogram of zeros would give a "scaling exponent" of the grid's edge.
         if (!any_mass) refuse(index, "every count is 0: no mass to form P(v,t) from");
         VelocityHistogram h;
         h.time = record.time;
@@ -361,11 +361,11 @@ TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule) {
     if (!(curvature > 0.0)) result.gamma_fit_sigma_note = "chi2(gamma) is not curved upwards at its minimum";
     // Group jackknife: each replica refits the same bins with its own density
     // and weights, both from the realizations it keeps, as the decay fit's
-    // replicas do: with the full sample's weights in every replica sigma left
-    // out the scatter of the weights themselves, and the one-sigma coverage of
-    // gamma on synthetic tails was 0.32 and 0.36 at R = 3 and 4 and 0.57 at 8
-    // (Student's t: 0.58, 0.61, 0.65), now 0.67, 0.65 and 0.72 (2026-11-27;
-    // test AnalysisTail.JackknifeCoverageWithFourRealizations).
+    // replicas do: with the full sample's weights in every replica sigma would
+    // leave out the scatter of the weights themselves. The one-sigma coverage
+    // of gamma on synthetic tails is 0.67, 0.65 and 0.72 at R = 3, 4 and 8
+    // (Student's t: 0.58, 0.61, 0.65), against 0.32, 0.36 and 0.57 with the
+    // full sample's weights (test AnalysisTail.JackknifeCoverageWithFourRealizations).
     if (realizations < 3) {
         result.gamma = {gamma, std::numeric_limits<double>::quiet_NaN(),
                         "two realizations: each jackknife replica keeps one, which has no scatter to weigh the bins "

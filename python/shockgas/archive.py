@@ -52,7 +52,7 @@ MANIFEST_FORMAT = 1
 DEFAULT_MAX_RAW_MB = 50.0
 # Figures that plot what a run cost (CPU seconds): their PNG and PDF differ from machine to machine
 # and from run to run, so they are listed, with this reason, but not compared. Their numbers are
-# compared in the data files, with the cost columns left out (volatile_columns).
+# compared in the data files, with the cost columns left out (shockgas.compare.without_volatile_columns).
 FIGURES_PLOTTING_COSTS = {"fig_tradeoff": "it plots CPU seconds, which depend on the machine and its load"}
 
 

@@ -29,7 +29,7 @@ RUN_DEPENDENT_ATTRIBUTES = {"date", "host", "wall_seconds", "cpu_seconds", "peak
 # The code and toolchain that made a file. Compared separately: a difference is
 # reported (code version) or selects the tolerant comparison (compiler, flags,
 # build type, HDF5 library), it is not itself a data difference. simulator_sha256
-# (since 2026-11-28: the SHA-256 of the simulator's sources, compiler and flags;
+# (the SHA-256 of the simulator's sources, compiler and flags, absent from files of older builds;
 # analysis results copy it as input_simulator_sha256) says which simulator made a
 # file: two files that both have it are of the same simulator when it is the same,
 # whatever their `version` (sim/io/src/provenance.cpp same_simulator).

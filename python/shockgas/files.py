@@ -115,8 +115,8 @@ class Run(File):
     @property
     def engine_switch_time(self):
         """Per realization, when the hybrid engine handed over to the pass-through engine (inf: not
-        yet; NaN: an engine that never switches). NaN for files written before 2026-11-26, which did
-        not record it, as the C++ reader gives."""
+        yet; NaN: an engine that never switches). NaN for files of older versions, which did not
+        record it, as the C++ reader gives."""
         recorded = self.timeseries.data.get("engine_switch_time")
         return recorded if recorded is not None else np.full(self.realizations, np.nan)
 

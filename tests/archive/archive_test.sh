@@ -100,7 +100,7 @@ check "$work/version.log" "$copy" "${again[@]}" --work-dir "$work/version.work"
 expect 1 "^code +archive v0.0-1-gdeadbee, rerun .*: DIFFERENT CODE VERSION" "$work/version.log"
 expect 1 "worldlines.h5 +\(bit-identical datasets and attributes; made by v0.0-1-gdeadbee, rerun by " "$work/version.log"
 # Another version of the same simulator (the same simulator_sha256: a commit outside sim/) made the
-# same file: reproduced (until 2026-11-28 the version alone decided, and this was a failure).
+# same file: reproduced (the simulator's hash decides, not the version alone).
 alter same_simulator "$another_version$rehash"
 check "$work/same_simulator.log" "$copy" "${again[@]}" --work-dir "$work/same_simulator.work"
 expect 0 "^code +archive v0.0-1-gdeadbee, rerun .*: same simulator" "$work/same_simulator.log"

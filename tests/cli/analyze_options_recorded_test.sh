@@ -3,9 +3,9 @@
 # A results file says how it was made: the root attribute command_line and,
 # in /options, every option of the subcommand with the value it ran with
 # (defaults included; --t-lo only when given; not --help or --help-all,
-# which print and exit). Before, shocks with
-# --jump-fraction 2 and with the default gave 104 and 416 shocks in files with
-# the same attributes. Also: scaling on an interrupted run stores how many
+# which print and exit), so that files of other options differ in their
+# attributes (shocks with --jump-fraction 2 and with the default give 104 and
+# 416 shocks). Also: scaling on an interrupted run stores how many
 # realizations each histogram time used. WORKDIR holds the fixture's runs
 # (snap1.h5, a.h5, hist.h5, interrupted.h5; tests/cli/analyze_tests.cmake).
 set -u

@@ -41,7 +41,7 @@ set_tests_properties(cli.analyze.setup.short_tail PROPERTIES FIXTURES_SETUP anal
 # the arguments and -o <name>.out.h5 must fail as bad input with one line
 # matching regex and leave no <name>.out.h5 (the pattern of shockgas_tool_error
 # in cli_tests.cmake; one output name per test, as tests run in parallel). The
-# timeout catches a hang (a scan step of 0 once looped forever).
+# timeout catches a hang (a scan step of 0 would loop forever).
 function(shockgas_analyze_error name regex)
   set(_output "${_analyze_dir}/${name}.out.h5")
   add_test(NAME cli.analyze.${name}
@@ -75,7 +75,8 @@ add_test(NAME cli.analyze.output_is_input
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/analyze_output_is_input_test.sh ${_analyze_program} "${_analyze_dir}")
 set_tests_properties(cli.analyze.output_is_input PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
 
-# 2. The window scan: a step of 0 looped forever; an empty scan was written with status 0.
+# 2. The window scan: a step of 0 (which would loop forever) and an empty scan (which would be written with
+# status 0) are refused.
 foreach(_step IN ITEMS 0 -0.1 1e-9 nan)
   shockgas_analyze_error(scan_step_${_step} "^shockgas-analyze: error: --scan-step must be finite and at least 0.001 decades"
                          decay a.h5 ${_window} --scan-step ${_step})
@@ -107,9 +108,9 @@ shockgas_analyze_error(data_full_disk_large
 # A device is written through, not replaced: the table arrives on standard output.
 shockgas_analyze_reports(data_to_standard_output "# decay exponent in moving windows.*decay exponent" "error"
                          decay a.h5 ${_window} -o "${_analyze_dir}/stdout_decay.h5" --scan /dev/stdout)
-# The same under a shell's `> file`: /dev/stdout is then that file, and opening it anew ("w") truncated it
-# and wrote at an offset of its own, so the report overwrote the table's start. It is written through the
-# program's own standard output now (sim/io/src/text_file.cpp), the table before the report.
+# The same under a shell's `> file`: /dev/stdout is then that file, and opening it anew ("w") would truncate
+# it and write at an offset of its own, so the report would overwrite the table's start. It is written
+# through the program's own standard output (sim/io/src/text_file.cpp), the table before the report.
 add_test(NAME cli.analyze.data_to_redirected_standard_output
          COMMAND sh -c "\"$1\" decay a.h5 --t-lo 1 --t-hi 100 -o stdout_file_decay.h5 --scan /dev/stdout > stdout_file.txt && cat stdout_file.txt"
                  sh ${_analyze_program} WORKING_DIRECTORY "${_analyze_dir}")
@@ -196,7 +197,7 @@ foreach(_case IN ITEMS "merge_gap_negative|--merge-gap must be a whole number at
   shockgas_analyze_error(${_name} "^shockgas-analyze: error: ${_regex}$" ${_arguments})
 endforeach()
 
-# 9b. A misspelt subcommand names the nearest one and all of them (CLI11 said "A subcommand is
+# 9b. A misspelt subcommand names the nearest one and all of them (CLI11 alone says "A subcommand is
 # required"), through the shared shockgas::cli::parse; -o and its value (added by the helper) are not it.
 set(_subcommands "the subcommands are decay, crossover, scaling, shocks, collapse, compare, far-tail")
 shockgas_analyze_error(subcommand_misspelt
@@ -237,7 +238,7 @@ shockgas_analyze_reports(decay_one_realization_chi2
                          "chi2/dof 0\\.00|nan" decay e10_one.h5 --t-lo 10 --t-hi 1000 -o "${_analyze_dir}/one_decay.h5")
 
 # 13b. One realization, crossover: the times with sigma n/a, and the powers of eps, weighted by the
-# inputs' sigmas, n/a naming the input (the command refused the run, exit status 2, until 2026-11-27).
+# inputs' sigmas, n/a naming the input: the run is analysed, not refused.
 shockgas_analyze_reports(crossover_one_realization
                          "eps 0\\.1 +t_dissip [0-9.]+ \\+- n/a \\(one realization: the jackknife has nothing to leave out"
                          "nan|shockgas-analyze: error" crossover e10_one.h5 -o "${_analyze_dir}/one_crossover.h5")
@@ -246,8 +247,8 @@ shockgas_analyze_reports(crossover_one_realization_no_fit_over_eps
                          "nan|shockgas-analyze: error" crossover e05.h5 e10_one.h5 -o "${_analyze_dir}/one_crossover_eps.h5")
 
 # 13c. One realization, collapse: its time and mass with sigma n/a (and the spread n/a), and the fits
-# across inputs, weighted by their sigmas, n/a naming the input, against eps and against N (the
-# command refused the run, exit status 2, until 2026-11-27).
+# across inputs, weighted by their sigmas, n/a naming the input, against eps and against N: the run
+# is analysed, not refused.
 shockgas_analyze_reports(collapse_one_realization
                          "eps 0\\.25 +N 2000 +collapse time [0-9.]+ \\+- n/a \\(one realization: the jackknife has nothing to leave out; run -R 2 or more\\) \\(spread n/a\\), cluster mass [0-9.]+ \\+- n/a \\(one realization.*\\(1/1 collapsed\\)"
                          "nan|shockgas-analyze: error" collapse col_one.h5 -o "${_analyze_dir}/one_collapse.h5")
@@ -287,8 +288,8 @@ if(GNUPLOT_EXECUTABLE)
                    ${PROJECT_SOURCE_DIR}/tools/shockgas-look "${_analyze_dir}/col.h5" -o "${_analyze_dir}/look_refused.png"
                    --t-lo 50 --t-hi 100)
   set_tests_properties(cli.analyze.look_window_refused PROPERTIES LABELS cli FIXTURES_REQUIRED analyze_cases TIMEOUT 60)
-  # Before any work, one line each (the CLI audit of 2026-11-27: a missing output directory gave
-  # gnuplot's error after the analysis, a file that is not a run two contradictory lines).
+  # Before any work, one line each (not gnuplot's error after the analysis for a missing output
+  # directory, nor two contradictory lines for a file that is not a run).
   foreach(_case IN ITEMS
           "output_directory_missing|^shockgas-look: error: cannot write '.*/no_such_directory/look\\.png': directory '.*/no_such_directory' does not exist$|${_analyze_dir}/col.h5|${_analyze_dir}/no_such_directory/look.png"
           "not_a_run|^shockgas-look: error: .*typo\\.toml' is not a readable HDF5 file|${CMAKE_CURRENT_SOURCE_DIR}/cli/typo.toml|${_analyze_dir}/look_not_a_run.png")
@@ -306,9 +307,9 @@ if(GNUPLOT_EXECUTABLE)
 endif()
 
 # 16. An interrupted run (Ctrl-C after 2 s: realization 0 of 3 reached the histogram times 1 and 10, 1 and
-# 2 never started) and the checkpoint it leaves. scaling counted the rows of zeros of the realizations that
-# never reached a histogram time as realizations (means, errors, the tail fit all wrong); now each time uses
-# the realizations that reached it, and says so.
+# 2 never started) and the checkpoint it leaves. scaling must not count the rows of zeros of the realizations
+# that never reached a histogram time as realizations (means, errors, the tail fit would all be wrong): each
+# time uses the realizations that reached it, and says so.
 add_test(NAME cli.analyze.setup.interrupted
          COMMAND bash -c "rm -f interrupted.h5 interrupted.h5.checkpoint interrupted.h5.checkpoint.previous; timeout -s INT 2 \"$0\" -N 100 -r 0.5 -d 0.01 -t 1e300 -R 3 -q -j 1 --histogram-times 1,10 -o interrupted.h5 2>/dev/null; test -e interrupted.h5 && test -e interrupted.h5.checkpoint"
                  $<TARGET_FILE:shockgas-sim>
@@ -320,7 +321,7 @@ shockgas_analyze_reports(scaling_interrupted_uses_reached
 shockgas_analyze_error(decay_interrupted_names_resume
                        "no sample time t > 0 was reached with T > 0 by every realization: the run was interrupted; continue it with shockgas-sim --resume and the same options, in 'interrupted.h5'$"
                        decay interrupted.h5)
-# 17. Every subcommand refuses a checkpoint (decay and compare printed results from one), in one check.
+# 17. Every subcommand refuses a checkpoint (decay and compare would print results from one), in one check.
 # shockgas_analyze_refused_by(<prefix> <file> <regex> <case>...): the test cli.analyze.<prefix>_<name> for
 # each case "name|subcommand[|arguments]", run on <file>, must fail with <regex>.
 set(_every_subcommand "decay|decay" "crossover|crossover" "scaling|scaling" "shocks|shocks" "collapse|collapse"
@@ -337,10 +338,10 @@ shockgas_analyze_refused_by(checkpoint_refused interrupted.h5.checkpoint
   "^shockgas-analyze: error: 'interrupted\\.h5\\.checkpoint' is a shockgas-sim checkpoint \\(a run in progress\\), not an output: continue the run with shockgas-sim --resume and the same options$"
   ${_every_subcommand})
 # 17b. A file that is not a run is named for what it is, in one line, by every subcommand: an analysis
-# results file (`scaling dec.h5` said "missing attribute /restitution in 'dec.h5'") before any work, and a
-# far-tail file (`decay tail.h5` said "missing group /timeseries") where the run is read (crossover and
-# scaling: where they read its restitution, run_parameters); the user review of 2026-11-27. far-tail reads
-# the far-tail file, so it is not in the second list.
+# results file before any work (not as "missing attribute /restitution in 'dec.h5'"), and a far-tail
+# file where the run is read (not as "missing group /timeseries"; crossover and scaling: where they
+# read its restitution, run_parameters). far-tail reads the far-tail file, so it is not in the second
+# list.
 add_test(NAME cli.analyze.setup.results_input
          COMMAND $<TARGET_FILE:shockgas-analyze> decay a.h5 ${_window} -o results_input.h5
          WORKING_DIRECTORY "${_analyze_dir}")
@@ -351,7 +352,7 @@ list(REMOVE_ITEM _every_subcommand_of_a_run "far_tail|far-tail")
 shockgas_analyze_refused_by(results_refused results_input.h5
   "^shockgas-analyze: error: 'results_input\\.h5' is not a shockgas-sim output: it is an analysis results file \\(made by shockgas-analyze decay\\)$"
   ${_every_subcommand_of_a_run})
-# far-tail reads a shockgas-tail file, and says so (it said "not a shockgas-sim output" too, a review found).
+# far-tail reads a shockgas-tail file, and says so (not "not a shockgas-sim output").
 shockgas_analyze_refused_by(results_refused results_input.h5
   "^shockgas-analyze: error: 'results_input\\.h5' is not a far-tail sampler file \\(made by shockgas-tail\\): it is an analysis results file \\(made by shockgas-analyze decay\\)$"
   "far_tail|far-tail")

@@ -2,9 +2,8 @@
 # burgers_provenance_test.sh BURGERS RUN.h5 WORKDIR
 # shockgas-burgers' text outputs (the profile, --summary, --study) begin with
 # '#' lines naming the program's version, the date (UTC) and the start: the
-# seed, realization and law of a drawn start, or the run and its realization.
-# Before 2026-11-27 they named none of these, so two profiles of other seeds
-# could not be told apart. RUN.h5: -N 400, seed 1, realizations 3 and 4 drawn
+# seed, realization and law of a drawn start, or the run and its realization,
+# so that two profiles of other seeds can be told apart. RUN.h5: -N 400, seed 1, realizations 3 and 4 drawn
 # (--first-realization 3), Gaussian velocities, a snapshot at t = 20.
 set -u
 burgers=$1 run=$2 work=$3

@@ -49,7 +49,7 @@ foreach(_case IN ITEMS "threads_negative;threads must be >= 0;-j;-1" "one_chain;
   shockgas_error_case(tail "${_case}" $<TARGET_FILE:shockgas-tail> -t 10 --half-window 20 --steps-per-bias 10
                       --burn-in 0)
 endforeach()
-# Named by its own option (it said "need >= 1 step per bias"; the CLI audit of 2026-11-27).
+# Named by its own option, not as "need >= 1 step per bias".
 shockgas_error_case(tail "burn_in_negative;--burn-in must be >= 0;--burn-in=-3" $<TARGET_FILE:shockgas-tail> -t 10
                     --half-window 20 --steps-per-bias 10)
 add_test(NAME cli.error.tail_half_window_huge
@@ -57,8 +57,8 @@ add_test(NAME cli.error.tail_half_window_huge
                  $<TARGET_FILE:shockgas-tail> -t 10 --half-window 100000000 -o "${_cli_dir}/tail_half_window_huge.h5"
          WORKING_DIRECTORY "${_cli_dir}")
 set_tests_properties(cli.error.tail_half_window_huge PROPERTIES LABELS cli)
-# Every option of shockgas-tail --help says what it does: --focus-probability, --z-min and --z-max had
-# no description (the user review of 2026-11-27).
+# Every option of shockgas-tail --help says what it does, --focus-probability, --z-min and --z-max
+# among them.
 foreach(_case IN ITEMS "focus_probability|share of proposals whose site" "z_min|lower end of the z range"
                       "z_max|upper end of the z range")
   string(REPLACE "|" ";" _case "${_case}")
@@ -74,8 +74,8 @@ foreach(_case IN ITEMS "time_nan;^shockgas-burgers: error: --time must be positi
                       "one_particle;give --run, --init or --particles \\(at least 2\\);-N;1;-t;10"
                       "seed_beyond_64_bits;--seed: must be an integer from 0 to 2\\^63 - 1;-N;100;-t;1;-s;18446744073709551616"
                       "study_full_disk;^shockgas-burgers: error: cannot write '/dev/full': No space left on device$;-N;100;-t;1;--study;/dev/full"
-                      # Found by the CLI audit of 2026-11-27: the first ran out of memory after 20 s (std::bad_alloc),
-                      # the second printed the summary, then lost the profile under it.
+                      # Refused at once: the first would run out of memory after 20 s (std::bad_alloc), the
+                      # second would print the summary, then lose the profile under it.
                       "memory;^shockgas-burgers: error: not enough memory: N = 2000000000 needs about .* GiB, but .* may be used;-N;2000000000;-t;1"
                       "summary_is_output;^shockgas-burgers: error: -o and --summary name the same file;-N;100;-t;1;--summary;${_cli_dir}/burgers_summary_is_output.out.h5")
   shockgas_error_case(burgers "${_case}" $<TARGET_FILE:shockgas-burgers>)
@@ -83,9 +83,9 @@ endforeach()
 # shockgas-burgers --run rebuilds the run's own start (its velocity law, and the
 # realization number of a part made with --first-realization) and, for the sticky
 # gas at one cell per particle, agrees with it exactly: every cluster moves with its
-# Burgers shock's velocity, so the velocity misfit is rounding (3e-16 measured
-# 2026-11-26; 1.4 v_rms when clusters were compared with one side of the jump, O(1)
-# from the paper's uniform start drawn in place of the run's Gaussian one).
+# Burgers shock's velocity, so the velocity misfit is rounding (3e-16; 1.4 v_rms
+# when clusters are compared with one side of the jump, O(1) from the paper's
+# uniform start drawn in place of the run's Gaussian one).
 add_test(NAME cli.setup.burgers_sticky_run
          COMMAND ${_sim} -N 400 -r 0 -d 0 -t 20 --snapshot-times 20 -R 2 --first-realization 3
                  --velocity-distribution gaussian -q -o "${_cli_dir}/burgers_sticky.h5")
@@ -95,8 +95,8 @@ add_test(NAME cli.burgers_sticky_identity
                  --cells-per-particle 1 -o "${_cli_dir}/burgers_sticky.dat")
 set_tests_properties(cli.burgers_sticky_identity PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli
                      PASS_REGULAR_EXPRESSION "v_Burgers\\| / v_rms = (0|[0-9.]+e-(1[3-9]|[2-9][0-9]))\n")
-# --run takes the start from the run, so --init beside it is refused, naming both (the same file for
-# both named only a missing dataset /position until the CLI audit of 2026-11-27).
+# --run takes the start from the run, so --init beside it is refused, naming both (not as a missing
+# dataset /position, even when both name the same file).
 add_test(NAME cli.error.burgers_run_and_init
          COMMAND ${_expect}
                  "^shockgas-burgers: error: --run '[^']*burgers_sticky\\.h5' and --init '[^']*burgers_sticky\\.h5' exclude each other: --run takes the initial condition from the run"
@@ -104,8 +104,8 @@ add_test(NAME cli.error.burgers_run_and_init
                  $<TARGET_FILE:shockgas-burgers> --run "${_cli_dir}/burgers_sticky.h5" --init "${_cli_dir}/burgers_sticky.h5"
                  -o "${_cli_dir}/burgers_run_and_init.dat")
 set_tests_properties(cli.error.burgers_run_and_init PROPERTIES FIXTURES_REQUIRED burgers_sticky LABELS cli)
-# Likewise -N, -L and -s, which the run supplies too: ignored without a word until 2026-11-27 (the
-# profile was the run's, whatever they said). Refused as --init is, by one exclusion (cli::exclude).
+# Likewise -N, -L and -s, which the run supplies too: refused, not ignored (the profile is the
+# run's, whatever they say). Refused as --init is, by one exclusion (cli::exclude).
 foreach(_case IN ITEMS "particles|--particles '500'|-N;500" "ring_length|--ring-length '800'|-L;800"
                       "seed|--seed '7'|-s;7")
   string(REPLACE "|" ";" _case "${_case}")
@@ -116,13 +116,14 @@ foreach(_case IN ITEMS "particles|--particles '500'|-N;500" "ring_length|--ring-
     "^shockgas-burgers: error: --run '[^']*burgers_sticky\\.h5' and ${_given} exclude each other: --run takes the initial condition from the run \\(its N, L, seed and law, or its init file\\); give one of them$"
     --run "${_cli_dir}/burgers_sticky.h5" ${_arguments})
 endforeach()
-# --init's file is the start itself: -N (like -L, -s and --realization) beside it was ignored as well.
+# --init's file is the start itself: -N (like -L, -s and --realization) beside it is refused as well, not
+# ignored.
 shockgas_burgers_error(init_and_particles burgers_sticky
   "^shockgas-burgers: error: --init '[^']*burgers_sticky\\.h5' and --particles '500' exclude each other: --init's file is the initial condition itself \\(its N, L and velocities\\); give one of them$"
   --init "${_cli_dir}/burgers_sticky.h5" -N 500)
 # The profile is built on the lattice of the particles' start: a run made with --positions uniform
-# is refused in one line naming the file, the first particle off the lattice and what is needed (it
-# said "burgers: particles are not equally spaced (particle 1)" until the user review of 2026-11-27).
+# is refused in one line naming the file, the first particle off the lattice and what is needed (not
+# only "burgers: particles are not equally spaced (particle 1)").
 add_test(NAME cli.setup.burgers_uniform_run
          COMMAND ${_sim} -N 100 --positions uniform -t 10 --snapshot-times 10 -q -o "${_cli_dir}/burgers_uniform.h5")
 set_tests_properties(cli.setup.burgers_uniform_run PROPERTIES FIXTURES_SETUP burgers_uniform LABELS cli)
@@ -130,7 +131,7 @@ shockgas_burgers_error(off_lattice_run burgers_uniform
   "^shockgas-burgers: error: '[^']*burgers_uniform\\.h5' starts from particles that are not equally spaced \\(particle [0-9]+ is off the lattice x_0 \\+ i L/N\\): the Burgers profile is built on the lattice of the particles' start, so it needs equally spaced particles, as shockgas-sim --positions lattice \\(the default\\) places them$"
   --run "${_cli_dir}/burgers_uniform.h5")
 # Every text output begins with the version, the date and the start (seed, realization and law, or
-# the run or init file): two profiles of other seeds could not be told apart before 2026-11-27.
+# the run or init file), so that two profiles of other seeds can be told apart.
 add_test(NAME cli.burgers_provenance
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/burgers_provenance_test.sh $<TARGET_FILE:shockgas-burgers>
                  "${_cli_dir}/burgers_sticky.h5" "${_cli_dir}/burgers_provenance")
@@ -148,10 +149,11 @@ shockgas_cli_error(sample_beyond_t_max "beyond t_max" -N 10 -t 10 --snapshot-tim
 shockgas_cli_error(bad_positions "positions must be 'lattice' or 'uniform'" -N 10 --positions random)
 shockgas_cli_error(bad_velocity_law "velocity distribution must be" -N 10 --velocity-distribution normal)
 shockgas_cli_error(init_missing_file "does not exist" --init "${_cli_dir}/no_such_file.h5")
-# Realization F + k past 2^63 - 1 (accepted until the CLI audit of 2026-11-27).
+# Realization F + k past 2^63 - 1 is refused.
 shockgas_cli_error(first_realization_overflow "first realization 9223372036854775807 with 3 realizations runs past"
                    -N 10 -t 1 -R 3 --first-realization 9223372036854775807)
-# More realizations than an int holds: CLI11 said only "Could not convert" (CLI audit 2026-11-27).
+# More realizations than an int holds: named with the range and the way out (CLI11 alone says only
+# "Could not convert").
 shockgas_cli_error(realizations_beyond_int
                    "^shockgas-sim: error: --realizations: must be an integer from 1 to 2\\^31 - 1 = 2147483647, not '1000000000000' \\(a larger ensemble runs as parts: --first-realization, then shockgas-merge\\)$"
                    -N 10 -t 1 -R 1e12)
@@ -252,7 +254,7 @@ if(SHOCKGAS_PYTHON)
   shockgas_cli_error(init_ensemble "one fixed initial condition.*--velocity-distribution"
                      --init "${_cli_dir}/good.h5" -R 4)
   set_tests_properties(cli.error.init_ensemble PROPERTIES FIXTURES_REQUIRED bad_init)
-  # Both values named, as the --particles mismatch names both (the user review of 2026-11-27).
+  # Both values named, as the --particles mismatch names both.
   shockgas_cli_error(init_ring_length_disagrees
                      "^shockgas-sim: error: --ring-length 7 disagrees with the ring length 8 of '[^']*good\\.h5'$"
                      --init "${_cli_dir}/good.h5" --ring-length 7)
@@ -276,8 +278,8 @@ set_tests_properties(cli.passthrough_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "complete \\(passthrough engine")
 
 # A run stopped by a signal: its last progress line must not count the stopped
-# realization as done ("1/1 100.0% ETA 0 s", as it did until 2026-11-26). Whether a
-# line follows the stop depends on the interval (a loaded machine may print none).
+# realization as done (as "1/1 100.0% ETA 0 s"). Whether a line follows the stop
+# depends on the interval (a loaded computer may print none).
 # (It leaves a checkpoint, which would refuse its next run without --resume: removed first.)
 add_test(NAME cli.progress_after_interrupt
          COMMAND bash -c "rm -f \"$1.checkpoint\" \"$1.checkpoint.previous\"; timeout -s INT 2 \"$0\" -N 100 -t 1e300 -R 1 -q -j 1 --progress-interval 1 -o \"$1\" 2>&1; true"
@@ -338,11 +340,11 @@ shockgas_cli_error(realizations_zero "realizations" -N 10 -R 0)
 shockgas_cli_error(histogram_bins_zero "histogram bins" -N 10 --histogram-bins 0)
 shockgas_cli_error(snapshot_interval_zero "snapshot interval" -N 10 --snapshot-interval 0)
 shockgas_cli_error(collapse_speed_negative "collapse speed" -N 10 --collapse-speed -1)
-# Above delta > 0 the collapse criterion would declare a collapse the threshold forbids (user review, 2026-11-27).
+# Above delta > 0 the collapse criterion would declare a collapse the threshold forbids.
 shockgas_cli_error(collapse_speed_above_threshold
                    "collapse speed 0\\.1 exceeds the threshold delta = 0\\.01: every inelastic collision is then at least delta"
                    -N 100 -r 0.5 -d 0.01 --collapse-speed 0.1)
-# A snapshot interval past t_max took no snapshot without a word (user review, 2026-11-27).
+# A snapshot interval past t_max would take no snapshot: refused, not run without a word.
 shockgas_cli_error(snapshot_interval_past_t_max "snapshot interval 20 exceeds t_max = 10: no snapshot would be taken"
                    -N 10 -t 10 --snapshot-interval 20)
 shockgas_cli_error(seed_negative "seed|-5" -N 10 --seed -5)
@@ -385,9 +387,9 @@ if(SHOCKGAS_PYTHON)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/paper_tier_test.sh ${PROJECT_SOURCE_DIR}/tools/paper-tier ${_sim}
                    "${_cli_dir}/paper_tier")
   # The tool builds at the lowest CPU priority (nice 19, and its own session's autogroup), so this test's
-  # builds yield to everything else on the machine: 88 s alone, 137 s beside the other ci tests, and
-  # over 300 s in the sanitizer stage of a fresh-clone .ci/run while two other simulations ran
-  # (2026-12-02). The timeout only bounds a hang.
+  # builds yield to everything else on the computer: a minute or two alone or beside the other ci tests,
+  # several minutes under CI's full load on 2 cores; the timeout leaves room for a slower computer and
+  # only bounds a hang.
   set_tests_properties(cli.paper_tier PROPERTIES LABELS cli TIMEOUT 900)
 endif()
 foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries lock resume_other_parameters
@@ -397,8 +399,8 @@ foreach(_case IN ITEMS file_size_output file_size_checkpoint stale_temporaries l
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/faults_test.sh ${_case} ${_sim} "${_cli_dir}/faults"
                    "${SHOCKGAS_PYTHON}" ${CMAKE_CURRENT_SOURCE_DIR}/compare_outputs.py)
   # 300 s as the other fault tests: hangup and resume_other_build make three N = 20 000 runs, which
-  # the sanitizer build took 81 s and 95 s for on their own, and over 120 s each beside other tests
-  # on 2 cores (fresh-clone .ci/run, 2026-11-27); a hang still ends in a timeout.
+  # take the sanitizer build one to two minutes each on 2 cores beside other tests; a hang still ends
+  # in a timeout.
   set_tests_properties(cli.faults.${_case} PROPERTIES LABELS cli TIMEOUT 300 ENVIRONMENT "${SHOCKGAS_TEST_PYTHONPATH}")
 endforeach()
 if(NOT SHOCKGAS_PYTHON)  # these compare outputs (and resume_other_build and resume_complete_output edit files) with Python
@@ -411,13 +413,12 @@ endif()
 shockgas_cli_error(faults_memory_refused
                    "not enough memory: one realization of N = 100000 needs about [0-9]+ MiB \\(16 MiB of it the program itself, whatever N\\), but 30 MiB may be used \\(--max-memory\\); lower N"
                    -N 100000 -R 2 -j 2 -t 10 --max-memory 30M)
-# A budget below the program itself: no N fits, so lowering N is not the advice (it was, "needs
-# about 16 MiB ...; lower N", until the user review of 2026-11-27).
+# A budget below the program itself: no N fits, so lowering N is not the advice.
 shockgas_cli_error(memory_below_the_program
                    "^shockgas-sim: error: not enough memory: any run needs more than 16 MiB \\(the program itself, whatever N\\), but 1 KiB may be used \\(--max-memory\\); raise --max-memory$"
                    -N 10 -t 10 --max-memory 1K)
 # Many realizations of a small N: what does not fit is their records, which lowering N would not
-# shrink (the refusal said "lower N" until the CLI audit of 2026-11-27).
+# shrink, so the advice is parts, not "lower N".
 shockgas_cli_error(memory_many_realizations
                    "^shockgas-sim: error: not enough memory: 100000000 realizations need about [0-9.]+ GiB, [0-9.]+ GiB of it for their records .* but 8.0 GiB may be used \\(--max-memory\\); give each run at most [0-9]+ realizations: split the ensemble into parts with -R and --first-realization and join them with shockgas-merge, or set --max-memory$"
                    -N 1000 -R 100000000 -t 10 --max-memory 8G)
@@ -427,7 +428,7 @@ shockgas_cli_error(checkpoint_unwritable "directory .* does not exist" -N 10 --c
 
 # ---------------------------------------------------------------------------
 # Outputs never destroy inputs or other files; bad and damaged inputs are
-# refused with one line (defects found by probing commit 115c768). Kept in one
+# refused with one line. Kept in one
 # block at the end of this file.
 # ---------------------------------------------------------------------------
 set(_merge $<TARGET_FILE:shockgas-merge>)
@@ -445,7 +446,7 @@ shockgas_cli_error(progress_interval_nan "--progress-interval: must be a finite 
 shockgas_cli_error(progress_interval_inf "--progress-interval: must be a finite number >= 0" -N 10 --progress-interval inf)
 shockgas_cli_error(checkpoint_interval_nan "--checkpoint-interval: must be a finite number >= 0"
                    -N 10 --checkpoint-interval nan)
-# A config file's [section] header said "unknown option 'section.++'".
+# A config file's [section] header is refused in words, not as "unknown option 'section.++'".
 file(WRITE "${_cli_dir}/config_section.toml" "[run]\nparticles = 10\n")
 file(WRITE "${_cli_dir}/config_dotted_key.toml" "particles = 10\nrun.t-max = 10\n")
 shockgas_cli_error(config_section
@@ -456,8 +457,8 @@ shockgas_cli_error(config_dotted_key "unknown option 'run.t-max' in .*config_dot
 # --checkpoint naming the output: the run ended "complete" and left no output.
 shockgas_cli_error(checkpoint_is_output "checkpoint '.*checkpoint_is_output.h5' is the output '.*checkpoint_is_output.h5'"
                    -N 10 -t 1 --checkpoint "${_cli_dir}/checkpoint_is_output.h5")
-# shockgas-dump: a realization or snapshots the file does not have printed a
-# header alone with exit 0; the refusal leaves no output (it left an empty one).
+# shockgas-dump: a realization or snapshots the file does not have are refused
+# (not a header alone with exit 0), and the refusal leaves no output, not an empty one.
 add_test(NAME cli.setup.dump_input
          COMMAND ${_sim} -N 200 -t 10 -R 2 --sample-times 2 --snapshot-times 1,5 -q -o "${_cli_dir}/dump_input.h5")
 set_tests_properties(cli.setup.dump_input PROPERTIES FIXTURES_SETUP dump_input LABELS cli)

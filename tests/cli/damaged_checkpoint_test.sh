@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # damaged_checkpoint_test.sh SIM PYTHON COMPARE_OUTPUTS DIR
 # A damaged or truncated checkpoint never ends a run and never changes its
-# result (issue 19):
+# result (docs/reliability.md):
 #   1. an uninterrupted reference run;
 #   2. the same run with a checkpoint every 0.1 s, stopped (SIGINT) after its
 #      third checkpoint: both generations, OUT.h5.checkpoint and
@@ -77,7 +77,7 @@ grep -q "resuming from the previous checkpoint" truncated.err ||
   { echo "FAIL [truncated]: did not fall back to the previous checkpoint"; failures=$((failures + 1)); }
 
 # Emptied, and its HDF5 signature overwritten: a damaged generation beside an intact previous one,
-# not another file that merely has the checkpoint's name (until 2026-11-27 these ended the run).
+# not another file that merely has the checkpoint's name: the run goes on from the previous one.
 for how in empty signature; do
   cp pristine.current run.h5.checkpoint
   cp pristine.previous run.h5.checkpoint.previous

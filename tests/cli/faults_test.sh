@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # faults_test.sh CASE SIM DIR [PYTHON COMPARE_OUTPUTS]
-# One fault per CASE (issue 19); each says what must happen and fails otherwise.
+# One fault per CASE (docs/reliability.md); each says what must happen and fails otherwise.
 #   file_size_output      a file-size limit (ulimit -f) during the output write: one line naming the
 #                         file and "File too large", exit 2 (not killed by SIGXFSZ), nothing left behind
 #   file_size_checkpoint  a resumed run whose next checkpoint exceeds the limit: one line naming the
@@ -139,8 +139,8 @@ resume_other_parameters)
     fail "the refused run changed the checkpoints"
   cmp -s kept.h5 ck3.h5 || fail "the refused run wrote an output"
   # With --set-aside-other-runs (the figure pipeline's, whose parameter file says which run a path
-  # holds) the other run's checkpoint is moved aside, untouched, and this run starts anew: editing a
-  # stopped run's parameters failed the pipeline's build until 2026-11-28.
+  # holds) the other run's checkpoint is moved aside, untouched, and this run starts anew, so that
+  # editing a stopped run's parameters does not fail the pipeline's build.
   cp kept.checkpoint sa.h5.checkpoint && cp kept.previous sa.h5.checkpoint.previous && cp kept.h5 sa.h5 ||
     fail "could not copy the checkpoints"
   "$sim" "${args[@]}" -t 500 --checkpoint-interval 0 -o reference500.h5 2>reference500.err || fail "the reference run failed"
@@ -154,7 +154,7 @@ resume_other_parameters)
   "$python" "$same" reference500.h5 sa.h5 >same.out 2>&1 || { cat same.out; fail "the run started anew differs from a fresh one"; }
   # Another simulator's checkpoint of another run is moved aside as another simulator's (no build
   # of this one continues it, whatever parameters are given), not refused: with and without the
-  # flag. Until the review of 2026-11-28 it was refused, saying to give its parameters.
+  # flag (giving its parameters would not make this build continue it).
   for flag in "" --set-aside-other-runs; do
     cp kept.checkpoint os.h5.checkpoint && cp kept.previous os.h5.checkpoint.previous || fail "could not copy"
     rm -f os.h5.checkpoint.from-*
@@ -226,8 +226,8 @@ for name in sys.argv[1:]:
 resume_same_simulator)
   # A checkpoint written by another version of the same simulator (a commit that changed only docs,
   # analysis or tests, or an uncommitted edit there: the same simulator_sha256) is continued: the
-  # result is bit-identical to an uninterrupted run. Until 2026-11-28 any other version started the
-  # run anew, so a docs commit between `paper-tier stop` and `start` threw away the runs in progress.
+  # result is bit-identical to an uninterrupted run, so that a docs commit between `paper-tier stop`
+  # and `start` does not throw away the runs in progress.
   args=(-N 20000 -r 0.8 -d 0.005 -R 2 -j 2 -q -s 99 -t 1000)
   "$sim" "${args[@]}" --checkpoint-interval 0 -o reference.h5 2>reference.err || fail "the reference run failed"
   run_until_checkpoints 2 INT first.err -- "$sim" "${args[@]}" --checkpoint-interval 0.1 -o ss.h5

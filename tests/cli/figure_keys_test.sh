@@ -2,11 +2,11 @@
 # figure_keys_test.sh ANALYZE DUMP PYTHON SOURCE_DIR WORKDIR
 # What the figures' keys and titles say, read from SVG (figures/style.gp, format = 'svg'):
 #   - fig4 and fig4_sticky name the time of each marker ("t = 10", "t = 100": the marker shape is
-#     the time, the colour the run; the key named only the runs);
-#   - fig_tail draws the sampler in another colour than the exact curve (both were black, and the
-#     points vanished under the curve);
+#     the time, the colour the run; not only the runs);
+#   - fig_tail draws the sampler in another colour than the exact curve (both black, the points
+#     would vanish under the curve);
 #   - shockgas-look names each histogram time "t = 10" and prints its fit window as 100 and 894
-#     (it printed 894.427).
+#     (not 894.427).
 # WORKDIR holds the analyze fixture's runs: hist.h5 (N = 2000, r = 0.5, t = 1000, histograms at
 # t = 10 and 100) and short_tail.h5 (a far tail of the sticky gas at t = 100).
 set -u

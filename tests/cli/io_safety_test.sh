@@ -1,28 +1,28 @@
 #!/usr/bin/env bash
 # io_safety_test.sh CASE DIR SIM MERGE DUMP [PYTHON]
 # Outputs never destroy inputs or other files, and a failed write is an error
-# (found by probing at commit 115c768; each case failed before its fix). The
+# (each case below names what would otherwise happen). The
 # refusals are checked as expect_error.sh checks them (exit 2, one line on
 # stderr matching the message), and in addition that the file at stake is
 # unchanged, which expect_error.sh cannot do (it removes its output first).
 #   checkpoint_not_a_checkpoint  --checkpoint naming a run's output (with and without --resume) is
-#                                refused and the file kept; it used to be removed at the end of the run
+#                                refused and the file kept, not removed at the end of the run
 #   checkpoint_is_init           --checkpoint naming the --init file: refused, the init file kept (PYTHON)
 #   output_is_init               -o naming the --init file: refused, the init file kept (PYTHON)
 #   checkpoint_removed           a run's own checkpoints are still removed once its output is written
 #   merge_output_is_part         shockgas-merge -o naming one of its parts: refused, the part kept
 #   merge_checkpoint             shockgas-merge of a checkpoint: refused, saying it is a checkpoint
-#   dump_output_is_input         shockgas-dump -o naming its input: refused, the input kept (it was truncated)
+#   dump_output_is_input         shockgas-dump -o naming its input: refused, the input kept (not truncated)
 #   dump_outputs                 shockgas-dump writes a file (no temporary left), /dev/null and /dev/stdout
 #                                (written through, still devices; a `>> log` kept whole, /dev/fd/3 under
 #                                `3>>` appended to), and reports a full disk on -o and on
 #                                standard output (> /dev/full) as an error instead of exit 0
 #   output_not_an_output         -o naming an existing text file or another program's HDF5 file: refused,
-#                                the file kept (it was silently replaced); an empty file, and an earlier
+#                                the file kept (not silently replaced); an empty file, and an earlier
 #                                output of a run, are still replaced
 #   output_not_creatable         -o in a directory where no file can be created (/sys, where even root
-#                                cannot): refused before any work; for root, access(W_OK) said yes and a
-#                                run without checkpoints found out only at its end, its results lost
+#                                cannot): refused before any work; for root, access(W_OK) says yes, and a
+#                                run without checkpoints would find out only at its end, its results lost
 set -u
 case_name=$1 dir=$2 sim=$3 merge=$4 dump=$5 python=${6:-}
 source "$(dirname "$0")/checkpoint_helpers.sh"
@@ -120,7 +120,7 @@ output_is_init)
   ;;
 checkpoint_removed)
   # Stopped after its first checkpoint, then resumed to the end: the
-  # checkpoints it wrote are removed (only checkpoints are, now).
+  # checkpoints it wrote are removed (only checkpoints are).
   run_until_checkpoints 1 INT stopped.err -- "$sim" -N 20000 -r 0.8 -d 0.005 -t 400 -q --checkpoint-interval 0.1 -o run.h5
   [ -e run.h5.checkpoint ] || fail "no checkpoint to resume from"
   "$sim" -N 20000 -r 0.8 -d 0.005 -t 400 -q --checkpoint-interval 0 --resume -o run.h5 2>resumed.err ||

@@ -34,11 +34,11 @@ def set_attribute(name, value):
     return change
 
 
-# The snapshot's velocity shorter than its positions: shockgas-dump printed heap garbage.
+# The snapshot's velocity shorter than its positions (unchecked, shockgas-dump would print heap garbage).
 damaged("short_velocity", shorten("snapshots/0/velocity"))
-# The collisions shorter than realizations x times: readers gave 1e-314.
+# The collisions shorter than realizations x times (unchecked, readers would give 1e-314).
 damaged("short_collisions", shorten("timeseries/collisions_per_particle"))
-# A malformed list of sample times: shockgas-merge said only "stod".
+# A malformed list of sample times (unchecked, shockgas-merge would say only "stod").
 damaged("bad_sample_times", set_attribute("sample_times", "2,abc"))
 # A status no output has (a checkpoint's, without its /checkpoint group).
 damaged("unknown_status", set_attribute("status", "checkpoint"))

@@ -49,7 +49,7 @@ EOF
 cmake -S "$work/project" -B "$work/build" -DSIM="$sim" >/dev/null || fail "the test project did not configure"
 build=$work/build
 # Up to 300 s of wall time: the builds run at the lowest priority, so under other load (a CI run beside
-# simulations, 2026-12-02: load 10 on 2 cores) they take far longer than the seconds they need idle.
+# simulations: a load of 10 on 2 cores) they take far longer than the seconds they need idle.
 stop_wait=300
 wait_until_stopped() {
   local deadline=$((SECONDS + stop_wait))
@@ -61,8 +61,8 @@ wait_until_stopped() {
 }
 
 started=$("$tool" start --build "$build" quick) || fail "start failed"
-# Every hint names the --build DIR given (without it, 'paper-tier stop' looked in the default
-# build-paper, said "not running" with exit 0, and the build went on).
+# Every hint names the --build DIR given (without it, 'paper-tier stop' would look in the default
+# build-paper, say "not running" with exit 0, and the build would go on).
 echo "$started" | grep -qF "'paper-tier stop --build $build' stops it" || fail "start's stop hint lacks --build: $started"
 echo "$started" | grep -qF "'paper-tier status --build $build' shows" || fail "start's status hint lacks --build: $started"
 # The start is on record when start returns (not later, from the background), so that a second start
@@ -80,8 +80,8 @@ tail -n 1 "$build/paper-tier.times" | grep -q '^end .* rc=0$' || fail "side by s
 bad_jobs=$("$tool" start --build "$build" --jobs 0 quick 2>&1) && fail "--jobs 0 was accepted"
 echo "$bad_jobs" | grep -q "at least 1" || fail "--jobs 0: $bad_jobs"
 
-# While `figures` runs, a start of fig1, which it builds, is nothing to do (exit 0): start compared the
-# names alone and said "fig1 NOT added", exit 2. A target it does not build is still refused.
+# While `figures` runs, a start of fig1, which it builds, is nothing to do (exit 0), not "fig1 NOT
+# added", exit 2, as comparing the names alone would say. A target it does not build is still refused.
 "$tool" start --build "$build" figures >/dev/null || fail "start of figures failed"
 for ((i = 0; i < 3000; ++i)); do
   [ -f "$build/fig1.started" ] && break
@@ -122,7 +122,7 @@ again=$("$tool" start --build "$build" simulate)
 echo "$again" | grep -q "already running" || fail "a second start did not see the first: $again"
 echo "$again" | grep -qF "'paper-tier status --build $build'" || fail "the second start's hint lacks --build: $again"
 # A start with other targets while one runs builds none of them: one line saying so and how to add
-# them, exit 2 (it said "already running", exit 0, and the new targets were silently not built).
+# them, exit 2 (not "already running", exit 0, with the new targets silently not built).
 other=$("$tool" start --build "$build" quick simulate 2>&1 >/dev/null)
 status=$?
 [ $status = 2 ] || fail "a start with other targets while one runs: exit $status, expected 2: $other"
@@ -140,7 +140,7 @@ done
 pgrep -g "$pid" -f "run.h5" >/dev/null || fail "the simulation did not start"
 # Stop it only once it catches SIGTERM (signal 15: bit 14 of SigCgt): its handler writes the last checkpoint, and a
 # signal before the handler is installed ends it with nothing to save. Under a sanitizer on a loaded
-# machine the start can take longer than the second below (CI, 2026-11-26: "left no checkpoint").
+# computer the start can take longer than a second (then the test would fail with "left no checkpoint").
 sim_pid=$(pgrep -g "$pid" -x shockgas-sim | head -n 1)
 [ -n "$sim_pid" ] || fail "no shockgas-sim process in the build's group"
 for ((i = 0; i < 600; ++i)); do

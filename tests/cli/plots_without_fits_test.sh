@@ -4,8 +4,8 @@
 # collapse and crossover could measure. Where the fits across inputs are n/a
 # (an input of one realization has no sigma to weigh by; one input alone has
 # no slope), the results file holds a note instead of the fitted numbers, and
-# the scripts used to stop on gnuplot's "undefined variable". Now they draw the
-# points and name the note.
+# the scripts must draw the points and name the note, not stop on gnuplot's
+# "undefined variable".
 # WORKDIR holds the analyze fixture's runs: col06.h5 (three realizations,
 # r = 0.6), col_one.h5 (one, r = 0.5), col4k.h5 (three, N = 4000), col300.h5
 # (three, N = 300: N/m = 30, below the Gumbel fit's 50 regions), e05.h5
@@ -67,6 +67,6 @@ grep -q '^fit_mean_time_exponent = ' fig_collapse_gumbel_na/vs_N.gp || fail "Gum
 
 # fig_crossovers, its fits n/a for the same reason.
 draw_crossovers no_sigma '^fit_note = "the fits over eps are weighted by each input' e05.h5 e10_one.h5
-# One input has no slope: the note says so (crossover wrote neither fits nor note until 2026-11-27).
+# One input has no slope: the note says so (crossover writes a note where it writes no fits).
 draw_crossovers one_input '^fit_note = "one input: give runs of 2 or more eps"$' e05.h5
 echo "fig_collapse and fig_crossovers drawn where their fits are n/a"

@@ -26,13 +26,13 @@ run_until_checkpoints 2 KILL running.stderr -- "$sim" "${run[@]}" -t 100000 -R 3
 for path, seconds in (("r0.5.part0.h5", 1000.0), ("r0.5.part10.running.h5.checkpoint", 400.0)):
     with h5py.File(path, "r+") as f:
         f.attrs["cpu_seconds"] = seconds' || fail "could not set the CPU times"
-# A checkpoint of another code version moved aside (shockgas-sim keep_aside: both generations): listed,
-# not counted (it was not reported at all).
+# A checkpoint of another code version moved aside (shockgas-sim keep_aside: both generations): listed
+# (not left out of the report), not counted.
 cp r0.5.part10.running.h5.checkpoint r0.5.part20.running.h5.checkpoint.from-v1.0-3-gabc1234 &&
   cp r0.5.part10.running.h5.checkpoint r0.5.part20.running.h5.checkpoint.from-v1.0-3-gabc1234.previous || exit 1
 # A checkpoint of a run whose parameters were edited, moved aside by --set-aside-other-runs (both
-# generations): listed apart, as another run's, with its size on disk. It was listed as "another code
-# version ... the old program finishes one" with "(version other-run)".
+# generations): listed apart, as another run's, with its size on disk, not as "another code version ...
+# the old program finishes one" with "(version other-run)".
 cp r0.5.part10.running.h5.checkpoint r0.9.running.h5.checkpoint.from-other-run &&
   cp r0.5.part10.running.h5.checkpoint r0.9.running.h5.checkpoint.from-other-run.previous || exit 1
 aside_mb=$("$python" -c 'import os, sys; print(f"{sum(os.path.getsize(p) for p in sys.argv[1:]) / 1e6:.1f}")' \

@@ -25,14 +25,14 @@ cat "$work/report.txt"
 grep -q "r = 0.5: 2 parts (20 realizations): r0.5.part0.h5 r0.5.part10.h5" "$work/report.txt" || fail "r = 0.5 not merged"
 grep -q "r = 0.9: no part from part0 on is finished; left out" "$work/report.txt" || fail "r = 0.9's gap not reported"
 # The tool's job is to run the fit, not to judge it (the physics tests assert beta): a fit came out in
-# [0.3, 0.4). At this N and 40 realizations it gave 0.371 +- 0.015 (2026-11-26). delta = 1e-2, not
-# Fig. 4's 1e-3: 8x fewer collisions (1.2e7 against 9.3e7 for ten r = 0.5 realizations), so that the
-# sanitizer build runs it well inside its timeout (with 1e-3 it took over 300 s there, 2026-11-26).
+# [0.3, 0.4). At this N and 40 realizations it gives 0.371 +- 0.015. delta = 1e-2, not Fig. 4's 1e-3:
+# 8x fewer collisions (1.2e7 against 9.3e7 for ten r = 0.5 realizations), so that the sanitizer build
+# runs it well inside its timeout (with 1e-3 it takes over 300 s there).
 grep -q "^scaling exponent 0\.3" "$work/report.txt" || fail "no scaling exponent near 1/3"
 [ -s "$work/look/fig4.png" ] || fail "no figure"
 # r = 0.5 with no finished part and r = 0.9 with two (the order of a build that runs r = 0.9's parts
-# first): r = 0.9's points must be drawn under its own label. fig4.gp labelled phi.dat's blocks by
-# position, so they were "r = 0.5, three times" (and 2 times per run were read as 3). The figure is drawn
+# first): r = 0.9's points must be drawn under its own label. Labelled by position, phi.dat's blocks
+# would read "r = 0.5" three times (and 2 times per run would be read as 3). The figure is drawn
 # again from what the tool passed gnuplot (a gnuplot first on PATH records it), as SVG, whose legend is text.
 tree=$work/only09
 mkdir -p "$tree/paper_targets/paper/fig4" "$work/bin" "$work/svgstyle" || exit 1

@@ -3,9 +3,9 @@
 # A figure's own steps (analyses, dumps, the far-tail sampler) rerun when their
 # command changes, not only when an input is newer (make tracks no command
 # lines): each depends on <first output>.command, which configuring rewrites
-# when the step's arguments change (shockgas_step in paper_targets/pipeline.cmake).
-# Until 2026-11-28 an option edited in a <figure>.cmake file, or a run taken out
-# of an aggregate's inputs, left the outputs stale. Checked on Fig. 3's world-line
+# when the step's arguments change (shockgas_step in paper_targets/pipeline.cmake),
+# so that an option edited in a <figure>.cmake file, or a run taken out of an
+# aggregate's inputs, does not leave the outputs stale. Checked on Fig. 3's world-line
 # dump (its run is under a second): built, up to date, then its command record
 # changed -> the step reruns; configuring restores the record -> it reruns again,
 # and then nothing does.

@@ -62,7 +62,7 @@ TEST(Figures, Fig1PureInelasticRunsStopAtCollapse) {
 // t_stick ~ eps^(-3/2) is the paper's matching of eps^-2 t^-2 with t^(-2/3) (Eq. 3). With the
 // paper's elastic sub-threshold collisions (the quick tier's setting) the measured exponent over
 // eps = 0.05 ... 0.00625 is steeper than that: the paper tier (N = 1e6, 10 realizations, delta = 1e-2,
-// seeds 6090 ... 6098; 2026-11-23, commit b6bbcf9) gives -1.560 +- 0.003, while sticky sub-threshold
+// seeds 6090 ... 6098; docs/measurements.md, "The paper tier") gives -1.560 +- 0.003, while sticky sub-threshold
 // collisions give -3/2 (AnalysisPhysics.StickTimeScalesAsEpsToMinusThreeHalves). The quick tier
 // (N = 2e4: other initial conditions) must reproduce the paper tier within k sigma, the two errors
 // in quadrature, and stay within the allowance below of the paper's -3/2.
@@ -160,8 +160,8 @@ TEST(Figures, ShockSegmentsHaveSlopeOneOverT) {
 
 // fig_collapse (docs/haff-and-collapse.md, "Collapse against eps and N"): the
 // quick tier's eps sweep (N = 40/eps, 8-16 realizations, seeds independent of
-// the paper tier's) against the paper tier's measurement, 2026-11-23 (commit
-// in docs/haff-and-collapse.md; eps = 0.25 ... 5e-4, 8-64 realizations).
+// the paper tier's) against the paper tier's measurement (docs/measurements.md,
+// "Haff and collapse"; eps = 0.25 ... 5e-4, 8-64 realizations).
 double collapse_form(const std::string& quantity, const std::string& form, const std::string& name) {
     return attribute("fig_collapse/vs_eps.h5", quantity + "_forms/" + form, name);
 }

@@ -5,10 +5,10 @@
 tree. Configures a fresh tree with the quick preset's cache variables (no compiling), then:
   1. asks CMake (its file API) what `--target figures` builds, and what the installation takes
      from the build tree: every installed target and every file made in the build tree must be
-     among the things `figures` builds (the man pages were not: the install stopped on them);
+     among the things `figures` builds (the man pages among them, or the install stops on them);
   2. makes the tree look built except for the man pages (the programs and libraries as empty
      files) and installs: the install must refuse, naming the missing pages and the command
-     that makes them, and leave the prefix empty (it used to fill half of it first);
+     that makes them, and leave the prefix empty (not half filled);
   3. adds the pages and installs again: the programs and man pages are in the prefix.
 """
 import json

@@ -156,8 +156,8 @@ other_ranks)
 finished_rank)
   # R = 3 on 2 ranks: rank 0 runs realizations 0 and 1 one after the other,
   # rank 1 realization 2, so rank 1 ends about halfway through rank 0's work
-  # (a few seconds each here). Until 2026-11-27 rank 1 removed its checkpoint
-  # as soon as its block was sent, and the resume ran realization 2 again.
+  # (a few seconds each here). Rank 1 must keep its checkpoint after its block
+  # is sent, or the resume would run realization 2 again.
   run=(-N 20000 -r 0.9 -d 1e-2 --subthreshold elastic --engine hybrid -t 10000 --histogram-times 100,10000
        -R 3 -s 5 -j 1 -q)
   "$sim" "${run[@]}" -o reference.h5 || fail "the uninterrupted run failed"

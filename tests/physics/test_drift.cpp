@@ -23,8 +23,8 @@ SimulationParameters elastic_gas(const std::string& engine) {
     return p;
 }
 
-// The elastic gas above delta loses energy at every inelastic collision: over 10^6 collisions E/E0 fell
-// to 3.0e-4 (N = 1000, r = 0.5, seed 1; 2026-12-02). Below half means it fell, which "never rose"
+// The elastic gas above delta loses energy at every inelastic collision: over 10^6 collisions E/E0 falls
+// to 3.0e-4 (N = 1000, r = 0.5, seed 1). Below half means it fell, which "never rose"
 // alone would not show, with room for any engine's own rounding of the same dynamics.
 constexpr double energy_ratio_after_a_million_collisions_below = 0.5;
 

@@ -1,4 +1,4 @@
-// Extremes (issue 8): every engine path at the edges of parameter space.
+// Extremes: every engine path at the edges of parameter space.
 //
 // r in {0, 1e-6, 0.5, 1 - 1e-6, 1}, delta in {0, 1e-12, 1e-2, 1}, both
 // sub-threshold mechanisms, N in {2, 3, 10^7}, long times for small N. Every
@@ -14,7 +14,7 @@
 // Engines are built through make_engine (event engine where it
 // applies, the reference loop otherwise, the exact engine for r = 0 with
 // --engine exact), and for small N the reference ReferenceEventEngine is also run
-// directly so that the global loop is covered on the cases the fast engine
+// directly so that the global loop is covered on the cases the event engine
 // takes.
 //
 // Built twice: test_extremes (label extremes, CI-sized: small N, t_max 1e6)

@@ -46,7 +46,7 @@ TEST(FarTailPhysics, PhiOnTheExactCurveAndGammaThreeAtTimeOneHundred) {
     // CI's time) are not yet equilibrated that deep: with these very options
     // and seed (the quick fig_tail's) Phi / exact is 0.46 at z = 4 and 0.35
     // at z = 5, where chains 13 times longer give 0.99 and 0.93
-    // (docs/far-tail.md, "Longer chains"). The allowance ln 3 covers that
+    // (docs/measurements.md, "Longer chains"). The allowance ln 3 covers that
     // shortfall, and 4 jackknife sigmas (4 chains: sigma itself uncertain by
     // ~40%) the noise. A wrong scaling (z = V t^0.3) or a broken reweighting
     // is off by decades here.

@@ -165,9 +165,8 @@ TEST(PhysicsEvent, EarlyCoolingFollowsHaffsLawWithDerivedConstant) {
 // --haff-constant derived uses for such runs. The Gaussian's tail changes
 // shape faster than the uniform law: at eps t = 0.1 (the test above) A comes
 // out 1.1% low, so this test takes eps t = 0.025, where it is 0.64% low here
-// and 0.51-0.58% low with N = 4e5 and seeds 21, 22, 23
-// (measured 2026-11-28): the shape change and the lattice start, with little
-// noise. The same 1% covers that, and the uniform start's constant (-7.9%)
+// and 0.51-0.58% low with N = 4e5 and seeds 21, 22, 23: the shape change and
+// the lattice start, with little noise. The same 1% covers that, and the uniform start's constant (-7.9%)
 // would fail.
 const double haff_constant_gaussian = 4.0 / std::sqrt(3.14159265358979323846);
 

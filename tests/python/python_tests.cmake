@@ -1,4 +1,4 @@
-# Python cross-checks (issue 7), label python. Each test makes its own input through a
+# Python cross-checks, label python. Each test makes its own input through a
 # FIXTURES_SETUP test (never the figure build) and exits 77 -> SKIPPED without numpy/scipy/h5py.
 if(NOT SHOCKGAS_PYTHON)
   message(STATUS "no Python interpreter: python tests not registered")

@@ -58,8 +58,9 @@ def one_line_error(test, result, name, *words):
     return lines[0]
 
 
-# HDF5 starts of the --init format gone wrong, each with the words its one error line must hold: it was
-# a TypeError traceback (ring_length an array, position a group) or a message naming none of them (2-D).
+# HDF5 starts of the --init format gone wrong, each with the words its one error line must hold (not a
+# TypeError traceback, as for ring_length an array or position a group, nor a message naming none of
+# them, as for 2-D).
 MALFORMED_STARTS = [
     ("ring_length_array", ["ring_length holds 2 values", "single number"]),
     ("ring_length_string", ["ring_length is a string", "single number"]),

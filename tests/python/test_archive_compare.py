@@ -114,8 +114,8 @@ expect_bytes("dat: other deviation", text_file("c.dat", table.format(build="/old
              text_file("d.dat", table.format(build="/new/build", cpu=93.5, dev=0.0084)), False)
 
 # pack: a figure without a parameter file of runs (fig_tail: the sampler's options are in its rule)
-# is packed with paper_targets/<figure>.cmake as its parameters (until 2026-11-28 the whole-pipeline
-# `archive` target stopped there).
+# is packed with paper_targets/<figure>.cmake as its parameters, so that the whole-pipeline `archive`
+# target does not stop there.
 source = os.path.join(work, "source")
 build = os.path.join(work, "build")
 os.makedirs(os.path.join(source, "paper_targets"))

@@ -260,8 +260,8 @@ def _():
 
 
 # The tables' z ranges scale with (3D)^(1/3) (Phi depends on z / D^(1/3), EB8): at the paper's D = 1/3
-# they are the fixed ranges; with fixed ranges a D below about 0.3 underflowed phi_tail.dat (log Phi
-# = -inf, local exponent NaN, 2026-11-28). Every value written must be finite (but the EB9 asymptote
+# they are the fixed ranges; with fixed ranges a D below about 0.3 would underflow phi_tail.dat (log Phi
+# = -inf, local exponent NaN). Every value written must be finite (but the EB9 asymptote
 # at z = 0, z^-2), and the effective tail constant must scale as 1/D exactly as c = 1/(6D) does.
 TOL_SCALED_FIT = 1e-6   # the same points of the scaled function: only rounding separates the fits
 

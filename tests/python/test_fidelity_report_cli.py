@@ -5,17 +5,17 @@ label python; < 1 s).
     test_fidelity_report_cli.py SIM WORK_DIR
 
 On a miniature quick build (paper_targets/quick/fig1/r0.h5, one tiny run) the report lists it
-(exit 0). Refused with exit status 2 and one line (they printed empty tables and exit 0, or a
+(exit 0). Refused with exit status 2 and one line (not empty tables and exit 0, nor a
 traceback): asking that quick build for paper (it has no paper_targets/paper/; the check was on
 paper_targets/ only), also with --progress; a build whose paper_targets/quick/ holds no results;
 --check-readme with no file after it (IndexError) or with a file that does not exist
-(FileNotFoundError); a build directory that does not exist; an unknown fidelity (exit 1 before).
+(FileNotFoundError); a build directory that does not exist; an unknown fidelity (not exit 1).
 Fig. 4's tail rows (a scaling.h5 written here with each case shockgas-analyze stores) print n/a with
-the reason, or the fit's Δχ² = 1 width where only the jackknife failed, and never "nan" (they printed
-"γ = 0.75 ± nan" for a quick build's short runs, 2026-11-27). The reason is the one the analysis stored
-(tail_gamma_note, tail_gamma_sigma_note, tail_error); until 2026-11-27 the report printed its own words,
-"too few tail bins" for one realization and "a replica at the search bound" for two. Files without a
-stored reason keep those words.
+the reason, or the fit's Δχ² = 1 width where only the jackknife failed, and never "nan" (as in
+"γ = 0.75 ± nan" for a quick build's short runs). The reason is the one the analysis stored
+(tail_gamma_note, tail_gamma_sigma_note, tail_error), not the report's own words; files without a
+stored reason get those: "too few tail bins" for one realization and "a replica at the search bound"
+for two.
 """
 import math
 import os

@@ -105,8 +105,7 @@ ENGINES = ("event", "passthrough", "hybrid", "exact", "auto")
 # clusters: there successive collisions come closer in time than the spacing of doubles at t (collapse_n4_r01:
 # 51 of its 91 intervals; gaps down to 1e-47), so the order the event engine keeps in doubles does not
 # resolve them, and its count moves under a 1-ulp change of one initial velocity: 84 to 99 around the
-# reference's 92 (collapse_n4_r01), 923 to 1118 around 1018 (collapse_block_r05), measured 2026-11-26 with
-# the build of commit 085b1df. The reference's count does not move under those changes, nor in 16 to 60
+# reference's 92 (collapse_n4_r01), 923 to 1118 around 1018 (collapse_block_r05). The reference's count does not move under those changes, nor in 16 to 60
 # digits. COLLAPSE_BURST_COUNT_TOL = 0.15 (relative) covers that spread (at most 9.8%) with a margin for other
 # compilers' rounding; the three-body collapses alternate between two pairs, an order rounding cannot change,
 # and are compared exactly (count_tolerance 0). docs/reference-check.md, docs/cli-and-output.md (/collapse).
@@ -237,7 +236,7 @@ def hand_cases():
                        "doubles near the positions"))
     # Cooling is not collapse: two particles alone, and three above the three-body threshold r = 7 - 4 sqrt 3,
     # lose relative speed geometrically, g < 1e-12 by t ~ 1e12, but never collide infinitely often in finite
-    # time (shockgas-sim reported these "collapsed" until 2026-11-27).
+    # time: shockgas-sim must not report them "collapsed".
     c.append(case("cooling_pair_r05", [0.0, 1.0], [0.75, -0.25], 0.5, 0.0, L=2.0, t_max=1e14,
                   expect_collapse=False, note="N=2, r = 0.5, delta = 0: Haff cooling to g ~ 1e-14, no collapse"))
     c.append(case("cooling_triple_r05", [0.0, 1.0, 2.5], [0.6, -0.1, -0.5], 0.5, 0.0, L=4.0, t_max=1e14,

@@ -89,8 +89,8 @@ class Compare(unittest.TestCase):
 
 
     def test_malformed_starts_are_one_line(self):
-        # shockgas.read_initial_condition raised TypeError (a traceback here) for a ring_length holding an
-        # array and for a position stored as a group; each is one line naming the item now.
+        # shockgas.read_initial_condition refuses a ring_length holding an array and a position stored as
+        # a group in one line naming the item, not with a TypeError (a traceback here).
         for name, words in sc.MALFORMED_STARTS:
             with self.subTest(start=name):
                 with h5py.File(path(name + ".h5"), "w") as handle:

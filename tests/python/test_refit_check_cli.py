@@ -4,9 +4,9 @@ bad inputs (ctest python.refit_check_inputs, label python; about 1 s of CPU).
 
     test_refit_check_cli.py SIM ANALYZE WORK_DIR
 
-The results file stores input_path as it was given to shockgas-analyze ("run.h5"). The script used
-to look in the current directory first, so run from a directory holding another run.h5 it refitted
-that one and reported a C++-versus-scipy mismatch that was its own. Here:
+The results file stores input_path as it was given to shockgas-analyze ("run.h5"). Were the script to
+look in the current directory first, then run from a directory holding another run.h5 it would refit
+that one and report a C++-versus-scipy mismatch of its own making. Here:
   * a/run.h5 (seed 3) and its decay fit a/decay.h5, made in a/; b/run.h5 another run (seed 9).
     From b/, refit_check.py ../a/decay.h5 refits a/run.h5 and agrees (exit 0);
   * a copy of the results in b/ (its input, a/run.h5, is not beside it): b/run.h5 is found and
@@ -98,8 +98,8 @@ class TooFewToWeigh(unittest.TestCase):
         self.assertRegex(result.stdout, r"exponent +C\+\+ [0-9.]+ +scipy [0-9.]+ +relative difference \S+ ok")
         self.assertRegex(result.stdout, r"exponent_sigma +C\+\+ n/a +scipy n/a .* ok")
         self.assertRegex(result.stdout, r"chi2_per_dof +C\+\+ n/a +scipy n/a .* ok")
-        # The n/a notes count the realizations in words that agree with the number ("(2 realization:"
-        # was printed for two).
+        # The n/a notes count the realizations in words that agree with the number (not "(2 realization:"
+        # for two).
         counted = "%d realization%s:" % (realizations, "" if realizations == 1 else "s")
         for key in ("exponent_sigma", "chi2_per_dof"):
             line = next(line for line in result.stdout.splitlines() if line.startswith(key))
@@ -108,8 +108,8 @@ class TooFewToWeigh(unittest.TestCase):
     def test_one_realization(self):
         self.expect_unweighted_on_both_sides(1)
 
-    # Two: the C++ fits unweighted with sigma and chi2 n/a since 2026-11-27; the refit weighed by the
-    # two-value standard error and failed on every R = 2 result until a review found it.
+    # Two: the C++ fits unweighted with sigma and chi2 n/a, and so must the refit (weighed by the
+    # two-value standard error, it would fail on every R = 2 result).
     def test_two_realizations(self):
         self.expect_unweighted_on_both_sides(2)
 

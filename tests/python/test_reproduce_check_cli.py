@@ -5,27 +5,27 @@
     test_reproduce_check_cli.py WORK_DIR
 
 docs/archive.md gives exit status 1 the meaning NOT REPRODUCED and 2 an unreadable archive. A missing
-archive or a file that is not one gave a Python traceback and exit status 1, and every early exit
-left its temporary work directory (/tmp/shockgas-check-*) behind. Each case below runs the tool with
+archive or a file that is not one must not give a Python traceback and exit status 1, nor an early
+exit leave its temporary work directory (/tmp/shockgas-check-*) behind. Each case below runs the tool with
 TMPDIR set to an empty directory of its own, and asserts exit status 2, one stderr line
 "reproduce-check: error: ..." naming what is wrong, and that directory empty afterwards: a missing
 archive, a text file, a gzip file that is not a tar archive, a tar.gz cut short, a tar.gz without
 MANIFEST, one whose MANIFEST is not JSON, one whose MANIFEST lacks the fields, a directory
-holding no archive, and a --compare-with directory that does not exist (it reported every file of
-the archive MISSING, exit 1).
+holding no archive, and a --compare-with directory that does not exist (not every file of the
+archive reported MISSING, exit 1).
 
 CompareWith packs a miniature build (one results file, its figure) of a git checkout, commits once
 more in that checkout, and checks the archive against the same, unchanged build with --compare-with.
 The code version is the compared files' own `version` attribute: every file is the archived one, so
-the check must say "same" and REPRODUCED (exit 0). It read `git describe` of the checkout MANIFEST
-names, which had moved on, and reported DIFFERENT CODE VERSION and NOT REPRODUCED (exit 1). A
+the check must say "same" and REPRODUCED (exit 0), not read `git describe` of the checkout MANIFEST
+names, which has moved on, and report DIFFERENT CODE VERSION and NOT REPRODUCED (exit 1). A
 compared file of another simulator (another `version` and simulator_sha256, or the same version and
 another simulator_sha256) is still named, DIFFERENT CODE VERSION, exit 1; so is one of another version
-without simulator_sha256 (written before 2026-11-28). A bit-identical file of another version of the
-same simulator (the same simulator_sha256) reproduces: "same simulator", naming both versions, exit 0
-(it was DIFFERENT CODE VERSION, exit 1). simulator_sha256 and input_simulator_sha256 are provenance,
-never compared as data: a result whose input_simulator_sha256 alone differs reproduces (it was
-DIFFERENT, naming the attribute).
+without simulator_sha256 (written by a build that did not record it). A bit-identical file of another
+version of the same simulator (the same simulator_sha256) reproduces: "same simulator", naming both
+versions, exit 0 (not DIFFERENT CODE VERSION, exit 1). simulator_sha256 and input_simulator_sha256 are
+provenance, never compared as data: a result whose input_simulator_sha256 alone differs reproduces
+(not DIFFERENT, naming the attribute).
 """
 import glob
 import gzip
@@ -223,7 +223,7 @@ class CompareWith(unittest.TestCase):
 
     def test_another_version_of_the_same_simulator_reproduces(self):
         # A bit-identical file made by another version of the same simulator (the same simulator_sha256: a
-        # commit that changed no simulator source). It was DIFFERENT CODE VERSION, NOT REPRODUCED.
+        # commit that changed no simulator source): reproduced, not DIFFERENT CODE VERSION, NOT REPRODUCED.
         result = self.compare_with_changed("same-simulator-build", version="v9.9-1-gdeadbee")
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         self.assertRegex(result.stdout, rf"(?m)^code +archive {self.version}, rerun v9.9-1-gdeadbee .*: same simulator "
@@ -237,7 +237,7 @@ class CompareWith(unittest.TestCase):
 
     def test_the_simulator_hash_is_provenance_not_data(self):
         # A result whose input came from another simulator (input_simulator_sha256), its own numbers
-        # bit-identical: the attribute is provenance, not compared as data (it was "DIFFERENT ... attribute
+        # bit-identical: the attribute is provenance, not compared as data (no "DIFFERENT ... attribute
         # input_simulator_sha256: archive 'aaa...', rerun 'bbb...'").
         result = self.compare_with_changed("input-build", input_simulator_sha256=OTHER_SIMULATOR)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)

@@ -6,23 +6,22 @@ module missing, an output path that cannot be written.
     test_script_environment_cli.py WORK_DIR
 
   * numpy or h5py missing, played by a stand-in on PYTHONPATH that fails to import as a missing
-    package does: tools/reproduce-check gave a ModuleNotFoundError traceback, and so did
-    exact_ballistic.py without numpy; now one line naming the package and /usr/bin/python3, exit 2,
-    as fidelity_report.py says it too. refit_check.py still exits 77 there (ctest's
-    python.refit_check skips on a machine without them, SKIP_RETURN_CODE 77), and now names the
-    package that is missing.
+    package does: tools/reproduce-check and exact_ballistic.py (without numpy) give one line naming
+    the package and /usr/bin/python3, exit 2, as fidelity_report.py does, not a ModuleNotFoundError
+    traceback. refit_check.py exits 77 there (ctest's python.refit_check skips on a machine without
+    them, SKIP_RETURN_CODE 77), naming the package that is missing.
   * the shockgas module missing: a copy of the script where an installation puts it
     (<prefix>/share/shockgas/python or tools, with no python/shockgas beside it) run without
     PYTHONPATH, as when the module went to another prefix's module folder (where a shockgas module
     is installed on this Python's own path, a stand-in beside the copies fails as a missing one
-    does). reproduce-check gave a traceback; refit_check.py said "SKIP: refit_check.py needs numpy,
-    scipy and h5py (No module named 'shockgas')" and exit 77 with all three installed;
-    fidelity_report.py and reference_gas.py said "shockgas is missing (needs numpy and h5py): run it
-    with Debian's /usr/bin/python3". Now one line naming the module and PYTHONPATH, exit 2.
+    does): one line naming the module and PYTHONPATH, exit 2. Not a traceback (reproduce-check),
+    nor "SKIP: refit_check.py needs numpy, scipy and h5py (No module named 'shockgas')" and exit 77
+    with all three installed (refit_check.py), nor "shockgas is missing (needs numpy and h5py): run
+    it with Debian's /usr/bin/python3" (fidelity_report.py and reference_gas.py).
   * an output that cannot be written: exact_ballistic.py --out-dir, reproduce-check --work-dir and
     pack --output-dir given a file, or a path under a file (and a read-only directory, when not run
-    as root, who may write there): a traceback (FileExistsError, NotADirectoryError) before; now one
-    line naming the option, the path and the cause, before the work. shockgas.cli's checks, which
+    as root, who may write there): one line naming the option, the path and the cause, before the
+    work, not a traceback (FileExistsError, NotADirectoryError). shockgas.cli's checks, which
     they and sticky_pav.py share (tests/python/test_sticky_pav_cli.py), directly: what they refuse,
     what they let through, and that they leave nothing behind.
 """

@@ -5,13 +5,12 @@ python.script_refusals, label python; about 4 s of CPU, most of it importing num
     test_script_refusals_cli.py WORK_DIR
 
 The house rule (tests/python/script_checks.py): a user's mistake is one line "<script>: error: ..."
-on stderr and exit status 2. On a bad command line argparse printed its usage block (up to eight
-lines) above that line; the scripts now parse with shockgas.cli.ArgumentParser (python/shockgas/cli.py),
-the one place that says how. Checked for each script: an unknown option, named in the line; for
+on stderr and exit status 2, without argparse's usage block (up to eight lines) above that line: the
+scripts parse with shockgas.cli.ArgumentParser (python/shockgas/cli.py), the one place that says how. Checked for each script: an unknown option, named in the line; for
 the argparse ones also a missing argument, a bad number and a bad choice where they have them, and
 --help, which still prints argparse's help on stdout with exit status 0. fidelity_report.py, which
-parses its words by hand, refused --help as an unknown option; it prints its help now, in argparse's
-form, wherever -h or --help stands. Nothing is run: every command is refused, or answered, before
+parses its words by hand, prints its help in argparse's form wherever -h or --help stands (not an
+unknown option). Nothing is run: every command is refused, or answered, before
 any file is read.
 
 exact_ballistic.py --D, the momentum variance per unit length of the initial velocities: 0 ended in a

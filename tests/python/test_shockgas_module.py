@@ -11,7 +11,7 @@ Each kind of file is made here with small runs (about 2 s of CPU in all) and rea
   * a merge of two parts equals the run of all realizations at once;
   * a checkpoint (SIGINT mid-run) holds the unfinished realizations' engine states;
   * analysis results carry their input's attributes; a drift record its columns; a shockgas-tail
-    output is read as a Tail (read and kind_of once refused it: "no kind this module knows");
+    output is read as a Tail (read and kind_of do not refuse it as "no kind this module knows");
   * a checkpoint's repr names it a Checkpoint, not a Run;
   * an initial condition written by write_initial_condition is run by shockgas-sim --init (and refused by crossover); what
     shockgas-sim's init reader refuses is refused when written (ValueError, no file left); an
@@ -126,9 +126,8 @@ class Runs(unittest.TestCase):
         self.assertEqual(len(merged.snapshots), len(self.whole.snapshots))
 
     def test_merged_file_records_the_merge_and_keeps_the_runs_provenance(self):
-        # The merged file said program shockgas-sim and the merge's own date, and nothing said it
-        # was merged (user review, 2026-11-27): the run's provenance is its first part's, and
-        # merged_by, merged_date and merged_from record the merge.
+        # The merged file keeps the run's provenance (its first part's program, date and host, not
+        # the merge's), and merged_by, merged_date and merged_from record the merge.
         merged = shockgas.read_run(path("merged.h5")).attrs
         first = shockgas.read_run(path("part0.h5")).attrs
         for name in ("program", "version", "date", "host"):

@@ -71,7 +71,8 @@ import sticky_pav  # noqa: E402
 
 # Phi from the exact sticky gas (N = 20000) agrees with the exact theory at t = 100..800 at the
 # precision of two realizations: with counting errors, chi2/bins over those times lies in 0.6..2.3
-# (median 1.01, 99% below 1.8) for 200 pairs of seeds; the scatter of two gave 9 to 3000, median 93.
+# (median 1.01, 99% below 1.8) for 200 pairs of seeds; error bars from the scatter of two give 9 to
+# 3000, median 93.
 PHI_CHI2_PER_BIN_CEILING = 2.5
 # Every chi2 printed must be finite and below this (F(m) at t = 10, far from the t -> infinity
 # theory, is the largest: 7.7e3 for 12 bins).

@@ -145,8 +145,8 @@ TEST(AnalysisCollapse, ARealizationListedTwiceIsRefused) {
 }
 
 // One realization: its collapse time and mass stand, their sigmas and the spread are n/a with the
-// jackknife's reason, as crossover's times. Until 2026-11-27 summarize_collapse threw, and collapse
-// on an R = 1 run stopped with exit status 2. A run of one that did not collapse has no time at all.
+// jackknife's reason, as crossover's times: summarize_collapse does not throw, so collapse analyses an
+// R = 1 run instead of stopping with exit status 2. A run of one that did not collapse has no time at all.
 TEST(AnalysisCollapse, OneRealizationHasTimeAndMassWithoutSigma) {
     const auto path = write_synthetic_run("single", 5000, 0.9, 1, {10.0}, {50});
     const auto summary = sa::summarize_collapse(sa::read_collapse_events(path));
@@ -261,7 +261,7 @@ TEST(AnalysisCollapse, FixedFormsWinWhenTheyAreTheTruth) {
     // parameter buys < ln 9 = 2.2 of chi2 when it is not needed, in expectation 1).
     const auto& winner = form(my_forms, "mcnamara_young");
     for (const auto& f : my_forms) EXPECT_LE(winner.fit.bic(), f.fit.bic() + 1e-12) << f.name;
-    // Prefactor within 3 sigma: the fit's relative sigma is sigma_intercept.
+    // Prefactor within 3 sigma: the fit's relative sigma is intercept_sigma().
     EXPECT_NEAR(winner.prefactor, 0.9, 3.0 * 0.9 * winner.fit.intercept_sigma());
     const auto paper_forms = sa::fit_collapse_forms(sa::CollapseQuantity::cluster_mass, sweep_eps, noisy(paper, random));
     EXPECT_GT(form(paper_forms, "mcnamara_young").fit.bic() - form(paper_forms, "paper").fit.bic(), 10.0);
@@ -364,7 +364,7 @@ TEST(AnalysisCollapse, FirstCollapseWithExponentialHazardIsGumbel) {
 
 TEST(AnalysisCollapse, GumbelFitOfOneNIsMissingNotDegenerate) {
     // Only the two runs of N = 10^5 have many regions: no slope in ln N to
-    // fit (the fit gave nan and inf), so the Gumbel fit is missing, with why.
+    // fit (the fit would give nan and inf), so the Gumbel fit is missing, with why.
     constexpr double tau = 100.0, rate = 1e-9;
     auto runs = synthetic_first_collapses(1519, [&](double hazard) { return tau * std::log(hazard / rate); }, 10.0);
     runs[3].particles = runs[2].particles;

@@ -51,8 +51,8 @@ TEST(Compare, FindsTheDepartureAndTheLargestDeviation) {
 }
 
 TEST(Compare, RunsWithoutACommonTimeAreNotInAgreement) {
-    // Perfect agreement ("max |dT/T| 0") was reported for runs that share no
-    // sample time: nothing was compared.
+    // Runs that share no sample time are refused, not reported in perfect
+    // agreement ("max |dT/T| 0") with nothing compared.
     const auto reference = history({1, 10, 100}, 1.0, 0);
     const auto run = history({0.5, 0.9}, 1.0, 0);
     EXPECT_THROW(compare_temperatures(run, reference, Realizations::paired), shockgas::analysis::InsufficientData);
@@ -163,8 +163,8 @@ std::string write_compared_run(const std::string& name, const shockgas::Simulati
 }
 
 TEST(Compare, RunsOfAnotherEnsembleAreNamedByTheirDifferences) {
-    // A reference at r = 0.9, N = 2000 against runs with N = 1000 or r = 0.8
-    // gave a deviation table with exit status 0: it measured N or r, not delta.
+    // A reference at r = 0.9, N = 2000 against runs with N = 1000 or r = 0.8 is
+    // refused: a deviation table would measure N or r, not delta.
     shockgas::SimulationParameters reference;
     reference.particles = 2000;
     reference.collision.restitution = 0.9;

@@ -104,8 +104,8 @@ TEST(AnalysisFit, JackknifeOfMeanIsStandardError) {
     EXPECT_NEAR(jack.sigma, reference.sigma, 1e-14);
 }
 
-// One sample: the estimate is measured, its sigma is n/a with the reason. Until 2026-11-27 the
-// jackknife threw, and crossover on a one-realization run stopped with exit status 2.
+// One sample: the estimate is measured, its sigma is n/a with the reason; the jackknife does not
+// throw, so that crossover analyses a one-realization run instead of stopping with exit status 2.
 TEST(AnalysisFit, JackknifeOfOneSampleHasValueWithoutSigma) {
     const auto jack = sa::jackknife(1, [](std::optional<std::size_t> left_out) {
         EXPECT_FALSE(left_out.has_value()) << "one sample has nothing to leave out";
@@ -156,9 +156,8 @@ TEST(AnalysisDecay, ExponentAndJackknifeCoverage) {
 }
 
 // Few realizations: each jackknife replica must refit with weights from its own R - 1 realizations.
-// With the full sample's weights frozen in every replica the sigma came out small at R = 3 (coverage
-// 0.42 in an independent audit's synthetic ensembles, 2026-11-27; here 0.395, against 0.722 with each
-// replica's own weights).
+// With the full sample's weights frozen in every replica the sigma comes out small at R = 3 (coverage
+// 0.42 in other synthetic ensembles; here 0.395, against 0.722 with each replica's own weights).
 // Synthetic T(t) whose log noise is an AR(1) process across samples (correlation 0.9 between neighbours,
 // amplitude 0.05): each sample's standard error is then a noisy estimate, and which samples the weights
 // favour changes from one subset of realizations to another, as in real runs of a few realizations.
@@ -195,9 +194,9 @@ TEST(AnalysisDecay, JackknifeCoverageWithThreeRealizations) {
 }
 
 // Two realizations: a standard error of <T> from two values has one degree of freedom, so weighing by it
-// let a few samples decide the fit (0.879 on a run whose two realizations give 0.802 each, a user review
-// of 2026-11-27), and the jackknife's replicas (one realization each) were unweighted, another estimator.
-// Now the fit is the unweighted one of ln <T> against ln t, with chi2, width and sigma n/a.
+// would let a few samples decide the fit (0.879 on a run whose two realizations give 0.802 each), and the
+// jackknife's replicas (one realization each) would be unweighted, another estimator. So the fit is the
+// unweighted one of ln <T> against ln t, with chi2, width and sigma n/a.
 TEST(AnalysisDecay, TwoRealizationsAreFittedUnweightedWithSigmaNotAvailable) {
     std::mt19937_64 random(2028);
     const auto history = correlated_history(random, 2.0 / 3.0, 2);
@@ -237,8 +236,8 @@ TEST(AnalysisDecay, WindowRuleAndScan) {
             << error.what();
         EXPECT_NE(std::string(error.what()).find("stopped at inelastic collapse"), std::string::npos) << error.what();
     }
-    // Interrupted: the way on is --resume (a user review, 2026-11-27: the message named the last time
-    // every realization reached as "the run's last sample", and no --resume).
+    // Interrupted: the way on is --resume, and the message says so (not "the run's last sample" for
+    // the last time every realization reached, without --resume).
     try {
         sa::automatic_decay_window(0.5, 1e-2, 1000, 25.1189, {}, "interrupted");
         ADD_FAILURE() << "an empty window must throw";
@@ -328,7 +327,7 @@ TEST(AnalysisCrossover, HaffCurveGivesItsTimes) {
 }
 
 // One realization: the crossovers are measured (the Haff fit with equal relative weights), their
-// sigmas n/a with the reason; crossover refused such a run until 2026-11-27.
+// sigmas n/a with the reason; the run is analysed, not refused.
 TEST(AnalysisCrossover, OneRealizationHasTimesWithoutSigma) {
     constexpr double rate = 0.05, sticky = 0.2;
     const auto crossovers = sa::find_crossovers(haff_then_sticky(rate, sticky, 1, 1e-3, 3));
@@ -348,7 +347,7 @@ constexpr double haff_a = 6.0 * 1.7320508075688772 / 5.0;  // E3, docs/haff-and-
 constexpr double kappa = 0.2128531785;                     // EB7, python/exact_ballistic.py
 constexpr double t0 = 1.0 / 3.0;
 // The values below come from an independent solve of kappa t^(-2/3) (1 + a t)^2 / T0 = 2
-// (scipy.optimize.brentq on the rising branch, /usr/bin/python3, 2026-11-27), printed to 10 digits.
+// (scipy.optimize.brentq on the rising branch), printed to 10 digits.
 constexpr double independent_relative_tolerance = 1e-9;
 // Over eps = 0.05 ... 0.00625 the same solve fitted (numpy.polyfit, equal weights) -1.5221825178.
 constexpr double finite_eps_exponent = -1.5221825178;
@@ -365,7 +364,7 @@ constexpr double sampled_relative_tolerance = 2e-3;
 
 TEST(AnalysisCrossover, GivenHaffRateReplacesTheFit) {
     // --haff-constant derived: the rule's Haff rate is used as given, so the fit's window (and a start
-    // transient inside it) no longer moves t_stick. Haff's law with a = 0.05, its first samples raised
+    // transient inside it) does not move t_stick. Haff's law with a = 0.05, its first samples raised
     // by 3% as the lattice start raises them, then a sticky-gas tail.
     constexpr double rate = 0.05, sticky = 0.2;
     const auto history = haff_then_sticky(rate, sticky, 4, 1e-4, 4, 1.03);
@@ -482,8 +481,8 @@ TEST(AnalysisScaling, CollapseExponentAndCoverage) {
     EXPECT_NEAR(static_cast<double>(inside) / trials, one_sigma_coverage, coverage_tolerance(trials));
 }
 
-// One realization: beta is measured, its jackknife sigma is n/a with the reason (the command stopped
-// with exit status 2 until 2026-11-27, where decay and the kurtosis report n/a).
+// One realization: beta is measured, its jackknife sigma is n/a with the reason, as decay and the
+// kurtosis report theirs (the command goes on, no exit status 2).
 TEST(AnalysisScaling, OneRealizationHasBetaWithoutSigma) {
     std::mt19937_64 random(99);
     const std::vector<sa::VelocityHistogram> histograms{synthetic_histogram(random, 100.0, 1.0 / 3.0, 2.0, 1, 40000),
@@ -524,9 +523,9 @@ TEST(AnalysisTail, GammaRecoveredWithCalibratedSigma) {
 
 // With few realizations the bins' weights (their standard errors) are as noisy
 // as the densities, so each jackknife replica must refit with its own weights:
-// with the full sample's weights in every replica the one-sigma coverage was
-// 0.48 here (measured 2026-11-27; 0.36 and 0.32 over 200 other trials at R = 4
-// and 3), now 0.695.
+// with the full sample's weights in every replica the one-sigma coverage is
+// 0.48 here (0.36 and 0.32 over 200 other trials at R = 4 and 3), against
+// 0.695 with each replica's own.
 TEST(AnalysisTail, JackknifeCoverageWithFourRealizations) {
     std::mt19937_64 random(2028);
     constexpr double gamma_true = 3.0;  // Eq. (6)
@@ -624,8 +623,8 @@ TEST(AnalysisShocks, IdealSawtooth) {
     }
 
     // The same ring listed from another cluster (a rotation of the list): a list that begins inside a
-    // segment must not cut that segment in two. Until 2026-11-27 the walk began after the first
-    // expanding pair, i.e. there, and found 7 segments (an independent audit: 306 for 300 teeth).
+    // segment must not cut that segment in two. A walk begun after the first expanding pair, i.e.
+    // there, would find 7 segments (and 306 for a sawtooth of 300 teeth).
     for (const std::ptrdiff_t first : {7, 10, 21, 50}) {
         sa::Snapshot rotated = snapshot;
         std::rotate(rotated.position.begin(), rotated.position.begin() + first, rotated.position.end());
@@ -724,7 +723,7 @@ TEST(AnalysisFit, UnsetEstimateIsNotANumberNotZero) {
 TEST(AnalysisDecay, ScanStepsAreCountedAndBounded) {
     std::mt19937_64 random(17);
     const auto history = synthetic_history(random, 2.0 / 3.0, 4);  // t = 1 ... 10^4
-    // A step of 0 looped forever, a tiny one for 10^9 windows: refused.
+    // A step of 0 would loop forever, a tiny one for 10^9 windows: refused.
     EXPECT_THROW(sa::scan_decay_windows(history, 1.0, 0.0), std::invalid_argument);
     EXPECT_THROW(sa::scan_decay_windows(history, 1.0, -0.1), std::invalid_argument);
     EXPECT_THROW(sa::scan_decay_windows(history, 1.0, 1e-9), std::invalid_argument);
@@ -820,7 +819,7 @@ std::string refusal(const std::string& path, Read read) {
 }  // namespace
 
 TEST(AnalysisReaders, DamagedSnapshotsAndHistogramsAreRefusedByName) {
-    // A snapshot without mass gave nan shocks (v_rms = 0/0).
+    // A snapshot without mass would give nan shocks (v_rms = 0/0).
     shockgas::SnapshotRecord massless;
     massless.state.time = 10.0;
     massless.state.position = {0.0, 1.0, 2.0, 3.0};
@@ -832,7 +831,7 @@ TEST(AnalysisReaders, DamagedSnapshotsAndHistogramsAreRefusedByName) {
     EXPECT_NE(snapshot_message.find("/snapshots/0"), std::string::npos) << snapshot_message;
     EXPECT_NE(snapshot_message.find("mass"), std::string::npos) << snapshot_message;
     EXPECT_NE(snapshot_message.find(snapshot_path), std::string::npos) << snapshot_message;
-    // A histogram of zeros gave a "scaling exponent" of 0.0625 (the grid's edge).
+    // A histogram of zeros would give a "scaling exponent" of 0.0625 (the grid's edge).
     shockgas::HistogramRecord empty;
     empty.time = 10.0;
     empty.edges = {-1.0, -0.5, 0.0, 0.5, 1.0};
@@ -850,7 +849,7 @@ TEST(AnalysisReaders, DamagedSnapshotsAndHistogramsAreRefusedByName) {
 TEST(AnalysisReaders, TemperatureRunNeedsRealizationsAndCommonTimes) {
     const auto path = write_run("timeseries", {}, {});
     EXPECT_EQ(sa::read_temperature_run(path).history.time.size(), 3u);
-    // No realization: compare reported perfect agreement with such a file.
+    // No realization: refused (compare would report perfect agreement with such a file).
     const auto empty = write_run("no_realization", {}, {}, 0);
     EXPECT_THROW(sa::read_temperature_run(empty), sa::InsufficientData);
     // No sample time with T > 0: nothing to fit or compare.
@@ -892,9 +891,9 @@ shockgas::EnsembleResult interrupted_run() {
 }  // namespace
 
 TEST(AnalysisReaders, HistogramsOfAnInterruptedRunUseTheRealizationsThatReachedThem) {
-    // The zero rows of realizations that never reached a histogram time were
-    // counted as realizations: kurtosis sigma 0.206 instead of 0.168, and no
-    // usable tail bin instead of 12, on an audit's interrupted run.
+    // The zero rows of realizations that never reached a histogram time must
+    // not count as realizations: in one interrupted run that gave a kurtosis
+    // sigma of 0.206 instead of 0.168, and no usable tail bin instead of 12.
     const auto result = interrupted_run();
     const sa::RunHistograms run = sa::histograms_of_run(result);
     ASSERT_EQ(run.histograms.size(), 2u);
@@ -962,8 +961,8 @@ TEST(AnalysisReaders, HistogramRowsThatDisagreeWithTheTimeSeriesAreRefused) {
 }
 
 TEST(AnalysisResults, EveryInputIsCheckedForACheckpoint) {
-    // decay and compare printed results from a checkpoint (a run in
-    // progress); scaling and shocks refused it. One check for every subcommand.
+    // A checkpoint (a run in progress) is refused by every subcommand alike
+    // (decay and compare would print results from one): one check for all.
     const auto directory = std::filesystem::temp_directory_path() / "shockgas_results_checkpoint";
     std::filesystem::create_directories(directory);
     const auto checkpoint = (directory / "run.h5.checkpoint").string();
@@ -1031,10 +1030,10 @@ bool has_temporary(const std::filesystem::path& directory) {
 
 }  // namespace
 
-// Found by the user review of 2026-11-27: `scaling dec.h5` (an analysis results
-// file) said "missing attribute /restitution in 'dec.h5'", `decay tail.h5` (a
-// shockgas-tail output) "missing group /timeseries". A file that says what it
-// is (its program attribute, kind = far_tail) is named for it, in one line.
+// `scaling dec.h5` (an analysis results file) must not say only "missing
+// attribute /restitution in 'dec.h5'", nor `decay tail.h5` (a shockgas-tail
+// output) "missing group /timeseries". A file that says what it is (its
+// program attribute, kind = far_tail) is named for it, in one line.
 TEST(AnalysisResults, AnInputThatIsNotARunIsNamedForWhatItIs) {
     const auto directory = scratch_directory("not_a_run");
     const auto run = write_run("not_a_run_input", {}, {});
@@ -1078,10 +1077,9 @@ TEST(AnalysisResults, AnInputThatIsNotARunIsNamedForWhatItIs) {
     std::filesystem::remove(run);
 }
 
-// A table said what it held but not what made it nor from which files (user
-// review, 2026-11-27): one '#' line names the program's version and the inputs.
-// Since 2026-12-02 a line per simulator file also names the simulator that
-// made it (source hash, seed), as the results files' input_*
+// A table says what it holds, what made it and from which files: one '#' line
+// names the program's version and the inputs, and a line per simulator file
+// names the simulator that made it (source hash, seed), as the results files' input_*
 // attributes do; an input that is not HDF5 (a T(t) table) adds no line.
 TEST(AnalysisResults, DataFileNamesTheVersionAndTheInputs) {
     const auto directory = scratch_directory("data_provenance");
@@ -1225,7 +1223,7 @@ TEST(AnalysisResults, OutputsAreCheckedAgainstInputsAndEachOther) {
 
 // A bounded search that ends at an end of its range measures the range, not
 // the data: the estimate is n/a with the bound named, never the bound itself
-// (the tail fit printed gamma = 0.500 +- 0.000, 0.5 being its lower end).
+// (the tail fit would print gamma = 0.500 +- 0.000, 0.5 being its lower end).
 TEST(AnalysisBounds, CollapseExponentAtTheSearchBoundIsMissing) {
     std::mt19937_64 random(99);
     const std::vector<sa::VelocityHistogram> histograms{synthetic_histogram(random, 100.0, 1.0 / 3.0, 2.0, 20, 2000),
@@ -1286,8 +1284,8 @@ TEST(AnalysisBounds, FarTailExponentAtTheSearchBoundIsMissing) {
 }
 
 // One chain (shockgas-tail refuses fewer than 2; a hand-made file): gamma is the fit's, its jackknife
-// sigma n/a with the reason, as with two chains. The command stopped with exit status 2 until
-// 2026-11-27, after the fit had been made. Eq. (6)'s form with gamma = 3, sigma(ln Phi) = 0.01.
+// sigma n/a with the reason, as with two chains: the command goes on after the fit (no exit
+// status 2). Eq. (6)'s form with gamma = 3, sigma(ln Phi) = 0.01.
 TEST(AnalysisTail, FarTailOfOneChainHasGammaWithoutSigma) {
     const auto tail = noisy_far_tail(
         [](double z) { return -2.0 * std::log(z) - 0.2 * std::pow(z, 3.0) - 2.676 * z; }, 5.5, 1, 4);
@@ -1300,7 +1298,7 @@ TEST(AnalysisTail, FarTailOfOneChainHasGammaWithoutSigma) {
 }
 
 // With one realization the fit's weights (standard errors of <T> over
-// realizations) do not exist: the equal weights put in their place gave
+// realizations) do not exist: the equal weights put in their place give
 // chi2/dof = 0.00 and a width from sigma(ln T) = 1. Both are n/a; the
 // exponent (the unweighted fit) stands.
 TEST(AnalysisDecay, OneRealizationHasNoChi2NorFitWidth) {

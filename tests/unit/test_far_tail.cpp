@@ -81,8 +81,8 @@ void take_sampler_sigma(FarTail& tail) {
 
 // With 4 chains the per-bin sigmas are as noisy as ln Phi: weighing by them
 // bin by bin, with the full estimate's weights in every replica, the one-sigma
-// coverage of gamma was 0.21 over these trials (2026-11-27; sigma 0.0036 for a
-// scatter of 0.0149). Pooled sigmas and the replicas' own weights give 0.60.
+// coverage of gamma is 0.21 over these trials (sigma 0.0036 for a scatter of
+// 0.0149). Pooled sigmas and the replicas' own weights give 0.60.
 TEST(TailExponent, JackknifeCoverageWithFourChains) {
     constexpr int trials = 300;
     constexpr double student_coverage = 0.6090;  // P(|t_3| < 1): 4 chains, 3 dof (expect_jackknife_coverage)
@@ -119,7 +119,7 @@ TEST(TailExponent, ExactTailWithoutNoiseGivesGammaToRounding) {
 }
 
 TEST(TailExponent, ShortTablesInAFileAreRefusedByName) {
-    // A log_phi shorter than z was read past its end and gave gamma = 1.000.
+    // A log_phi shorter than z would be read past its end and give gamma = 1.000.
     const auto path = (std::filesystem::temp_directory_path() / "shockgas_far_tail_short.h5").string();
     shockgas::h5::write_atomically(path, [](shockgas::h5::Group& root) {
         root.set_attribute("kind", "far_tail");

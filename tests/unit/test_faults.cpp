@@ -1,4 +1,4 @@
-// Faults that must not lose work or change results silently (issue 19), at
+// Faults that must not lose work or change results silently (docs/reliability.md), at
 // the level of the library: the checkpoint unit's generations and fallback,
 // its lock, and the memory plan. End-to-end cases (damaged files resumed bit
 // for bit, file-size limits, stale temporaries, two processes) are the
@@ -126,10 +126,10 @@ TEST(CheckpointLock, ASecondHolderIsRefusedUntilTheFirstLetsGo) {
     EXPECT_NO_THROW(shockgas::CheckpointLock again(path));
 }
 
-// shockgas-sim used to remove whatever had the checkpoint's name when a run
-// ended: an output given as --checkpoint, or the init file. Now only
-// checkpoints go (and HDF5 files too damaged to tell, which is what --resume
-// passes over); anything else is kept and returned.
+// When a run ends, shockgas-sim removes only checkpoints under the checkpoint's
+// name (and HDF5 files too damaged to tell, which is what --resume passes
+// over), never an output given as --checkpoint or the init file: anything else
+// is kept and returned.
 TEST(CheckpointFiles, OnlyCheckpointsAreRemoved) {
     namespace fs = std::filesystem;
     const SimulationParameters p = small_run();
@@ -226,7 +226,7 @@ TEST(FullDisk, AWriteThatFailsNamesTheFileAndCauseAndLeavesNothing) {
     EXPECT_FALSE(std::filesystem::exists(target));
 }
 
-// The documented costs (memory.cpp, docs/reliability.md): 128 bytes per
+// The documented costs (memory_plan.cpp, docs/reliability.md): 128 bytes per
 // particle for a running realization's engine, 136 more with checkpoints,
 // 16 MiB for the program, 32 bytes per particle per stored state.
 constexpr double per_particle_with_checkpoints = 128.0 + 136.0;
@@ -289,7 +289,7 @@ TEST(MemoryPlan, ARefusalNamesTheRealizationsRecordsWhenOneRealizationAloneFits)
 }
 
 // Histograms: 16 bytes per bin for each realization (its row and the output's
-// copy) and 16 once (edges, the writer's buffer), as measured (memory.cpp).
+// copy) and 16 once (edges, the writer's buffer), as measured (memory_plan.cpp).
 TEST(MemoryPlan, CountsTheHistogramsRowsAndTheirCopies) {
     SimulationParameters p = small_run();
     p.particles = 1000;

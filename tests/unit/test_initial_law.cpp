@@ -137,7 +137,7 @@ TEST(InitialLaw, SeedStreamIsSharedAndPinned) {
     EXPECT_NE(scattered.velocity,
               shockgas::generate_initial_condition(1000, 1000.0, 42, 4, {PositionLaw::uniform, VelocityLaw::gaussian}).velocity);
     // Pinned bits: a seed must mean the same Gaussian start on every platform
-    // and in every future version (values from this code, 2026-11-23).
+    // and in every future version (values from this code).
     EXPECT_EQ(fmt::format("{}", lattice.velocity[0]), "0.1846627271443773");
     EXPECT_EQ(fmt::format("{}", lattice.velocity[1]), "-0.22855549160869038");
     EXPECT_EQ(fmt::format("{}", scattered.position[0]), "0.5067049458272743");

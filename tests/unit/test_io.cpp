@@ -215,7 +215,7 @@ TEST(Output, PartsMergeIntoTheSingleRunResult) {
     EXPECT_THROW(shockgas::merge_outputs({parts[1], parts[0]}, {names[1], names[0]}), shockgas::InputError);
 }
 
-// A refusal naming a long list (600 snapshot times) ran to 3 KB (user review, 2026-11-28): a
+// A refusal naming a long list (600 snapshot times) would run to 3 KB: a
 // list longer than 60 characters is shown by its length and the first entry in which the two
 // differ; other values (paths, hashes) whole, however long.
 TEST(Output, ParameterDifferencesShowLongListsByWhereTheyDiffer) {
@@ -266,8 +266,8 @@ TEST(Provenance, TheSameSimulatorIsTheSameSourceHash) {
     EXPECT_FALSE(shockgas::made_by_this_simulator(build.version, b));
 }
 
-// A merged file merged again named only the merged file, so the parts it came from
-// were lost from the provenance: each part's own merged_from now follows its line.
+// A merged file merged again must name the parts it came from, not only the
+// merged file: each part's own merged_from follows its line.
 TEST(Output, MergeOfMergedFilesNamesEveryPart) {
     shockgas::SimulationParameters p;
     p.particles = 100;
@@ -291,7 +291,7 @@ TEST(Output, MergeOfMergedFilesNamesEveryPart) {
                                                            names[1] + " (realizations 1 to 1" + version}));
     EXPECT_TRUE(parts[2].merged_from.empty());
     // Parts of two versions of the same simulator merge; the file's version is the first part's
-    // (as its date and host), each part's is in merged_from (the merge wrote its own until 2026-11-28).
+    // (as its date and host), each part's is in merged_from (not the merge's own).
     {
         auto first = parts[0];
         first.version = "docsonly/1";
@@ -439,10 +439,10 @@ std::string read_error(Read&& read) {
     return "(no error)";
 }
 
-// Found by probing: a snapshot whose velocity was shorter than its positions
-// printed heap garbage (1.89e+168), and a run whose collisions were shorter
-// than its times gave 1e-314. Every dataset indexed by another's size is
-// checked, and the error names the file and the dataset.
+// A snapshot whose velocity is shorter than its positions would print heap
+// garbage (1.89e+168), and a run whose collisions are shorter than its times
+// 1e-314. Every dataset indexed by another's size is checked, and the error
+// names the file and the dataset.
 TEST(Output, InconsistentDatasetsAreRefusedNamingFileAndDataset) {
     shockgas::SimulationParameters p;
     p.particles = 100;
@@ -486,7 +486,7 @@ TEST(Output, InconsistentDatasetsAreRefusedNamingFileAndDataset) {
     expect_named(read_error([&] { shockgas::read_output(short_counts); }), short_counts,
                  "/histograms/0/counts has 10 values, expected 20");
 
-    // Found by probing: merge said only "error: stod".
+    // Named in words, not only as "error: stod".
     const auto bad_times = damaged("bad_sample_times.h5");
     rewrite_root_attribute(bad_times, "sample_times", "10,abc");
     expect_named(read_error([&] { shockgas::read_output(bad_times); }), bad_times,
@@ -498,8 +498,8 @@ TEST(Output, InconsistentDatasetsAreRefusedNamingFileAndDataset) {
                  "status = 'checkpoint' is none of complete, collapsed, interrupted");
 }
 
-// Found by probing: shockgas-merge took a checkpoint (realization_status 4,
-// status "checkpoint") as a part and called the result "complete".
+// shockgas-merge must not take a checkpoint (realization_status 4, status
+// "checkpoint") as a part and call the result "complete".
 TEST(Output, ACheckpointIsNoOutputAndAnUnknownStatusNeverMerges) {
     shockgas::SimulationParameters p;
     p.particles = 100;

@@ -181,8 +181,8 @@ TEST(StickyGasEnd, FinalMergeTimeIsTheVariationalPrinciplesClosedForm) {
 // after the gap, delays the end), so the exponent is fitted to the mean of
 // ln T_f, whose spread (sd ~ 1.25) is finite.
 // Finite-N correction: exp<ln T_f> / N^(3/2) is 0.99, 1.43, 1.67, 1.85
-// (+- 0.05) at N = 3, 10, 31, 100 against 2.02 ... 2.07 for N = 316 ... 31623
-// (measured 2026-11-27); fitted over N = 100 ... 31623 the exponent came out
+// (+- 0.05) at N = 3, 10, 31, 100 against 2.02 ... 2.07 for N = 316 ... 31623;
+// fitted over N = 100 ... 31623 the exponent comes out
 // 1.510 +- 0.006 (chi2/dof 1.85), over N = 3 ... 316 1.654 +- 0.007. The sizes
 // therefore start at 316, where no trend is left (chi2/dof 0.04 over the five
 // sizes below).

@@ -126,7 +126,7 @@ TEST(TailSampler, MeanOfUniformsRecoveredNearTheLawsEdge) {
     // As in MeanOfGaussiansRecoveredBelowTenToTheMinusThirty: the jackknife
     // over 8 chains (Student t, 7 dof) and a handful of points; 4 sigma fails
     // a correct sampler with p ~ 0.005 per point; a map whose scale is off
-    // by 1% fails it (tried on 2026-12-02: the bin at S = 0.9925 is out).
+    // by 1% fails it (the bin at S = 0.9925 is out).
     constexpr double allowed_sigmas = 4.0;
     const double width = estimate.z[1] - estimate.z[0];
     std::size_t deep_points = 0, compared = 0;

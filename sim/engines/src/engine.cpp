@@ -14,16 +14,15 @@ namespace shockgas {
 // whatever the threshold), since it gives every observable the event engine
 // gives there. Where the pass-through engine applies (equal masses, delta > 0,
 // elastic sub-threshold collisions: PassThroughEngine::unsupported_reason is
-// empty), the hybrid engine: the windowed event engine while many collisions
-// are inelastic, the pass-through engine once at most 10% of them are
-// (hybrid_engine.cpp, default_max_inelastic_share). Measured side by side on
-// 2026-11-26 (docs/passthrough-engine.md, "Hybrid"), one thread, CPU s,
-// event / hybrid: r = 0.9, delta = 1e-2, N = 1e5 to t = 1e4 1.22x; Fig. 5's
-// r = 0.99, delta = 1e-4, N = 2e4 to t = 1e5 1.41x; Fig. 4's delta = 1e-3,
-// N = 2e4, r = 0.5 to t = 1e5 1.29x; where it never switches (short runs) it
-// does the event engine's work plus one window boundary per check. Everywhere
-// else (delta = 0, sticky sub-threshold, unequal masses) the event engine
-// (windowed where EventEngine::supports, collapses included).
+// empty), the hybrid engine: the event engine (EventEngine) while many
+// collisions are inelastic, the pass-through engine once at most 10% of them
+// are (hybrid_engine.cpp, default_max_inelastic_share). Side by side with the
+// event engine it took less CPU time on every workload measured where it
+// switches (Figs. 4 and 5 among them; docs/measurements.md, "The hybrid
+// engine"); where it never switches (short runs) it does the event engine's
+// work plus one window boundary per check. Everywhere else (delta = 0, sticky
+// sub-threshold, unequal masses) the event engine (windowed where
+// EventEngine::supports, collapses included).
 // Called on the main thread before any realization starts, so an impossible
 // choice is one InputError.
 std::string resolve_engine_name(const SimulationParameters& parameters, const InitialCondition* initial) {
@@ -57,7 +56,7 @@ void Engine::restore(const EngineSnapshot& snapshot) {
 }
 
 // A snapshot names the class that wrote it: the event engine's and the
-// reference loop's states differ (the windowed one also carries its window
+// reference loop's states differ (EventEngine's also carries its window
 // history), and a realization may have fallen back to the reference loop.
 std::unique_ptr<Engine> restore_engine(const EngineSnapshot& snapshot, const SimulationParameters& parameters,
                                        const InitialCondition& initial, LiveStatus* live) {

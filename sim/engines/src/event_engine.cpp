@@ -19,20 +19,16 @@ constexpr double never = QuaternaryHeap::never;
 // the key computation (relative 1e-15); every cut key is checked anyway.
 constexpr double cut_safety = 1.25;
 // Fewest clusters between cuts, and events per live cluster per window that
-// the window length aims at. Measured (N = 10^5, 10^6, r = 0.9, to t = 300,
-// CPU time): small blocks keep each heap a few entries deep, which beats the
-// per-block overhead (snapshot, heapify, replay) down to ~8 clusters; short
-// windows make more pairs cuttable, which beats the O(N) scan per window down
-// to ~0.3 events per cluster. (48, 0.75): 7-9 M/s; (16, 0.4): 11 M/s;
-// (8, 0.3): 12 M/s; (8, 0.2): 12 M/s; (4, 0.2) and (2, 0.15): 9.5-11 M/s.
-// Re-measured at N = 10^5 (min CPU time of 3, twice, loaded 2-core machine):
-// (4, 0.3), (6, 0.3), (8, 0.2), (8, 0.3), (12, 0.4): 11.2-12.2 M/s, all within
-// the noise; (8, 0.5) and (16, 0.5): 9.8-11.2 M/s. The constants are flat near
-// the optimum; what helped was cutting instructions per event and per scanned
-// cluster (callgrind, N = 10^5 to t = 30: 607 -> 495 instructions per
-// collision; CPU time 11.6 -> 13.3 M/s at N = 10^5): the scan loads due pairs
-// straight into the heap with the cut test inlined, collide_pair and the
-// reschedules are inlined, and the taken pair is re-keyed at the heap's top.
+// the window length aims at. Small blocks keep each heap a few entries deep,
+// which beats the per-block overhead (snapshot, heapify, replay) down to ~8
+// clusters; short windows make more pairs cuttable, which beats the O(N) scan
+// per window down to ~0.3 events per cluster. The rate is flat near (8, 0.3)
+// (within the noise from (4, 0.3) to (12, 0.4)) and falls off at (48, 0.75),
+// (16, 0.5) and (2, 0.15) (docs/measurements.md, "Measurements behind
+// constants in the code"); what makes the engine fast is few instructions per
+// event and per scanned cluster: the scan loads due pairs straight into the
+// heap with the cut test inlined, collide_pair and the reschedules are
+// inlined, and the taken pair is re-keyed at the heap's top.
 constexpr std::int64_t min_block_clusters = 8;
 constexpr double target_events_per_cluster = 0.3;
 // Beyond this mean block size (clusters) a block's heap and records no longer

@@ -1,5 +1,6 @@
-// The fast event engine: exact time windows (ARCHITECTURE.md, "The event
-// engine" and "The fast event engine (windows)"; its speed: docs/engines.md).
+// The event engine (EventEngine, `--engine event`): exact time windows
+// (ARCHITECTURE.md, "The event engines" and "The event engine's windows"; its
+// speed: docs/engines.md).
 //
 // It produces BIT-IDENTICAL results to ReferenceEventEngine, the global-order reference
 // loop, for the runs it supports (EventEngine::supports), and is chosen by

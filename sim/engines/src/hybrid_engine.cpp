@@ -10,27 +10,17 @@
 namespace shockgas {
 
 namespace {
-// The crossover of the switch rule, measured per stretch between checks (t
-// to 1.25 t) with `SHOCKGAS_BENCH_CROSSOVER=paper|fig5 bench_engine`: the
-// fast engine's CPU seconds over the pass-through engine's started from the
-// same state, against the stretch's inelastic share (one thread, both
-// settings side by side on the 2-core machine, which also ran two
-// paper-tier simulations).
-// - 2026-11-25, f2be971's engines (with the kinetic lists of 79e7afc):
-//   r = 0.9, delta = 1e-2, N = 1e5:  share 99% -> 0.65, 77% -> 0.72,
-//     49% -> 0.91, 28% -> 1.10, 17% -> 1.15, 10.7% -> 1.18, 5.6% -> 1.14,
-//     2.0% -> 1.26, 1.0% -> 2.0, 0.3% -> 3.1;
-//   Fig. 5's r = 0.99, delta = 1e-4, N = 2e4 (share 100% to t = 9.4e3, where
-//     the ratio is 0.53-0.63): 15.4% -> 1.08, 8.6% -> 1.13, 5.9% -> 1.15,
-//     4.5% -> 1.20, 3.5% -> 1.39 and 1.51, 2.6% -> 1.69, 2.2% -> 1.29.
-//   Every stretch at or below 28% (first setting) and 15.4% (second) ran
-//   faster in the pass-through engine, every one above 49% slower, so the
-//   rule takes 10%: below both, with the second setting's 15.4% stretch
-//   (1.08) as the margin.
-// - 2026-11-23, before the kinetic lists (parent commit b6bbcf9): the
-//   crossover was at 3.7% in the first setting and below 2.2% in the second
-//   (8.6% -> 0.19, 2.2% -> 0.21: elastic bursts in the dense shocks, which
-//   the kinetic lists now run), so the rule took 2% then.
+// The switch rule's threshold: hand over once at most 10% of a stretch's
+// collisions (t to 1.25 t, between checks) were inelastic. It comes from the
+// crossover measured per stretch with `SHOCKGAS_BENCH_CROSSOVER=paper|fig5
+// bench_engine`: the event engine's CPU seconds over those of a pass-through
+// engine started from the same state, against the stretch's inelastic share,
+// in the paper's setting (r = 0.9, delta = 1e-2, N = 1e5) and in Fig. 5's
+// (r = 0.99, delta = 1e-4, N = 2e4). Every stretch at or below 28% (first
+// setting) and 15.4% (second) ran faster in the pass-through engine, every one
+// above 49% slower, so the rule takes 10%: below both, with the second
+// setting's 15.4% stretch as the margin. The per-stretch tables:
+// docs/measurements.md, "The hybrid engine".
 constexpr double default_max_inelastic_share = 0.10;
 constexpr const char* inner_prefix = "inner_";
 }  // namespace

@@ -1,5 +1,5 @@
-// The hybrid engine (`--engine hybrid`; docs/passthrough-engine.md, "Hybrid"):
-// the windowed event engine early in a run, while most collisions are
+// The hybrid engine (`--engine hybrid`; docs/passthrough-engine.md): the
+// event engine (EventEngine) early in a run, while most collisions are
 // inelastic and it is the faster, then the pass-through engine, once nearly
 // all collisions are elastic and passing lines through each other is cheaper
 // than processing them.
@@ -40,8 +40,8 @@ struct HybridSwitchRule {
     double first_check = 1.0;
     double check_factor = 1.25;
     // Hand over when at most this share of the collisions since the previous
-    // check was inelastic. measured() sets the measured crossover (2026-11-25,
-    // hybrid_engine.cpp, default_max_inelastic_share); 0 here, so a rule
+    // check was inelastic. measured() sets the measured crossover
+    // (hybrid_engine.cpp, default_max_inelastic_share); 0 here, so a rule
     // built by hand without it switches only on stretches with no inelastic
     // collision at all.
     double max_inelastic_share = 0.0;

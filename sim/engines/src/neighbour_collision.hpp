@@ -69,7 +69,7 @@ ContactCluster contact_cluster(const Engine& engine, std::int32_t i, double t) {
 // Two alone separate after each collision (McNamara & Young 1992): a slow pair
 // with no third cluster in contact is a cooled gas, not a collapse (a ring of
 // N = 2 ... 8 at delta = 0 reaches g < 1e-12 by Haff cooling alone near
-// t ~ 1e12 and was reported collapsed there; every collapse the figures record
+// t ~ 1e12 and would be reported collapsed there; every collapse the figures record
 // has 10 or more).
 inline bool collapse_candidate(const CollapseCriterion& criterion, CollisionKind kind, double relative_speed) {
     return kind == CollisionKind::inelastic && relative_speed < criterion.collapse_speed;

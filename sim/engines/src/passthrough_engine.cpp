@@ -126,7 +126,7 @@ void PassThroughEngine::start_lines() {
     heat_.assign(n, 1.0);
     update_velocity_bounds();
     // First window: about the target number of crossings for a line moving
-    // at the full velocity spread through the mean spacing; adapt_window then
+    // at the full velocity spread through the mean spacing; adapted_length then
     // follows the measured crossing rate. Infinite if nothing ever crosses.
     const double spread = v_max_ - v_min_;
     const double spacing = ring_length_ / static_cast<double>(n);

@@ -134,13 +134,13 @@ public:
     // most, so the target is crossings_per_step_target; where few are, the
     // second, so it grows as the block's last step's inelastic share falls
     // below inelastic_share_for_longer_steps, up to longest_step_target
-    // (step_target()). Measured 2026-11-23 (SHOCKGAS_BENCH_CROSSOVER=paper,
-    // r = 0.9, delta = 1e-2, N = 1e5, pass-through CPU seconds for the
-    // stretches from t = 9.4e3 to 1.1e5, 0.3-1.5% inelastic): a fixed 0.5 took
-    // 12.3 s, a fixed 2 8.9 s, this rule 8.5 s (8.3 s with 0.02 for 0.04, 8.5 s
-    // with 8 for 4); in Fig. 5's setting to t = 1e4, where nearly every
-    // crossing is inelastic, a fixed 0.5 was fastest of 0.25-2 (2.75 s; 3.71 s
-    // at 2).
+    // (step_target()). With SHOCKGAS_BENCH_CROSSOVER=paper (r = 0.9,
+    // delta = 1e-2, N = 1e5, 0.3-1.5% inelastic) this rule beat a fixed 0.5
+    // by a third and a fixed 2 slightly, and the neighbouring settings (0.02
+    // for 0.04, 8 for 4) were no better; in Fig. 5's setting, where nearly
+    // every crossing is inelastic, a fixed 0.5 was fastest of 0.25-2. The
+    // timings: docs/measurements.md, "Measurements behind constants in the
+    // code".
     static constexpr double crossings_per_step_target = 0.5;
     static constexpr double longest_step_target = 4.0;
     static constexpr double inelastic_share_for_longer_steps = 0.04;
@@ -159,8 +159,7 @@ public:
     // A block running in steps turns into a kinetic list for the rest of the
     // window after a step whose scans visited more than this many lines per
     // crossing: a burst, where a bend's looks cover the whole compressed
-    // shock (measured 2026-11-25: see docs/passthrough-engine.md, "Bursts:
-    // blocks as kinetic lists").
+    // shock (docs/measurements.md, "Bursts: blocks as kinetic lists").
     static constexpr double kinetic_visits_per_crossing = 8.0;
     // A burst can also begin inside a step, and then the step's looks visit
     // the compressed shock at every bend until the step ends. So a step stops
@@ -168,9 +167,8 @@ public:
     // looks (after the step's first scan) have visited more lines than
     // kinetic_visits_per_crossing times this factor times the crossings the
     // step was sized for, and the block goes on as a kinetic list (never a
-    // whole ring with no cut). Measured 2026-11-28 at r = 0.9, delta = 1e-4,
-    // where such steps took 70% of all visits: docs/passthrough-engine.md,
-    // "Bursts that begin inside a step".
+    // whole ring with no cut). At r = 0.9, delta = 1e-4 such steps made 70%
+    // of all visits (docs/measurements.md, "Bursts that begin inside a step").
     static constexpr double burst_crossings_factor = 4.0;
     // Which ways a block may run: both, chosen as above (the default), or one
     // only (tests, to cover each path, and the benchmark).

@@ -1,5 +1,6 @@
-// The fast engine's event queue: an indexed 4-ary min-heap of (time, slot)
-// entries stored contiguously.
+// The event queue of EventEngine (and of the pass-through engine's kinetic
+// lists): an indexed 4-ary min-heap of (time, slot) entries stored
+// contiguously.
 //
 // Same ordering rule as EventQueue (time, then slot), so the two return
 // events in exactly the same order (tested). Differences are only in layout:

@@ -78,7 +78,7 @@ void check_status(herr_t status, const std::string& what) {
 }
 
 // Refuses, before allocating, a dataset that declares more values than its
-// file could hold (found by fuzzing: 1.7e11 bytes declared by a 2 kB file):
+// file could hold (a fuzzed file of 2 kB declared 1.7e11 bytes):
 // data cannot be larger than the file unless compressed, and 1000x leaves
 // room for compressed files written by other tools.
 void check_declared_size(hid_t dataset, const std::string& where, const std::vector<hsize_t>& dims,
@@ -163,7 +163,7 @@ std::vector<T> read_dataset(hid_t group, const std::string& where, const std::st
     if (H5Lexists(group, name.c_str(), H5P_DEFAULT) <= 0) throw Error(fmt::format("missing dataset {}", where));
     Handle dataset(check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "cannot open dataset " + where), H5Dclose);
     // Only plain numbers are converted: a hostile file can declare an element
-    // type of gigabytes (found by fuzzing), for which HDF5 itself would
+    // type of gigabytes (fuzzed files do), for which HDF5 itself would
     // allocate a conversion buffer of that size.
     {
         const Handle type(check(H5Dget_type(dataset.id()), "cannot read type of " + where), H5Tclose);

@@ -153,8 +153,8 @@ void write_output(const std::string& path, const SimulationParameters& parameter
 void write_merged_output(const std::string& path, const OutputFile& merged, const std::string& program) {
     h5::write_atomically(path, [&](h5::Group& root) {
         write_result(root, merged.parameters, merged.result);
-        // date and host say when and where the run was made (docs/cli-and-output.md); the merge
-        // wrote its own time there until 2026-11-27, and nothing said the file was merged.
+        // date and host say when and where the run was made (docs/cli-and-output.md), not when
+        // it was merged (merged_by, merged_date and merged_from say that).
         // A part read from a file without them (none is written so) keeps the merge's.
         // The version that ran the first part, as its date and host (parts of other
         // versions of the same simulator are named in merged_from).
@@ -312,7 +312,7 @@ OutputFile read_result(const h5::Group& root, const std::string& file) {
     r.clusters = series.read_doubles("clusters");
     r.kinetic_energy = series.read_doubles("kinetic_energy");
     r.realization_status = series.read_integers("realization_status");
-    // Written since 2026-11-26; earlier files did not record it.
+    // Files of older versions did not record it: NaN, as for an engine that never switches.
     r.engine_switch_time = series.has("engine_switch_time")
                                ? series.read_doubles("engine_switch_time")
                                : std::vector<double>(r.realization_status.size(), std::numeric_limits<double>::quiet_NaN());

@@ -79,7 +79,7 @@ void validate(const SimulationParameters& p) {
     // At most 10^7 bins: already 10^-6 of the range per bin, finer than the
     // N R samples of any run can fill (the paper's Fig. 4 has 2·10^7), and a
     // row of 80 MB per realization and time. A billion bins took 23 GiB and
-    // then failed in HDF5 (a chunk is at most 4 GiB), after 76 s (2026-11-26).
+    // then failed in HDF5 (a chunk is at most 4 GiB).
     constexpr int most_histogram_bins = 10'000'000;
     if (p.histogram_bins < 1 || p.histogram_bins > most_histogram_bins)
         throw InputError(fmt::format("histogram bins must lie in [1, {}], got {}", most_histogram_bins, p.histogram_bins));
@@ -89,7 +89,7 @@ void validate(const SimulationParameters& p) {
         throw InputError(fmt::format("collapse speed must be >= 0, got {}", p.collapse.collapse_speed));
     // Above delta > 0 the criterion would fire on ordinary inelastic collisions (g >= delta) and declare
     // a collapse that the threshold forbids: the analysis then refuses the run as one that cannot
-    // collapse, and the pass-through engine refuses these parameters (a user review, 2026-11-27).
+    // collapse, and the pass-through engine refuses these parameters.
     if (p.collision.velocity_threshold > 0.0 && p.collapse.collapse_speed > p.collision.velocity_threshold)
         throw InputError(fmt::format("collapse speed {} exceeds the threshold delta = {}: every inelastic collision "
                                      "is then at least delta, so no collapse can happen, and one would be declared "

@@ -241,7 +241,7 @@ std::string run_differences(const Checkpoint& checkpoint, const SimulationParame
         differences.push_back(std::move(physics));
     const SimulationParameters& c = checkpoint.parameters;
     // Its engine states are one engine's: resumed under another, the file would name the one asked for
-    // while its realizations ran the other (found by a user review, 2026-11-27). Both names are resolved
+    // while its realizations ran the other. Both names are resolved
     // ("auto" never reaches here: the checkpoint stores the engine that ran).
     if (c.engine != run.engine) differences.push_back(fmt::format("engine {} vs {}", run.engine, c.engine));
     if (check_realizations && (c.first_realization < run.first_realization ||

@@ -1,6 +1,6 @@
 // The one-rank implementation of distributed.hpp, compiled when SHOCKGAS_MPI
 // is off: the whole ensemble is this process's share, and there is nothing to
-// join, so shockgas-sim behaves exactly as it did before MPI existed.
+// join, so shockgas-sim runs the ensemble in this one process, as without MPI.
 #include "shockgas/run/distributed.hpp"
 
 namespace shockgas {

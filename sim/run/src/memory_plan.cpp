@@ -14,23 +14,21 @@ namespace shockgas {
 
 namespace {
 
-// Measured peak resident memory (2026-11-23, N = 10^6, one realization, every
-// engine and collision mode; docs/reliability.md): 115-122 bytes per particle
+// Peak resident memory of one realization at N = 10^6, every engine and
+// collision mode (docs/reliability.md, "Memory"): 115-122 bytes per particle
 // for a running realization's engine, 133 more while its state is copied into
 // a checkpoint, about 15 MB for the program. Rounded up so the estimate stays
 // an upper bound.
 constexpr double engine_bytes_per_particle = 128.0;
 // The pass-through engine (and the hybrid, which ends in it) holds more per
 // line: spares, heat, and a kinetic block's copy and queue, which early on span
-// nearly the whole ring. Measured 2026-11-25 (N = 10^6, r = 0.9, delta = 1e-2
-// to t = 30, one realization): 244 MB peak, 229 bytes per particle beyond the
-// program; rounded up.
+// nearly the whole ring: 229 bytes per particle beyond the program at its peak
+// (N = 10^6, r = 0.9, delta = 1e-2 to t = 30); rounded up.
 constexpr double passthrough_bytes_per_particle = 240.0;
 // Where collapse is possible (r > 0, delta below --collapse-speed: every
-// delta = 0 run) the windowed event engine also keeps a copy of its 48-byte
-// records to go back to (event_engine.hpp). Measured 2026-12-02 (N = 10^6,
-// r = 0.9, delta = 0 to t = 30, one realization): 179 MB peak against 133 MB
-// before the copy, 163 bytes per particle beyond the program; rounded up.
+// delta = 0 run) the event engine also keeps a copy of its 48-byte records to
+// go back to (event_engine.hpp): 163 bytes per particle beyond the program at
+// its peak (N = 10^6, r = 0.9, delta = 0 to t = 30); rounded up.
 constexpr double collapsing_engine_bytes_per_particle = 176.0;
 constexpr double checkpoint_bytes_per_particle = 136.0;
 constexpr double program_bytes = 16.0 * (1 << 20);
@@ -39,9 +37,8 @@ constexpr double program_bytes = 16.0 * (1 << 20);
 constexpr double state_bytes_per_particle = 32.0;
 // A histogram bin: 8 bytes in each realization's row while it runs and 8 more
 // in the output's copy of that row, plus 16 once per histogram time (the edges,
-// and HDF5's buffer while it writes). Measured peak resident memory
-// (2026-11-26, N = 1000, one histogram time, 10^7 bins): 328 MB with one
-// realization, 717 MB with four, i.e. 31 and 70 bytes per bin.
+// and HDF5's buffer while it writes): 31 bytes per bin at the peak with one
+// realization, 70 with four (N = 1000, one histogram time, 10^7 bins).
 constexpr double histogram_bytes_per_bin_per_realization = 16.0;
 constexpr double histogram_bytes_per_bin_shared = 16.0;
 
@@ -82,7 +79,7 @@ std::string memory_refusal(const SimulationParameters& p, const MemoryPlan& plan
     // alone would fit, it is their number that does not: lowering N does not
     // help a million realizations of N = 1000.
     // The program itself is a fixed part that no N lowers: a budget below it
-    // ("--max-memory 1K") said "needs about 16 MiB ...; lower N".
+    // ("--max-memory 1K") is told to raise the budget, not to lower N.
     if (program_bytes >= budget_bytes)
         return fmt::format("not enough memory: any run needs more than {} (the program itself, whatever N), but {} "
                            "may be used ({}); {}",

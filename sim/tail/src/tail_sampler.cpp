@@ -51,7 +51,7 @@ double standard_normal(std::mt19937_64& engine) {
 // F the law's distribution function and G the latent one's. For the Gaussian
 // v = g. For the uniform law on [-1, 1], F^-1(G(g)) = erf(g sqrt(3/2)): every
 // latent state is a valid window, so the collective (block) moves the tail
-// needs are never refused at the law's edge, as they were when the chains
+// needs are never refused at the law's edge, as they would be if the chains
 // moved the velocities themselves and rejected any move leaving [-1, 1]
 // (docs/far-tail.md, "The uniform start"). The map is monotone, so the
 // law of any observable is unchanged: only the chain's coordinates are.
@@ -248,7 +248,7 @@ TaggedClusterVelocity::TaggedClusterVelocity(std::int64_t half_window, double ti
     // The instanton starts hold one window per bias (8 bytes a site): 23
     // biases of 2·10^6 + 1 sites are 370 MB. A cluster at time t spans
     // ~ t^(2/3) particles, so 10^6 on each side would serve t ~ 10^9, far
-    // beyond what the chains reach; 10^8 took 7.5 GB within 20 s (2026-11-26).
+    // beyond what the chains reach, while 10^8 would take 7.5 GB within 20 s.
     constexpr std::int64_t most_half_window = 1'000'000;
     if (half_window > most_half_window)
         throw InputError(fmt::format("tagged cluster: the half window must hold at most {} particles, got {}",

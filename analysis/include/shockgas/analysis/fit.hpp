@@ -140,8 +140,8 @@ MultilinearFit weighted_multilinear_fit(std::span<const double> design, std::siz
 // The argmin of a bounded one-parameter search, and whether it is a
 // measurement. A minimum found at an end of [lo, hi] is not: f still falls
 // beyond the range, so the argmin is the bound the search was given, not a
-// property of the data (it once printed gamma = 0.500 +- 0.000, 0.5 being the
-// lower end of the tail fit's range). Such a result is reported n/a
+// property of the data (reported as a value, it would read gamma = 0.500 +-
+// 0.000, 0.5 being the lower end of the tail fit's range). Such a result is reported n/a
 // ("at the search bound 0.5 of [0.5, 8]"), never as the bound.
 struct SearchMinimum {
     double argmin = std::numeric_limits<double>::quiet_NaN();

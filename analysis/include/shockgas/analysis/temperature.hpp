@@ -32,8 +32,7 @@ struct TemperatureHistory {
     double standard_error(std::size_t k, std::optional<std::size_t> left_out = std::nullopt) const;
     // The means and their standard errors at the samples `indices`, from the realizations an estimate
     // uses (all, or all but left_out): a weighted fit's points and sigmas, from one pass over each
-    // sample's values (a jackknife replica computed its means twice, once for the points and once for
-    // the sigmas' fallback). mean[j] is mean(indices[j], left_out) bit for bit. Where a standard error
+    // sample's values (not one for the points and another for the sigmas' fallback). mean[j] is mean(indices[j], left_out) bit for bit. Where a standard error
     // is not above rounding level relative to the mean (identical realizations, or one left), equal
     // relative weights take its place: fallback_fraction x the mean.
     struct FitPoints {

@@ -14,7 +14,7 @@
 namespace shockgas::analysis {
 
 // One /histograms/<h> entry: mass-weighted counts of v - V per realization,
-// of the realizations that reached its time (reached_histogram_rows).
+// of the realizations that reached its time (histograms_of_run).
 struct VelocityHistogram {
     std::string label;          // e.g. "r=0.9 t=1000", for data files
     double time = 0.0;
@@ -34,8 +34,8 @@ struct VelocityHistogram {
 // A realization stopped before a histogram time (an interrupted run: Ctrl-C,
 // or a realization that never started) left a row of zeros there, which
 // counted as a realization would bias every mean, standard error, jackknife
-// and tail fit (an audit: kurtosis sigma 0.206 instead of 0.168, no usable
-// tail bin instead of 12). Which realizations reached time t is what the run
+// and tail fit (in one interrupted run: kurtosis sigma 0.206 instead of 0.168,
+// no usable tail bin instead of 12). Which realizations reached time t is what the run
 // recorded: T(t) in /timeseries/temperature is a number exactly for them
 // (NaN otherwise); for a time the series does not hold, a row with mass.
 // Their rows are kept in realization order, so with the usual interruption
@@ -56,7 +56,7 @@ std::vector<VelocityHistogram> histograms_from(const EnsembleResult& result, con
 // the file and the group).
 RunHistograms read_histograms(const std::string& path, const std::string& label_prefix = "");
 
-// Jackknife groups used for histogram estimators: min(R, max_groups) over all
+// Jackknife groups used for histogram estimators: min(R, max_jackknife_groups) over all
 // inputs; each group is every realization r with r % groups == g.
 constexpr std::size_t max_jackknife_groups = 20;  // enough for a 16%-accurate sigma, cheap to recompute
 

@@ -53,7 +53,7 @@ struct OutputFile {
     SimulationParameters parameters;
     EnsembleResult result;
     std::string version;  // provenance: git describe of the program that wrote it
-    std::string simulator_sha256;  // and its simulator's source hash (empty before 2026-11-28)
+    std::string simulator_sha256;  // and its simulator's source hash (empty from builds that did not record it)
     std::string date;     // provenance: when the run was made (UTC; a merged file: its first part's)
     std::string host;     // provenance: where (a merged file: its first part's host)
     // Set by merge_outputs: the parts, in order, each "NAME (realizations F to L)"
@@ -114,7 +114,7 @@ struct Checkpoint {
     std::vector<std::int64_t> samples_done;          // per realization
     std::map<std::int64_t, EngineSnapshot> engines;  // realization index -> state
     std::string version;                             // provenance of the writer
-    std::string simulator_sha256;                    // the writer's source hash (empty before 2026-11-28)
+    std::string simulator_sha256;                    // the writer's source hash (empty from builds that did not record it)
     std::string signature;                           // run_signature of the writer's parameters
     std::string source;                              // the file it was read from
 };

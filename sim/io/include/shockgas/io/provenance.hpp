@@ -26,8 +26,8 @@ struct BuildInfo {
 const BuildInfo& build_info();
 
 // Whether two files (or a file and this build) were made by the same simulator
-// code: the same simulator_sha256, or, for files written before it was
-// recorded (2026-11-28; empty), the same version. The same code continues a
+// code: the same simulator_sha256, or, for files of builds that did not record
+// it (empty), the same version. The same code continues a
 // checkpoint bit for bit, so a commit that changes only docs, analysis or tests
 // (or a build marked -dirty by an edit there) does not throw away a run in
 // progress; and two -dirty builds of one commit with different edits to the
@@ -44,9 +44,9 @@ std::string this_build_description();
 
 // Schema version of the simulation output; bump on any incompatible change.
 // 2: checksummed (HDF5 1.10 format, Fletcher32 on every non-empty dataset).
-// 3 (2026-11-23): text attributes variable-length UTF-8; numbered groups
+// 3: text attributes variable-length UTF-8; numbered groups
 // (/snapshots, /histograms, /collapse/states) zero-padded; readers take 1-3.
-// 4 (2026-11-23): the time series starts with t = 0 (the initial state); the
+// 4: the time series starts with t = 0 (the initial state); the
 // groups and datasets are those of 3. Readers take 1-4.
 constexpr long long output_schema_version = 4;
 

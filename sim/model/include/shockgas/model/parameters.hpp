@@ -46,7 +46,7 @@ struct CollisionModel {
 // declared collapsed at the first inelastic collision whose relative speed is
 // below collapse_speed (geometric decay of relative speeds is the signature of
 // collapse, McNamara & Young 1992) while three or more clusters are in contact
-// (a slow pair alone is a cooled gas), or when stall_events consecutive events
+// (a slow pair alone is a cooled gas), or when max(stall_events_min, 10 N) consecutive events
 // advance simulated time by less than stall_time_fraction * max(1, t).
 struct CollapseCriterion {
     double collapse_speed = 1e-12;        // in units of the initial velocity scale (1)
