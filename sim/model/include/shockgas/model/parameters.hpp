@@ -82,7 +82,7 @@ struct SimulationParameters {
     InitialLaw initial_law;           // for generated starts; an --init file replaces it
     std::string init_file;            // optional --init FILE.h5 (absolute path once read)
     std::string init_file_sha256;     // its SHA-256, so a result proves which start made it
-    std::string engine = "event";     // event | exact | passthrough | hybrid | auto (resolved before run)
+    std::string engine = "event";     // event | reference | exact | passthrough | hybrid | auto (resolved before run)
 
     double effective_ring_length() const {
         return ring_length > 0.0 ? ring_length : static_cast<double>(particles);
