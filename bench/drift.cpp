@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <limits>
@@ -333,6 +334,83 @@ void write_h5(const std::string& path, const SimulationParameters& p, const Drif
     }
     for (std::size_t c = 0; c < names.size(); ++c) root.write(names[c], columns[c]);
     file.commit();
+}
+
+namespace {
+
+void print_header() {
+    fmt::print("# {:>10} {:>10} {:>6} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>8} {:>5} {:>3} {:>8} {:>8} {:>8}\n",
+               "collisions", "t", "clust", "dP/S0", "bound", "E/E0", "rise", "gap", "gap_min", "res", "order", "bad",
+               "cpu_s", "coll/s", "dC/dt");
+    std::fflush(stdout);
+}
+
+void print_row(const DriftRow& r) {
+    fmt::print(
+        "  {:>10.4g} {:>10.4g} {:>6} {:>9.2e} {:>9.2e} {:>10.4e} {:>9.2e} {:>9.2e} {:>9.2e} {:>8.1e} {:>5} "
+        "{:>3} {:>8.1f} {:>8.3g} {:>8.3g}\n",
+        r.collisions, r.time, static_cast<std::int64_t>(r.clusters), r.drift, r.bound, r.energy_ratio, r.max_rise,
+        r.min_gap, r.min_gap_run, r.gap_resolution, static_cast<int>(r.order), static_cast<std::int64_t>(r.nonfinite),
+        r.cpu_seconds, r.rate, r.collision_rate_in_time);
+    if (!std::isnan(r.stored_min_gap))
+        fmt::print("#   stored gaps: smallest {:.3e} L/N, sum(gaps) - L = {:.3e}\n", r.stored_min_gap,
+                   r.ring_length_drift);
+    std::fflush(stdout);
+}
+
+// The run's parameters, its start and the columns, before the first row.
+void print_start(const DriftRequest& request, const DriftReport& report) {
+    const SimulationParameters& p = request.parameters;
+    const DriftOptions& o = request.options;
+    fmt::print(
+        "# shockgas-drift: N = {}, L = {}, r = {}, delta = {}, {} sub-threshold, seed {}, realization "
+        "{}; engine {} ({})\n",
+        p.particles, report.ring_length, p.collision.restitution, p.collision.velocity_threshold, request.subthreshold,
+        p.seed, o.realization, report.engine, o.reference ? "ReferenceEventEngine, --reference" : "make_engine");
+    fmt::print("# P0 = {:.17g}, S0 = sum m|v0| = {:.17g}, E0 = {:.17g}, |v|max0 = {:.17g}\n", report.start.momentum,
+               report.start.momentum_scale, report.start.energy, report.start.max_speed);
+    fmt::print(
+        "# dP/S0 = |P - P0| / S0; gaps in units of L/N; rise = largest (E_k - E_(k-1))/E_(k-1) "
+        "between chunks of ~{:.0e} collisions\n",
+        o.chunk_collisions);
+    print_header();
+}
+
+}  // namespace
+
+std::string drift_summary(const DriftReport& report) {
+    const DriftRow& last = report.rows.back();
+    return fmt::format(
+        "# {}: {} collisions, t = {:.6g}, {:.1f} s CPU, {:.3g} collisions/s; final dP/S0 = {:.3e} "
+        "(bound {:.3e}); max energy rise {:.3e}; smallest gap {:.3e} L/N; ring order {}; non-finite {}",
+        report.ended, last.collisions, last.time, last.cpu_seconds, last.rate, last.drift, last.bound, report.max_rise,
+        last.min_gap_run, report.order_held ? "held" : "BROKEN", report.nonfinite);
+}
+
+int run_drift_command(DriftRequest request) {
+    SimulationParameters& p = request.parameters;
+    const DriftOptions& o = request.options;
+    const std::string& output = request.output;
+    p.collision.subthreshold = subthreshold_from_string(request.subthreshold);
+    validate(p);
+    const bool csv = output.ends_with(".csv"), h5 = output.ends_with(".h5");
+    if (!output.empty() && !csv && !h5) throw InputError("--output must end in .csv or .h5, got '" + output + "'");
+    if (!output.empty()) h5::check_writable(output);
+    if (request.check) require_checkable(p);
+
+    DriftListener listener;
+    listener.started = [&request](const DriftReport& report) { print_start(request, report); };
+    listener.row = print_row;
+    listener.note = [](const std::string& line) { fmt::print("# {}\n", line); };
+    const DriftReport report = run_drift(p, o, listener);
+    fmt::print("{}\n", drift_summary(report));
+    if (csv) write_csv(output, report);
+    if (h5) write_h5(output, p, o, report);
+
+    if (!request.check) return 0;
+    const auto failures = check_failures(p, o, report);
+    for (const auto& why : failures) fmt::print(stderr, "shockgas-drift: check failed: {}\n", why);
+    return failures.empty() ? 0 : 1;
 }
 
 }  // namespace shockgas::drift

@@ -137,4 +137,34 @@ void write_csv(const std::string& path, const DriftReport& report);
 void write_h5(const std::string& path, const SimulationParameters& parameters, const DriftOptions& options,
               const DriftReport& report);
 
+// shockgas-drift as a library call: what its options ask for, with the
+// program's defaults (bench/shockgas_drift.cpp binds its options to these
+// fields).
+struct DriftRequest {
+    SimulationParameters parameters = [] {
+        SimulationParameters p;
+        p.particles = 1000;
+        p.collision.restitution = 0.5;
+        p.collision.velocity_threshold = 1e-2;
+        p.engine = "event";
+        return p;
+    }();
+    std::string subthreshold = "elastic";  // elastic | sticky
+    DriftOptions options;
+    std::string output;  // also write the rows here, FILE.csv or FILE.h5 (empty: nowhere)
+    bool check = false;  // the rounding bounds as pass/fail (check_failures)
+};
+
+// Runs the request as shockgas-drift does: checks the parameters and the
+// output, prints the run's header, a table row as each row is taken and the
+// summary (drift_summary) on stdout, writes the rows to request.output, and
+// with request.check prints each failure on stderr. Returns the exit status:
+// 1 when a check fails, else 0. InputError for anything the user must change.
+int run_drift_command(DriftRequest request);
+
+// The last line of the table: why the run ended, its collisions, time, CPU
+// and rate, the final momentum drift against its bound, the largest energy
+// rise, the smallest gap, ring order and the non-finite count ("# " first).
+std::string drift_summary(const DriftReport& report);
+
 }  // namespace shockgas::drift

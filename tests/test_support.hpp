@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "shockgas/engines/engine.hpp"
 #include "shockgas/run/ensemble.hpp"
 #include "shockgas/model/observables.hpp"
+#include "shockgas/model/parameters.hpp"
 #include "shockgas/model/state.hpp"
 
 namespace shockgas::testing {
@@ -114,6 +117,30 @@ inline std::pair<EnsembleResult, EnsembleResult> run_with_and_without_checkpoint
     std::filesystem::remove(options.path);
     std::filesystem::remove(options.path + ".previous");
     return {std::move(reference), std::move(paused)};
+}
+
+// A file named `name` in the test's temporary folder.
+inline std::string temp_path(const std::string& name) {
+    return (std::filesystem::path(::testing::TempDir()) / name).string();
+}
+
+// The whole text of a file ("" if it cannot be read).
+inline std::string read_text(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// The message of the InputError that `work` throws, "" if it throws none (other exceptions pass).
+template <class Work>
+std::string input_error_message(Work&& work) {
+    try {
+        work();
+    } catch (const InputError& error) {
+        return error.what();
+    }
+    return "";
 }
 
 }  // namespace shockgas::testing

@@ -273,7 +273,8 @@ if readme:
     sys.exit(0)
 
 
-# The far-tail sampler's progress line in a log (sim/tail/app/shockgas_tail.cpp), and the comment make prints
+# The far-tail sampler's progress line in a log (shockgas-tail's, cli::steps_progress_printer in
+# sim/cli/src/progress.cpp), and the comment make prints
 # when fig_tail starts it (paper_targets/fig_tail.cmake).
 TAIL_PROGRESS = "shockgas-tail: progress: "
 TAIL_STARTED = "[fig_tail] far-tail sampler"

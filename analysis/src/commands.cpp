@@ -1,6 +1,7 @@
 // The commands of shockgas-analyze, one per estimator (commands.hpp): each reads its inputs, runs
 // the library's estimators on them, and writes the results file, the gnuplot data files and one
-// summary line. Argument parsing and the checks of option values stay in the program.
+// summary line. The checks of option values come first (run_analyze, analyze_command.cpp); argument
+// parsing stays in the program.
 #include "shockgas/analysis/commands.hpp"
 
 #include <algorithm>

@@ -1,5 +1,6 @@
 // The commands of shockgas-analyze called in-process, as the program calls them
-// (shockgas/analysis/commands.hpp): a run file in, a results file and a data file out.
+// (shockgas/analysis/commands.hpp, analyze_command.hpp): a run file in, a results file and a
+// data file out, and the checks made before any work.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,10 +10,12 @@
 
 #include <gtest/gtest.h>
 
+#include "shockgas/analysis/analyze_command.hpp"
 #include "shockgas/analysis/commands.hpp"
 #include "shockgas/io/h5.hpp"
 #include "shockgas/io/output.hpp"
 #include "shockgas/model/parameters.hpp"
+#include "../test_support.hpp"
 
 namespace {
 
@@ -110,6 +113,95 @@ TEST(AnalyzeCommands, AWindowWithoutSamplesNamesTheInput) {
     }
     EXPECT_FALSE(fs::exists(output)) << "a failed command left a results file";
     fs::remove(input);
+}
+
+// The program's request (analyze_command.hpp): checks, then the subcommand's command.
+shockgas::analysis::AnalyzeRequest decay_request(const std::string& input, const std::string& output) {
+    shockgas::analysis::AnalyzeRequest request;
+    request.command = "decay";
+    request.invocation = decay_invocation();
+    request.input = input;
+    request.output = output;
+    request.t_lo = 10.0;
+    request.t_hi = 1000.0;
+    request.t_lo_given = request.t_hi_given = true;
+    return request;
+}
+
+// The message of the InputError that request throws ("" if none).
+std::string analyze_refusal(const shockgas::analysis::AnalyzeRequest& request) {
+    return shockgas::testing::input_error_message([&] { shockgas::analysis::run_analyze(request); });
+}
+
+TEST(AnalyzeCommands, TheRequestRunsTheSubcommandWithItsWindow) {
+    const auto input = write_power_law_run("request");
+    const auto output = (fs::temp_directory_path() / "shockgas_commands_request_results.h5").string();
+    shockgas::analysis::run_analyze(decay_request(input, output));
+    const auto results = shockgas::h5::File::open_read(output);
+    const auto decay = results.root().open_group("decay");
+    EXPECT_NEAR(decay.attribute_double("exponent"), decay_exponent, rounding_tolerance);
+    EXPECT_EQ(decay.attribute_double("t_lo"), 10.0);
+    EXPECT_EQ(decay.attribute_double("t_hi"), 1000.0);
+    fs::remove(output);
+
+    // A window given but not taken (t_lo_given false) is the automatic one.
+    auto automatic = decay_request(input, output);
+    automatic.t_lo_given = automatic.t_hi_given = false;
+    shockgas::analysis::run_analyze(automatic);
+    EXPECT_NE(shockgas::h5::File::open_read(output).root().open_group("decay").attribute_string("window_rule"),
+              "manual");
+    for (const auto& path : {input, output}) fs::remove(path);
+}
+
+TEST(AnalyzeCommands, BadValuesAreRefusedBeforeAnyWork) {
+    const auto input = write_power_law_run("refused");
+    const auto output = (fs::temp_directory_path() / "shockgas_commands_refused_results.h5").string();
+    auto request = decay_request(input, output);
+    request.t_lo = 100.0;
+    request.t_hi = 10.0;
+    EXPECT_EQ(analyze_refusal(request), "--t-hi (10) must be larger than --t-lo (100)");
+    request = decay_request(input, output);
+    request.t_lo = -1.0;
+    EXPECT_EQ(analyze_refusal(request), "--t-lo must be positive and finite, not -1");
+    request = decay_request(input, output);
+    request.decay.scan_step = 1e-4;
+    EXPECT_EQ(analyze_refusal(request).rfind("--scan-step must be finite and at least 0.001 decades, not 0.0001", 0),
+              0u);
+    request = decay_request(input, output);
+    request.decay.data_only = true;
+    EXPECT_EQ(analyze_refusal(request),
+              "--data-only needs --data FILE: it writes the T(t) table there and nothing else");
+
+    shockgas::analysis::AnalyzeRequest shocks;
+    shocks.command = "shocks";
+    shocks.input = input;
+    shocks.output = output;
+    shocks.merge_gap = -1;
+    EXPECT_EQ(analyze_refusal(shocks), "--merge-gap must be a whole number at least 0, not -1");
+    shockgas::analysis::AnalyzeRequest crossover;
+    crossover.command = "crossover";
+    crossover.inputs = {input};
+    crossover.output = output;
+    crossover.crossover.haff_floor = 1.5;
+    EXPECT_EQ(analyze_refusal(crossover).rfind("--haff-floor must be below 1", 0), 0u);
+    shockgas::analysis::AnalyzeRequest collapse;
+    collapse.command = "collapse";
+    collapse.inputs = {input};
+    collapse.output = output;
+    collapse.hazard = "hazard.dat";
+    EXPECT_EQ(analyze_refusal(collapse).rfind("--hazard needs --vs N", 0), 0u);
+    // An output that names the input (h5::check_not_an_input).
+    EXPECT_THROW(shockgas::analysis::run_analyze(decay_request(input, input)), shockgas::h5::Error);
+    EXPECT_FALSE(fs::exists(output)) << "a refused request left a results file";
+    fs::remove(input);
+}
+
+TEST(AnalyzeCommands, CommandLineWordsQuotedAsAShellReadsThem) {
+    EXPECT_EQ(shockgas::analysis::shell_quoted("run.h5"), "run.h5");
+    EXPECT_EQ(shockgas::analysis::shell_quoted("--t-lo=1e3"), "--t-lo=1e3");
+    EXPECT_EQ(shockgas::analysis::shell_quoted("my run.h5"), "'my run.h5'");
+    EXPECT_EQ(shockgas::analysis::shell_quoted("it's"), "'it'\\''s'");
+    EXPECT_EQ(shockgas::analysis::shell_quoted(""), "''");
 }
 
 }  // namespace

@@ -131,6 +131,30 @@ std::function<void(const std::string&)> rank_note(const std::string& program, in
     };
 }
 
+std::string format_steps_progress(const std::string& program, double fraction_done, double elapsed_seconds) {
+    const std::string eta =
+        fraction_done > 0.0 ? fmt::format("{:.0f} s", elapsed_seconds * (1.0 - fraction_done) / fraction_done) : "--";
+    return fmt::format("{}: progress: {:.1f}% of the steps  elapsed {:.0f} s  ETA {}", program, 100.0 * fraction_done,
+                       elapsed_seconds, eta);
+}
+
+std::function<void(double, double)> steps_progress_printer(const std::string& program, double log_interval_seconds) {
+    const bool terminal = isatty(STDERR_FILENO) != 0;
+    auto log = std::make_shared<ProgressLog>(log_interval_seconds);
+    return [terminal, log, program](double done, double elapsed) {
+        Progress status;
+        status.fraction_done = done;
+        status.elapsed_seconds = elapsed;
+        if (!terminal && !log->due(status)) return;
+        const std::string line = format_steps_progress(program, done, elapsed);
+        if (terminal)
+            fmt::print(stderr, "\r{:<80}", line);
+        else
+            fmt::print(stderr, "{}\n", line);
+        std::fflush(stderr);
+    };
+}
+
 }  // namespace cli
 
 }  // namespace shockgas

@@ -2,8 +2,8 @@
 // shockgas-tail output), runs the estimators of this library on them, and writes the results file
 // (HDF5, with the invocation and the inputs' provenance), the gnuplot data files it is given paths
 // for (empty: none), and one summary line on stdout. An estimate the inputs cannot give throws
-// InputError naming the input. The program parses and checks the options; these do the rest, so a
-// test can call them as the program does.
+// InputError naming the input. The program parses the options and run_analyze (analyze_command.hpp)
+// checks them; these do the rest, so a test can call them as the program does.
 #pragma once
 
 #include <optional>

@@ -66,6 +66,17 @@ ProgressCallback progress_printer(const std::string& program, double log_interva
 // instead of following it.
 std::function<void(const std::string&)> rank_note(const std::string& program, int rank, int ranks, bool terminal);
 
+// Progress of work that reports only the share of its steps done and the wall
+// seconds since it began (shockgas-tail's chains): "<program>: progress: 12.5%
+// of the steps  elapsed 40 s  ETA 280 s", the ETA "--" before any step is done.
+std::string format_steps_progress(const std::string& program, double fraction_done, double elapsed_seconds);
+
+// Shows such reports on stderr as progress_printer shows the driver's: on a
+// terminal one line, rewritten in place; in a log a line when ProgressLog says
+// one is due.
+std::function<void(double fraction_done, double elapsed_seconds)> steps_progress_printer(const std::string& program,
+                                                                                         double log_interval_seconds);
+
 }  // namespace cli
 
 }  // namespace shockgas
