@@ -102,6 +102,76 @@ inline void stop_after_checkpoints(CheckpointOptions& options, const std::atomic
     };
 }
 
+// Bitwise equality of doubles, NaN equal to NaN (unreached samples, the
+// switch time of an engine that never switches).
+inline bool same(const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
+    return true;
+}
+
+// Two ensemble results alike bit for bit: every sample table, record and count.
+inline void expect_same_result(const EnsembleResult& a, const EnsembleResult& b) {
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_TRUE(same(a.times, b.times));
+    EXPECT_TRUE(same(a.temperature, b.temperature));
+    EXPECT_TRUE(same(a.collisions_per_particle, b.collisions_per_particle));
+    EXPECT_TRUE(same(a.clusters, b.clusters));
+    EXPECT_TRUE(same(a.kinetic_energy, b.kinetic_energy));
+    EXPECT_EQ(a.realization_status, b.realization_status);
+    EXPECT_TRUE(same(a.engine_switch_time, b.engine_switch_time));
+    EXPECT_EQ(a.total_collisions, b.total_collisions);
+    ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
+    for (std::size_t s = 0; s < a.snapshots.size(); ++s) {
+        EXPECT_EQ(a.snapshots[s].realization, b.snapshots[s].realization);
+        expect_identical(a.snapshots[s].state, b.snapshots[s].state, "snapshot");
+    }
+    ASSERT_EQ(a.histograms.size(), b.histograms.size());
+    for (std::size_t h = 0; h < a.histograms.size(); ++h) EXPECT_TRUE(same(a.histograms[h].counts, b.histograms[h].counts));
+}
+
+// The paper's gas r = 0.9, delta = 1e-2 (elastic sub-threshold) through the
+// ensemble driver: N = 20000 to t = 300, three realizations on two threads,
+// a snapshot and two histograms. Sized so that a run takes a few hundred
+// milliseconds on one core: long enough for several checkpoints at a 20 ms
+// interval.
+inline SimulationParameters checkpoint_ensemble() {
+    SimulationParameters p;
+    p.particles = 20000;
+    p.collision = {0.9, 1e-2, Subthreshold::elastic};
+    p.t_max = 300.0;
+    p.realizations = 3;
+    p.threads = 2;
+    p.seed = 7;
+    p.snapshot_times = {50.0};
+    p.histogram_times = {30.0, 300.0};
+    return p;
+}
+
+// An ensemble of the elastic r = 0.9, delta = 1e-2 gas through the driver,
+// on `engine`, two realizations.
+inline SimulationParameters elastic_ensemble(std::int64_t particles, double t_max, const std::string& engine) {
+    SimulationParameters p;
+    p.particles = particles;
+    p.collision = {0.9, 0.01, Subthreshold::elastic};
+    p.t_max = t_max;
+    p.realizations = 2;
+    p.engine = engine;
+    return p;
+}
+
+// Times first, first 10^(1/per_decade), ... up to last.
+inline std::vector<double> log_times(double first, double last, int per_decade) {
+    std::vector<double> times;
+    for (int k = 0;; ++k) {
+        const double t = first * std::pow(10.0, k / static_cast<double>(per_decade));
+        if (t > last) break;
+        times.push_back(t);
+    }
+    return times;
+}
+
 // The ensemble run of `p` with checkpoints every 20 ms (named `name`) against
 // the same run without: pausing a realization to deposit its state must change
 // nothing, bit for bit. Returns both results for further checks.

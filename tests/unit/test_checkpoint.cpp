@@ -1,18 +1,18 @@
-// Checkpoints (stability issue, "runs that survive being killed"): an engine
-// restored from a snapshot continues bit for bit as the original; pausing a
-// run for checkpoints changes nothing; a run stopped mid-way and resumed from
-// its checkpoint file gives the uninterrupted run's result exactly; and a
-// checkpoint of another run is refused, naming what differs.
+// Checkpoints (stability issue, "runs that survive being killed"): a damaged
+// engine state is refused; a run stopped mid-way and resumed from its
+// checkpoint file gives the uninterrupted run's result exactly; a checkpoint
+// of another run is refused, naming what differs; and the file keeps engine
+// states bit for bit. That an engine restored from a snapshot continues bit
+// for bit, and that pausing a run for checkpoints changes nothing, is every
+// engine's contract (test_engine_contract.cpp).
 //
 // Every comparison here is exact (==, NaN == NaN): the same seeds and the
 // same arithmetic must give the same doubles, so no tolerance is needed and
 // any difference is a bug.
 #include <atomic>
-#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,20 +23,19 @@
 #include "shockgas/run/checkpoint.hpp"
 #include "shockgas/engines/engine.hpp"
 #include "shockgas/run/ensemble.hpp"
-#include "reference_event_engine.hpp"
-#include "event_engine.hpp"
 #include "shockgas/io/h5.hpp"
 #include "shockgas/io/output.hpp"
 
 namespace {
 
 using shockgas::CheckpointOptions;
-using shockgas::ClusterState;
 using shockgas::EnsembleResult;
-using shockgas::Engine;
 using shockgas::EngineSnapshot;
 using shockgas::SimulationParameters;
 using shockgas::Subthreshold;
+using shockgas::testing::checkpoint_ensemble;
+using shockgas::testing::expect_same_result;
+using shockgas::testing::same;
 
 SimulationParameters parameters(std::int64_t particles, double restitution, double threshold, Subthreshold mechanism) {
     SimulationParameters p;
@@ -45,68 +44,6 @@ SimulationParameters parameters(std::int64_t particles, double restitution, doub
     p.collision.velocity_threshold = threshold;
     p.collision.subthreshold = mechanism;
     return p;
-}
-
-// Bitwise equality of doubles, NaN equal to NaN (unreached samples).
-bool same(const std::vector<double>& a, const std::vector<double>& b) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
-    return true;
-}
-
-void expect_same_state(const Engine& a, const Engine& b, const std::string& what) {
-    ClusterState sa, sb;
-    a.clusters(sa);
-    b.clusters(sb);
-    EXPECT_EQ(a.collisions(), b.collisions()) << what;
-    EXPECT_EQ(a.time(), b.time()) << what;
-    shockgas::testing::expect_identical(sa, sb, what);
-}
-
-struct Mode {
-    std::string name;
-    double restitution;
-    double threshold;
-    Subthreshold mechanism;
-};
-
-// The engine make_engine picks (windowed where supported, the reference loop
-// otherwise) and the reference loop itself, in every collision mode: advance
-// to t1, snapshot, restore into a fresh engine, advance both to t2.
-TEST(EngineSnapshot, RestoredEngineContinuesBitForBit) {
-    const std::vector<Mode> modes = {{"r=0.5 elastic", 0.5, 1e-2, Subthreshold::elastic},
-                                     {"r=0.9 sticky sub-threshold", 0.9, 1e-2, Subthreshold::sticky},
-                                     {"r=0 sticky gas", 0.0, 1e-2, Subthreshold::elastic},
-                                     {"delta=0 before collapse", 0.5, 0.0, Subthreshold::elastic}};
-    for (const Mode& mode : modes) {
-        SimulationParameters p = parameters(3000, mode.restitution, mode.threshold, mode.mechanism);
-        p.engine = "event";
-        for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-            const auto initial = shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), seed, 0);
-            std::vector<std::unique_ptr<Engine>> originals;
-            originals.push_back(shockgas::make_engine(p, initial, nullptr));
-            originals.push_back(
-                std::make_unique<shockgas::ReferenceEventEngine>(initial, p.collision, p.collapse, nullptr));
-            for (auto& original : originals) {
-                const std::string what = mode.name + ", seed " + std::to_string(seed);
-                // delta = 0 collapses near t ~ 1-10 at this size: checkpoint early.
-                const double t1 = mode.threshold == 0.0 ? 0.2 : 20.0;
-                ASSERT_TRUE(original->advance_to(t1)) << what;
-                const std::uint64_t collisions_at_checkpoint = original->collisions();
-                const auto snapshot = original->snapshot();
-                ASSERT_TRUE(snapshot.has_value()) << what;
-                auto restored = shockgas::restore_engine(*snapshot, p, initial, nullptr);
-                expect_same_state(*original, *restored, what + " (at the checkpoint)");
-                const bool original_ran = original->advance_to(200.0);
-                const bool restored_ran = restored->advance_to(200.0);
-                EXPECT_EQ(original_ran, restored_ran) << what;
-                EXPECT_EQ(original->collapse().has_value(), restored->collapse().has_value()) << what;
-                expect_same_state(*original, *restored, what + " (after it)");
-                EXPECT_GT(original->collisions(), collisions_at_checkpoint + 100) << what << ": too few events to test";
-            }
-        }
-    }
 }
 
 TEST(EngineSnapshot, DamagedStateIsRefused) {
@@ -126,46 +63,8 @@ TEST(EngineSnapshot, DamagedStateIsRefused) {
     EXPECT_THROW(shockgas::restore_engine(unknown, p, initial, nullptr), shockgas::InputError);
 }
 
-// Sizes chosen so that a run takes a few hundred milliseconds on one core:
-// long enough for several checkpoints at a 20 ms interval.
-SimulationParameters ensemble_parameters() {
-    SimulationParameters p = parameters(20000, 0.9, 1e-2, Subthreshold::elastic);
-    p.t_max = 300.0;
-    p.realizations = 3;
-    p.threads = 2;
-    p.seed = 7;
-    p.snapshot_times = {50.0};
-    p.histogram_times = {30.0, 300.0};
-    return p;
-}
-
-void expect_same_result(const EnsembleResult& a, const EnsembleResult& b) {
-    EXPECT_EQ(a.status, b.status);
-    EXPECT_TRUE(same(a.times, b.times));
-    EXPECT_TRUE(same(a.temperature, b.temperature));
-    EXPECT_TRUE(same(a.collisions_per_particle, b.collisions_per_particle));
-    EXPECT_TRUE(same(a.clusters, b.clusters));
-    EXPECT_TRUE(same(a.kinetic_energy, b.kinetic_energy));
-    EXPECT_EQ(a.realization_status, b.realization_status);
-    EXPECT_TRUE(same(a.engine_switch_time, b.engine_switch_time));
-    EXPECT_EQ(a.total_collisions, b.total_collisions);
-    ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
-    for (std::size_t s = 0; s < a.snapshots.size(); ++s) {
-        EXPECT_EQ(a.snapshots[s].realization, b.snapshots[s].realization);
-        shockgas::testing::expect_identical(a.snapshots[s].state, b.snapshots[s].state, "snapshot");
-    }
-    ASSERT_EQ(a.histograms.size(), b.histograms.size());
-    for (std::size_t h = 0; h < a.histograms.size(); ++h) EXPECT_TRUE(same(a.histograms[h].counts, b.histograms[h].counts));
-}
-
-TEST(Checkpoint, PausingForCheckpointsChangesNothing) {
-    const SimulationParameters p = ensemble_parameters();
-    const auto [reference, paused] = shockgas::testing::run_with_and_without_checkpoint_pauses(p, "pausing");
-    expect_same_result(reference, paused);
-}
-
 TEST(Checkpoint, StoppedRunResumedFromItsFileEqualsUninterruptedRun) {
-    const SimulationParameters p = ensemble_parameters();
+    const SimulationParameters p = checkpoint_ensemble();
     const EnsembleResult reference = shockgas::run_ensemble(p, nullptr);
 
     std::atomic<int> written{0};
@@ -261,7 +160,7 @@ TEST(Checkpoint, OnlyAFinishedOutputOfThisRunWithNoCheckpointLeftIsTakenAsDone) 
 // before any work, naming each parameter that differs with both values, and
 // the checkpoint is kept: continuing would have overwritten it.
 TEST(Checkpoint, CheckpointOfAnotherRunIsRefusedNamingTheDifferences) {
-    SimulationParameters p = ensemble_parameters();
+    SimulationParameters p = checkpoint_ensemble();
     p.realizations = 2;
     p.t_max = 60.0;
     p.histogram_times = {30.0};
@@ -327,7 +226,7 @@ TEST(Checkpoint, CheckpointOfAnotherRunIsRefusedNamingTheDifferences) {
 // collisions only, not those done before the checkpoint (they took no time
 // of this process's elapsed time).
 TEST(Checkpoint, ResumedRunReportsTheCollisionRateOfThisProcessOnly) {
-    SimulationParameters p = ensemble_parameters();
+    SimulationParameters p = checkpoint_ensemble();
     p.realizations = 1;
     p.threads = 1;
     p.t_max = 1e5;  // far longer than the test runs
@@ -396,7 +295,7 @@ TEST(Checkpoint, FileRoundTripKeepsEngineStateBitForBit) {
 // files of another run contribute nothing. The end-to-end case under mpirun
 // is tests/mpi (other_ranks).
 TEST(Checkpoint, GatheredBlockTakesEachRealizationWhereItGotFurthest) {
-    SimulationParameters p = ensemble_parameters();
+    SimulationParameters p = checkpoint_ensemble();
     p.threads = 1;
     const EnsembleResult whole = shockgas::run_ensemble(p, nullptr);  // realizations 0, 1, 2
     const std::size_t samples = whole.times.size();

@@ -157,28 +157,6 @@ TEST(ExactEngine, AdvancingInStepsEqualsOneJump) {
     EXPECT_EQ(stepped.cluster_count(), 1);
 }
 
-TEST(ExactEngine, FactoryPicksExactForTheStickyGasAndRefusesItOtherwise) {
-    shockgas::SimulationParameters parameters;
-    parameters.collision.restitution = 0.0;
-    parameters.engine = "auto";
-    EXPECT_EQ(shockgas::resolve_engine_name(parameters), "exact");
-    parameters.engine = "event";
-    EXPECT_EQ(shockgas::resolve_engine_name(parameters), "event");
-    parameters.engine = "exact";
-    const auto initial = shockgas::generate_initial_condition(10, 10.0, 1, 0);
-    EXPECT_EQ(shockgas::make_engine(parameters, initial, nullptr)->name(), "exact");
-    parameters.collision.restitution = 0.5;
-    EXPECT_THROW(shockgas::resolve_engine_name(parameters), shockgas::InputError);
-    EXPECT_THROW(shockgas::make_engine(parameters, initial, nullptr), shockgas::InputError);
-    // r > 0: auto picks the hybrid engine where the pass-through engine
-    // applies (the default elastic sub-threshold rule), the event engine
-    // elsewhere (HybridEngine.AutoPicksItWherePassThroughApplies).
-    parameters.engine = "auto";
-    EXPECT_EQ(shockgas::resolve_engine_name(parameters), "hybrid");
-    parameters.collision.subthreshold = shockgas::Subthreshold::sticky;
-    EXPECT_EQ(shockgas::resolve_engine_name(parameters), "event");
-}
-
 // ---------------------------------------------------------------------------
 // Precision at N = 10^7, t ~ 10^8. Groups of consecutive particles on the
 // unit lattice (L = N) focus homologously onto their midpoint c:

@@ -1,21 +1,20 @@
 // The pass-through engine (elastic collisions as crossing world lines) against
-// the reference event loop, against the exact crossing count of free lines,
-// and for its invariants and checkpoints; and the hybrid engine (the windowed
-// event engine handing over to the pass-through engine) against the same
-// reference loop across its switch, bit for bit against the event engine
-// before it, and for its checkpoints. It cannot be bit-identical to the
+// the reference event loop and against the exact crossing count of free lines;
+// and the hybrid engine (the windowed event engine handing over to the
+// pass-through engine) against the same reference loop across its switch, bit
+// for bit against the event engine before it, and for its record of the
+// switch. Their snapshots, checkpoint pauses, invariants and refusals are
+// every engine's contract (test_engine_contract.cpp). It cannot be bit-identical to the
 // event loop (the same physics rounded differently, amplified by chaos), so
 // the comparison runs until the time at which the reference loop itself
 // diverges from a copy started with one velocity changed by one ulp.
 #include <algorithm>
-#include <atomic>
 #include <filesystem>
 #include <string>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <numeric>
 #include <random>
 #include <vector>
 
@@ -47,6 +46,7 @@ using shockgas::HybridSwitchRule;
 using shockgas::InitialCondition;
 using shockgas::PassThroughEngine;
 using shockgas::Subthreshold;
+using shockgas::testing::log_times;
 
 // The agreement criterion: T(t) and the collision count agree to
 // 1e-12 relative at every sample before the chaos horizon. T is a sum of N
@@ -89,16 +89,6 @@ std::size_t first_difference(const Trace& a, const Trace& b) {
 
 InitialCondition random_ring(std::int64_t n, std::uint64_t seed) {
     return shockgas::generate_initial_condition(n, static_cast<double>(n), seed, 0);
-}
-
-std::vector<double> log_times(double first, double last, int per_decade) {
-    std::vector<double> times;
-    for (int k = 0;; ++k) {
-        const double t = first * std::pow(10.0, k / static_cast<double>(per_decade));
-        if (t > last) break;
-        times.push_back(t);
-    }
-    return times;
 }
 
 // >= 50 seeds, N = 2 ... 200, several (r, delta): an engine agrees with the
@@ -292,7 +282,7 @@ TEST(InversionOracle, AgreesWithTheReferenceLoopUntilTheChaosHorizon) {
 }
 
 // Lines level and closing at the start collide at the start time (the
-// engine's test of the same name): the oracle must not take the level pair
+// engines' EngineContract.CollidesAtTheStartTime, from the same start): the oracle must not take the level pair
 // for one that has crossed already.
 TEST(InversionOracle, CollidesAtTheStartTimeAsTheEventEngineDoes) {
     using shockgas::testing::unit_masses;
@@ -436,136 +426,6 @@ TEST(PassThroughEngine, NearlyParallelLinesCrossOnce) {
     }
 }
 
-// Momentum conserved, energy never rising, the ring in order (gaps >= 0 up
-// to rounding, summing to L), over millions of collisions.
-// Lines that start at one point and close collide at t = 0, and the state at
-// a sample includes every collision at its time: the sample at t = 0 is the
-// event engine's, one inelastic collision included (a case the independent
-// reference check, tests/python/test_reference_gas.py, found the pass-through
-// engine leaving to its first window).
-TEST(PassThroughEngine, CollidesAtTheStartTimeAsTheEventEngineDoes) {
-    InitialCondition start;
-    start.ring_length = 3.0;
-    start.position = {0.5, 1.0, 1.0};
-    start.velocity = {0.0, 0.5, -0.5};
-    start.mass = {1.0, 1.0, 1.0};
-    const CollisionModel model{0.5, 0.1, Subthreshold::elastic};
-    PassThroughEngine engine(start, model);
-    ReferenceEventEngine reference(start, model, CollapseCriterion{});
-    engine.advance_to(0.0);
-    reference.advance_to(0.0);
-    EXPECT_EQ(engine.collisions(), 1u);
-    EXPECT_EQ(reference.collisions(), 1u);
-    ClusterState mine;
-    ClusterState theirs;
-    engine.clusters(mine);
-    reference.clusters(theirs);
-    // g = 1 >= delta: Eq. (1) with r = 0.5 leaves -0.25 and +0.25, exactly.
-    EXPECT_EQ(mine.velocity, theirs.velocity);
-    EXPECT_EQ(mine.velocity, (std::vector<double>{0.0, -0.25, 0.25}));
-}
-
-TEST(PassThroughEngine, KeepsTheInvariants) {
-    const InitialCondition start = random_ring(1000, 99);
-    PassThroughEngine engine(start, CollisionModel{0.9, 0.01, Subthreshold::elastic});
-    const double momentum = std::accumulate(start.velocity.begin(), start.velocity.end(), 0.0);
-    double energy = std::inner_product(start.velocity.begin(), start.velocity.end(), start.velocity.begin(), 0.0);
-    // Rounding of momentum: N values of size <= 1, each collision exact up to
-    // an ulp; 1e-10 absolute is orders above that and far below a lost kick.
-    constexpr double momentum_tolerance = 1e-10;
-    // Gaps are differences of positions of size <= L + |v| t ~ 1e3 to 1e4:
-    // their rounding is ~1e-12; a missed crossing would give -O(1).
-    constexpr double gap_tolerance = 1e-9;
-    // The sum of 1000 gaps: each rounded to ~1e-12, a missed or doubled line
-    // would move it by the spacing, 1.
-    constexpr double ring_length_tolerance = 1e-6;
-    // Energy may "rise" only by the rounding of a sum of 1000 squares.
-    constexpr double energy_rounding = 1e-14;
-    for (const double t : log_times(1.0, 3e4, 4)) {
-        engine.advance_to(t);
-        ClusterState state;
-        engine.clusters(state);
-        const double p = std::accumulate(state.velocity.begin(), state.velocity.end(), 0.0);
-        const double e = std::inner_product(state.velocity.begin(), state.velocity.end(), state.velocity.begin(), 0.0);
-        EXPECT_NEAR(p, momentum, momentum_tolerance) << "t = " << t;
-        EXPECT_LE(e, energy * (1.0 + energy_rounding)) << "t = " << t;
-        energy = e;
-        const auto gaps = engine.gaps();
-        EXPECT_GE(*std::min_element(gaps.begin(), gaps.end()), -gap_tolerance) << "t = " << t;
-        EXPECT_NEAR(std::accumulate(gaps.begin(), gaps.end(), 0.0), start.ring_length, ring_length_tolerance)
-            << "t = " << t;
-    }
-    EXPECT_GT(engine.collisions(), 1000000u);
-    EXPECT_GT(engine.inelastic_collisions(), 10000u);
-}
-
-// A checkpoint between steps resumes bit for bit: the run that stopped at a
-// sample time, saved and restored, goes on exactly as the one that did not.
-TEST(PassThroughEngine, SnapshotResumesBitForBit) {
-    const InitialCondition start = random_ring(500, 5);
-    const CollisionModel model{0.8, 0.02, Subthreshold::elastic};
-    PassThroughEngine straight(start, model);
-    straight.advance_to(700.0);
-    straight.advance_to(2000.0);
-    PassThroughEngine first(start, model);
-    first.advance_to(700.0);
-    const auto snapshot = first.snapshot();
-    ASSERT_TRUE(snapshot.has_value());
-    PassThroughEngine resumed(start, model);
-    resumed.restore(*snapshot);
-    resumed.advance_to(2000.0);
-    ClusterState a;
-    ClusterState b;
-    straight.clusters(a);
-    resumed.clusters(b);
-    EXPECT_EQ(straight.collisions(), resumed.collisions());
-    EXPECT_EQ(a.velocity, b.velocity);
-    EXPECT_EQ(a.position, b.position);
-}
-
-// An ensemble of the elastic r = 0.9, delta = 1e-2 gas through the driver,
-// on `engine`, two realizations.
-shockgas::SimulationParameters elastic_ensemble(std::int64_t particles, double t_max, const std::string& engine) {
-    shockgas::SimulationParameters p;
-    p.particles = particles;
-    p.collision = {0.9, 0.01, Subthreshold::elastic};
-    p.t_max = t_max;
-    p.realizations = 2;
-    p.engine = engine;
-    return p;
-}
-
-// Through the ensemble driver: a run paused for checkpoints every 20 ms (the
-// driver snapshots and restores the engines) gives bit for bit the result of
-// the run that never paused, and restore_engine knows the engine's kind.
-TEST(PassThroughEngine, CheckpointPausesChangeNothing) {
-    shockgas::SimulationParameters p = elastic_ensemble(5000, 2000.0, "passthrough");
-    p.threads = 2;
-    const auto [reference, paused] = shockgas::testing::run_with_and_without_checkpoint_pauses(p, "passthrough");
-    EXPECT_EQ(reference.engine, "passthrough");
-}
-
-TEST(PassThroughEngine, RefusesWhatItCannotSolve) {
-    const InitialCondition start = random_ring(10, 1);
-    EXPECT_EQ(PassThroughEngine::unsupported_reason(start.mass, {0.9, 0.01, Subthreshold::elastic}, {}), "");
-    EXPECT_NE(PassThroughEngine::unsupported_reason(start.mass, {0.0, 0.01, Subthreshold::elastic}, {}), "");
-    EXPECT_NE(PassThroughEngine::unsupported_reason(start.mass, {0.9, 0.0, Subthreshold::elastic}, {}), "");
-    EXPECT_NE(PassThroughEngine::unsupported_reason(start.mass, {0.9, 0.01, Subthreshold::sticky}, {}), "");
-    InitialCondition heavy = start;
-    heavy.mass[3] = 2.0;
-    EXPECT_NE(PassThroughEngine::unsupported_reason(heavy.mass, {0.9, 0.01, Subthreshold::elastic}, {}), "");
-    CollapseCriterion slow_collapse;
-    slow_collapse.collapse_speed = 0.1;
-    EXPECT_NE(PassThroughEngine::unsupported_reason(start.mass, {0.9, 0.01, Subthreshold::elastic}, slow_collapse), "");
-    shockgas::SimulationParameters p;
-    p.engine = "passthrough";
-    p.collision = {0.0, 0.01, Subthreshold::elastic};
-    EXPECT_THROW(shockgas::resolve_engine_name(p), shockgas::InputError);
-    p.collision = {0.9, 0.01, Subthreshold::elastic};
-    EXPECT_EQ(shockgas::resolve_engine_name(p), "passthrough");
-    EXPECT_THROW(shockgas::resolve_engine_name(p, &heavy), shockgas::InputError);
-}
-
 // ---- The hybrid engine -------------------------------------------------------
 
 // A rule that hands over at the first check, at time `at`: the test hook
@@ -700,73 +560,12 @@ TEST(HybridEngine, AgreesWithTheReferenceLoopAcrossTheSwitch) {
                 totals.samples, static_cast<unsigned long long>(totals.collisions), totals.crossed, totals.cases);
 }
 
-// A snapshot resumes bit for bit, taken before the switch (the event engine's
-// state and the rule's counts) and after it (the pass-through engine's).
-TEST(HybridEngine, SnapshotResumesBitForBitBeforeAndAfterTheSwitch) {
-    const InitialCondition start = random_ring(1000, 9);
-    const CollisionModel model{0.8, 0.02, Subthreshold::elastic};
-    HybridSwitchRule rule = HybridSwitchRule::measured();
-    rule.first_check = 1.0;
-    rule.max_inelastic_share = 0.5;  // switches in this run, after the first pause
-    HybridEngine probe(start, model, {}, nullptr, rule);
-    probe.advance_to(3000.0);
-    ASSERT_TRUE(probe.switched());
-    const double switch_time = probe.switch_time();
-    for (const double pause : {0.5 * switch_time, 2.0 * switch_time}) {
-        // The run that does not stop makes the same calls (the pass-through
-        // engine's windows end at each time it is asked for, as the ensemble
-        // driver's samples are the same whether or not it checkpoints).
-        HybridEngine straight(start, model, {}, nullptr, rule);
-        straight.advance_to(pause);
-        straight.advance_to(3000.0);
-        HybridEngine first(start, model, {}, nullptr, rule);
-        first.advance_to(pause);
-        EXPECT_EQ(first.switched(), pause > switch_time);
-        const auto snapshot = first.snapshot();
-        ASSERT_TRUE(snapshot.has_value());
-        EXPECT_EQ(snapshot->kind, "hybrid");
-        HybridEngine resumed(start, model, {}, nullptr, rule);
-        resumed.restore(*snapshot);
-        resumed.advance_to(3000.0);
-        shockgas::testing::expect_identical(straight, resumed, "paused at t = " + std::to_string(pause));
-        EXPECT_EQ(straight.collisions(), resumed.collisions());
-        EXPECT_EQ(straight.switch_time(), resumed.switch_time());
-    }
-    // A snapshot of another engine is refused, naming both.
-    PassThroughEngine other(start, model);
-    HybridEngine fresh(start, model, {}, nullptr, rule);
-    EXPECT_THROW(fresh.restore(*other.snapshot()), shockgas::InputError);
-}
-
-// Through the ensemble driver with --engine hybrid: checkpoints every 20 ms
-// (before and after the switch) give bit for bit the run that never paused.
-TEST(HybridEngine, CheckpointPausesChangeNothing) {
-    // The measured rule switches at t ~ 5e3 here.
-    shockgas::SimulationParameters p = elastic_ensemble(5000, 12000.0, "hybrid");
-    p.threads = 2;
-    std::vector<double> switch_times;
-    for (std::int64_t k = 0; k < p.realizations; ++k) {
-        // The measured rule switches within this run, so pauses fall on both sides.
-        HybridEngine probe(shockgas::generate_initial_condition(p.particles, p.effective_ring_length(), p.seed, k),
-                           p.collision, p.collapse);
-        probe.advance_to(p.t_max);
-        ASSERT_TRUE(probe.switched());
-        ASSERT_LT(probe.switch_time(), 0.8 * p.t_max);
-        switch_times.push_back(probe.switch_time());
-    }
-    const auto [reference, paused] = shockgas::testing::run_with_and_without_checkpoint_pauses(p, "hybrid");
-    EXPECT_EQ(reference.engine, "hybrid");
-    // Each realization's hand-over is recorded, the same with pauses.
-    EXPECT_EQ(reference.engine_switch_time, switch_times);
-    EXPECT_EQ(paused.engine_switch_time, switch_times);
-}
-
 // The output file says when each realization switched: written, read back and
 // merged from parts as the other per-realization records; NaN for an engine
 // that never switches, infinity for a hybrid that had not yet, NaN from a file
 // written before the record existed (no dataset).
 TEST(HybridEngine, FileRecordsEachRealizationsSwitchTime) {
-    const shockgas::SimulationParameters p = elastic_ensemble(2000, 3000.0, "hybrid");
+    const shockgas::SimulationParameters p = shockgas::testing::elastic_ensemble(2000, 3000.0, "hybrid");
     const shockgas::EnsembleResult whole = shockgas::run_ensemble(p, nullptr);
     ASSERT_EQ(whole.engine_switch_time.size(), 2u);
     for (const double t : whole.engine_switch_time) EXPECT_TRUE(t > 0.0 && t < p.t_max) << t;
@@ -823,32 +622,12 @@ TEST(HybridEngine, FileRecordsEachRealizationsSwitchTime) {
     for (const auto& name : names) std::filesystem::remove(name);
 }
 
-// Refused exactly where the pass-through engine is, with one line naming the
-// engine and the reason.
-TEST(HybridEngine, RefusesWhatThePassThroughEngineRefuses) {
-    shockgas::SimulationParameters p;
-    p.engine = "hybrid";
-    p.collision = {0.9, 0.01, Subthreshold::elastic};
-    EXPECT_EQ(shockgas::resolve_engine_name(p), "hybrid");
-    const auto refusal = [&p](const InitialCondition* initial) -> std::string {
-        try {
-            shockgas::resolve_engine_name(p, initial);
-        } catch (const shockgas::InputError& e) {
-            return e.what();
-        }
-        return "";
-    };
-    p.collision = {0.9, 0.01, Subthreshold::sticky};
-    EXPECT_EQ(refusal(nullptr).rfind("--engine hybrid cannot run this: sticky", 0), 0u) << refusal(nullptr);
-    p.collision = {0.9, 0.0, Subthreshold::elastic};
-    EXPECT_EQ(refusal(nullptr).rfind("--engine hybrid cannot run this: delta = 0", 0), 0u) << refusal(nullptr);
-    p.collision = {0.9, 0.01, Subthreshold::elastic};
+// Built directly (not through the factory, whose refusal is the engine
+// contract's), it refuses unequal masses as an invalid argument.
+TEST(HybridEngine, BuiltDirectlyRefusesUnequalMasses) {
     InitialCondition heavy = random_ring(10, 1);
     heavy.mass[3] = 2.0;
-    EXPECT_EQ(refusal(&heavy).rfind("--engine hybrid cannot run this: unequal masses", 0), 0u) << refusal(&heavy);
-    EXPECT_EQ(refusal(nullptr), "");
-    EXPECT_THROW(HybridEngine(heavy, p.collision, {}), std::invalid_argument);
-    EXPECT_NO_THROW(shockgas::validate(p));
+    EXPECT_THROW(HybridEngine(heavy, {0.9, 0.01, Subthreshold::elastic}, {}), std::invalid_argument);
 }
 
 // auto picks the hybrid engine wherever the pass-through engine applies, and
