@@ -6,7 +6,8 @@
 #   2. a consumer project (tests/install/consumer, ~20 lines) finds the package
 #      with find_package(shockgas), links shockgas::sim, runs the event engine
 #      and prints T; that T must equal, to the last bit, the T the installed
-#      shockgas-sim wrote for the same parameters and seed;
+#      shockgas-sim wrote for the same parameters and seed; and docs/library.md's
+#      program, as the page writes it, writes the file shockgas-sim writes;
 #   3. the Python module is imported from the prefix (not the source tree) and
 #      reads that run;
 #   4. the installed figure project (share/shockgas) builds Fig. 3 with the
@@ -61,6 +62,31 @@ cmake --build consumer >>consumer.log 2>&1 || { cat consumer.log; fail "building
 consumer_line=$(./consumer/consumer)
 echo "consumer: $consumer_line"
 consumer_T=${consumer_line##* T }
+
+# 2b. docs/library.md's program, as the page writes it: built against the package, run, its file equal
+# bit for bit to shockgas-sim's for the same parameters, and its input check refusing r = 1.5 in one line.
+mkdir library && "$python" - "$source/docs/library.md" library <<'PYTHON' || fail "docs/library.md: no program and CMakeLists.txt"
+import re, sys
+page, out = open(sys.argv[1], encoding="utf-8").read(), sys.argv[2]
+blocks = re.findall(r"```(cpp|cmake)\n(.*?)```", page, re.S)
+program = next(code for kind, code in blocks if kind == "cpp" and code.startswith("// my_ensemble.cpp"))
+cmake = next(code for kind, code in blocks if kind == "cmake" and code.startswith("# CMakeLists.txt"))
+open(f"{out}/my_ensemble.cpp", "w").write(program)
+open(f"{out}/CMakeLists.txt", "w").write(cmake)
+PYTHON
+(cd library && cmake -S . -B build -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >build.log 2>&1 &&
+  cmake --build build >>build.log 2>&1) || { cat library/build.log; fail "building docs/library.md's program"; }
+(cd library && ./build/my_ensemble) >library/run.log || fail "docs/library.md's program: $(cat library/run.log)"
+grep -Eq '^[a-z]+ engine, [0-9]+ collisions: T\(1000\) = 0\.[0-9]+' library/run.log || fail "its line: $(cat library/run.log)"
+shockgas-sim -N 10000 -r 0.9 -d 1e-2 --subthreshold elastic -t 1000 -R 4 -s 7 --engine auto -q -o library/sim.h5 \
+  2>/dev/null || fail "shockgas-sim with docs/library.md's parameters"
+"$python" "$source/tests/compare_outputs.py" library/sim.h5 library/my_ensemble.h5 >library/compare.log ||
+  fail "docs/library.md's file differs from shockgas-sim's: $(cat library/compare.log)"
+status=0
+refusal=$(cd library && ./build/my_ensemble 1.5 2>&1) || status=$?
+[ "$status" = 2 ] && [ "$refusal" = "my_ensemble: error: restitution r must lie in [0, 1], got 1.5" ] ||
+  fail "docs/library.md's program with r = 1.5: status $status, '$refusal'"
+echo "docs/library.md: $(cat library/run.log); its file equals shockgas-sim's"
 
 # 3. The Python module, from the prefix's module folder only.
 module_dir=$(ls -d "$prefix"/lib/python3*/site-packages)
