@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Collisions per second of the engines (Google Benchmark), on the paper's
 // workload: r = 0.9, delta = 1e-2, elastic sub-threshold, equally spaced
 // particles with velocities uniform on [-1, 1], run to t = 300.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Long-run drift of the conserved and bounded quantities of one realization
 // (the stability question: how far do total momentum, kinetic energy and the
 // smallest gap move over the longest run one can afford, against what

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-drift: long-run drift of total momentum, kinetic energy and the
 // smallest gap of one realization against what rounding alone can do (the
 // measurement and its columns: drift.hpp). This program binds its options

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Archival reproduction (docs/archive.md). tools/reproduce-check does the work;
 # these functions only pass it what CMake knows about the build.
 #

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Run at build time (cmake -P): captures `git describe --always --dirty` so the
 # version recorded in every output file is the code that was actually built,
 # and simulator_sha256, the hash of the simulator's sources, compiler and flags

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Install rules (docs/install.md), in the usual GNUInstallDirs layout:
 #
 #   bin/                                 shockgas-sim, -merge, -dump, -burgers, -analyze

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Run by `cmake --install` and cpack before any other install rule (install(CODE) at the top of
 # cmake/Install.cmake): every file the installation takes from the build tree must be there.
 # A tree built only in part (one program, or no man pages) is refused with the files it lacks and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Run by `cmake --install` and cpack (install(CODE) in cmake/Install.cmake):
 # copies python/shockgas into the module folder that the installation
 # prefix's Python reads, decided now because the prefix may differ from the

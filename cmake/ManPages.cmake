@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Man pages made from each program's --help (and --version) by Debian's
 # help2man at build time, so they cannot disagree with the programs; installed
 # to share/man/man1, compressed as Debian's policy asks (gzip -9n: no name or

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # cpack -G DEB (run in the build directory) writes two Debian packages:
 #   shockgas      the programs, the Python module, the figure project, man pages and docs
 #   shockgas-dev  headers, static libraries and the CMake package (find_package(shockgas))

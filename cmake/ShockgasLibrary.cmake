@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # shockgas_library(<role> SOURCES <files...> [PUBLIC <targets...>] [PRIVATE <targets...>])
 # One room's library: target shockgas_<role>, used as shockgas::<role> (here and,
 # installed, through find_package(shockgas)), its public headers in the room's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Find a Python 3 interpreter that can import numpy, scipy and h5py. Debian's
 # python3-numpy & co. install into /usr/bin/python3, which need not be the
 # python3 first on PATH (pyenv, conda, venvs), so each candidate is asked.

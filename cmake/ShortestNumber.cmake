@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # CMake reads a JSON number as 17 significant digits (restitution 0.9 comes
 # back as 0.90000000000000002), which then shows in every command and build
 # log. This gives the shortest decimal that CMake's own JSON reader turns back

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # shockgas_source_hash(<hash_var> <listing_var> SOURCE_DIR DIRECTORIES COMPILER_INFO):
 # SHA-256 over COMPILER_INFO and every file under DIRECTORIES (a CMake list of
 # directories and single files), each file's own SHA-256 and path relative to

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Run at build time (cmake -P). Writes STAMP = SHA-256 over the simulator's
 # sources and the compiler and flags (shockgas_source_hash, SourceHash.cmake),
 # rewriting the file only when that hash changes. Simulations depend on this

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 1 of Ben-Naim et al. (1999): T(t) for r = 0, 0.5, 0.9, 0.99 (delta = 1e-2),
 # the pure inelastic gas (delta = 0) as dots that stop at collapse, the
 # paper's reference slope -2/3 and the exact sticky-gas asymptote kappa t^(-2/3).

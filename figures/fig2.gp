@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 2 of Ben-Naim et al. (1999): role of the velocity threshold delta and of
 # the sub-threshold mechanism, r = 0.9. Top: T(t); bottom: each T(t) divided by
 # the delta = 1e-3, elastic curve (same initial conditions: same seed).

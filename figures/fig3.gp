@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 3 of Ben-Naim et al. (1999): space-time evolution of 500 particles,
 # r = 0.9, delta = 1e-2, up to t = 600. Each dot is one particle at one
 # snapshot (every unit of time); the particles' order never changes, so the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 4 of Ben-Naim et al. (1999): the mass-weighted velocity distribution
 # P(v,t) rescaled as Phi(z) = t^(-1/3) P(v,t), z = v t^(1/3), for r = 0, 0.5, 0.9
 # at three times (nine curves), against the exact sticky-gas Phi(z) (Frachebourg,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 4 with sticky sub-threshold collisions for r = 0.5 and 0.9 (clusters merge
 # below delta instead of colliding elastically), the paper's other mechanism,
 # drawn by fig4.gp from this figure's own phi.dat: the same nine blocks, r = 0

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 5 of Ben-Naim et al. (1999): shock profile of the inelastic gas.
 # Top: density (mass per unit length, bins of width L/200); bottom: velocity
 # against position, with a line of slope 1/t (Eq. 7: v = (x - q)/t between shocks).

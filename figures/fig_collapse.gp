@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Inelastic collapse of the pure inelastic gas (delta = 0) against eps and N
 # (docs/haff-and-collapse.md, "Collapse against eps and N").
 # (a) t_collapse eps^(3/2) and (b) cluster mass x eps against eps, at N = K/eps

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The crossover times the paper implies (Eq. 3): t_dissip ~ eps^-1, where T
 # leaves its initial value (T = T0/2); t_stick ~ eps^-3/2, where the Haff decay
 # gives way to the sticky-gas t^(-2/3) (T reaches twice the fitted Haff curve);

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Early cooling of the pure inelastic gas against Haff's law derived for this
 # collision rule (docs/haff-and-collapse.md): T/T0 = 1/(1 + A eps(1-eps) sqrt(T0) t)^2,
 # A = 6 sqrt(3)/5, T0 = 1/3. In the variable eps(1-eps) t all eps fall on one

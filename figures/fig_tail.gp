@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The far tail of the sticky gas's Phi (docs/far-tail.md): ln Phi from the
 # biased-chain sampler against the exact Phi (python/exact_ballistic.py, EB8)
 # and the Gaussian of the same variance; below, the local exponent

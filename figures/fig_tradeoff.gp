@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The speed/accuracy trade. (a) |<T>/<T_ref> - 1| against t for delta = 1e-2,
 # 1e-3, 1e-4 and both sub-threshold mechanisms, the reference being delta =
 # 1e-4, elastic, from the same initial conditions (P5: independent of delta up

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # A look at any one run (tools/shockgas-look): T(t) with the fitted power law
 # and, when the run stored histograms, the rescaled P(v,t) of every histogram
 # time. Variables (-e): tfile (T(t) data of shockgas-analyze decay --data),

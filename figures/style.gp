@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Shared style for every shockgas figure. CMake runs each figure script twice,
 # with format = 'png' and format = 'pdf'; loading this file sets the terminal
 # and the output file, so the scripts themselves only plot. format = 'svg'

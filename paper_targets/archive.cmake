@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Archival reproduction (docs/archive.md).
 #   archive          every figure at this fidelity -> shockgas-<describe>-<fidelity>.tar.gz
 #   archive_fig3     Fig. 3 alone (< 1 s of simulation) -> ...-<fidelity>-fig3.tar.gz; used by the tests

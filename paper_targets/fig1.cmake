@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 1: T(t) for r = 0, 0.5, 0.9, 0.99 with delta = 1e-2, and the pure
 # inelastic gas (delta = 0) as dots that stop at collapse. Each delta > 0 curve
 # gets the decay exponent fitted over the automatic post-crossover window.

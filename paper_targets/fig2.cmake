@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 2: role of the velocity threshold and of the sub-threshold mechanism
 # (r = 0.9). Every curve gets its decay exponent; the lower panel shows each
 # T(t) relative to delta = 1e-3, elastic (the most accurate setting).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 3: world lines of 500 particles (snapshots every unit of time).
 shockgas_figure_runs(fig3)
 shockgas_step(

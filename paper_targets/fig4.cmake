@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 4: the mass-weighted velocity distributions of r = 0, 0.5, 0.9 at three
 # times, rescaled by t^(1/3); scaling exponent, kurtosis and tail fitted.
 shockgas_figure_runs(fig4)

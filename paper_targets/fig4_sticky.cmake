@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 4 with sticky instead of elastic sub-threshold collisions, the paper's
 # other mechanism (its Fig. 2 finds the two give the same T(t)). Elastic
 # collisions inside a cluster are almost every event of Fig. 4's paper runs

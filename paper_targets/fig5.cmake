@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fig. 5: density and velocity profile at the snapshot time; shocks counted and
 # the slopes of the segments between them fitted (Eq. 7: slope 1/t). The count
 # is shockgas-analyze's default rule, the one shockgas-burgers compares with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Inelastic collapse (delta = 0) against eps and N
 # (docs/haff-and-collapse.md): collapse time and cluster mass per eps with the
 # competing forms fitted, and first-collapse statistics across N at one eps.

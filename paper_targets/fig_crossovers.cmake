@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # t_dissip, t_stick and T(t_stick) against eps, with power-law fits against the
 # predicted -1, -3/2 and +1 (Eq. 3 and the text around Fig. 1).
 shockgas_figure_runs(fig_crossovers)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Early-time T(t) of the pure inelastic gas against the derived Haff law.
 shockgas_figure_runs(fig_haff)
 set(_haff_data)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The far tail of Phi (docs/far-tail.md): the sticky gas's Phi(z) from
 # the biased-chain sampler down to ~1e-55 against the exact curve, with gamma
 # fitted and the local exponent. The sampler's options per fidelity are here

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The speed/accuracy trade (docs/figures-and-fidelity.md): cost and accuracy of the threshold delta
 # and of the sub-threshold mechanism against the most accurate run (delta =
 # 1e-4, elastic), and the decay exponent's statistical error against CPU.

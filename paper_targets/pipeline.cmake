@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The figure pipeline's building blocks. A figure's runs are read from
 # paper_targets/<figure>.<fidelity>.json:
 #   {"runs": [{"name": "r0.9", "label": "r = 0.9", "parts": 1,

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Exact asymptotic theory of 1D ballistic aggregation (sticky gas, r = 0) in shockgas units.
 
 Run with Debian's interpreter (needs numpy + scipy):

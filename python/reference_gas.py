@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """A plain event-driven reference for the inelastic gas on a ring, written from the physics alone.
 
     /usr/bin/python3 python/reference_gas.py INIT.h5 -r 0.9 -d 0.01 --subthreshold elastic --t-max 10

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Refit the decay exponent of a shockgas-analyze `decay` results file with scipy, independently of
 the C++ (GSL) code, and check agreement.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Exact state of a sticky gas (r = 0) at any time t, without events, by isotonic regression.
 
 Run with Debian's interpreter (numpy):

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """compare_outputs.py REFERENCE OTHER [MPI_RANKS]: exit 0 when every group,
 dataset and attribute of two shockgas-sim files is identical bit for bit,
 except the root attributes that describe the run rather than its results.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // An independent pass-through engine, for tests only: the same physics as
 // PassThroughEngine (world lines; a crossing closing at >= delta bends both
 // lines by the one collision rule, a slower one passes), but with the elastic

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One randomized workload for the event queues' property tests (tests only):
 // schedule / reschedule / remove / take-the-top over a few hundred slots, with
 // times on a 1/8 grid so that exact ties, which the (time, slot) rule must

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Two engines' ensembles of the same run, compared statistically.
 
     /usr/bin/python3 tools/compare_engine_ensembles.py A.h5 B.h5

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Cost and accuracy of every figure at one fidelity, as Markdown tables.
 
 Usage: /usr/bin/python3 tools/fidelity_report.py BUILD_DIR [quick|paper] [--readme | --check-readme README.md | --progress]

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install the Debian packages shockgas needs. Idempotent and non-interactive:
 # when everything is already installed it only runs dpkg-query and exits.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 
 packages=(

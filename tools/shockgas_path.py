@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """How the scripts in tools/ find the Python module shockgas: the one place that says so.
 
 A script in tools/ imports this module first (`import shockgas_path`; Python finds it because a

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Reads a shockgas-tail estimate of Phi against the exact sticky-gas Phi (python/exact_ballistic.py).
 
     /usr/bin/python3 tools/tail_against_exact.py TAIL.h5 [--z 1,2,3,4,5,5.5,6,6.5]

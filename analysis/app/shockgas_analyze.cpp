@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-analyze: one subcommand per estimator of the analysis library.
 // Binds the arguments to a shockgas::analysis::AnalyzeRequest and runs it
 // (run_analyze, shockgas/analysis/analyze_command.hpp), which checks the values

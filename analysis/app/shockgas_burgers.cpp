@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-burgers: the Burgers velocity profile from the initial condition of
 // a particle run, for Fig. 5 (docs/continuum.md: Burgers with nu -> 0 is the sticky
 // gas; shocks <-> clusters, v = (x - q)/t between shocks, Eq. 7).

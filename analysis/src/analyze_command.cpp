@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-analyze's checks and dispatch (shockgas/analysis/analyze_command.hpp).
 #include "shockgas/analysis/analyze_command.hpp"
 

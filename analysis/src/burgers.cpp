@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Burgers equation on a ring: inviscid (Legendre transform / convex minorant)
 // and viscous (Hopf-Cole, cell-by-cell closed form, log-sum-exp). See burgers.hpp.
 #include "shockgas/analysis/burgers.hpp"

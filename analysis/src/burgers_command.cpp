@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-burgers' work (shockgas/analysis/burgers_command.hpp).
 #include "shockgas/analysis/burgers_command.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The commands of shockgas-analyze, one per estimator (commands.hpp): each reads its inputs, runs
 // the library's estimators on them, and writes the results file, the gnuplot data files and one
 // summary line. The checks of option values come first (run_analyze, analyze_command.cpp); argument

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Read every file shockgas writes into numpy arrays and attribute dicts (text as str).
 
     import shockgas

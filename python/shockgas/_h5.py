@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The one place in Python that opens shockgas's HDF5 files (h5py), as sim/io/include/shockgas/io/h5.hpp is
 in C++: opening with the schema check, attribute decoding, and a generic tree of groups."""
 import contextlib

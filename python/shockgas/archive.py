@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Archiving a shockgas figure build, and checking that an archive reproduces: the work of
 tools/reproduce-check, its command line (main) included (docs/archive.md).
 

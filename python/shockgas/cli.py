@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """How the project's Python scripts refuse a user's mistake: one line "<program>: error: <what>" on
 stderr and exit status 2, as the C++ programs do (docs/cli-and-output.md), never argparse's usage
 block or a traceback.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Comparing two outputs of shockgas: which attributes describe a run rather than its results, and
 the rules by which a file and its rerun are the same.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The kinds of file shockgas writes, and one reader for each (layouts: docs/cli-and-output.md).
 
     run         shockgas-sim and shockgas-merge output          read_run        -> Run

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Which file layouts this module reads: the root attribute `schema_version`.
 
 Every HDF5 file shockgas writes (runs, merged runs, checkpoints, analysis results, drift records,

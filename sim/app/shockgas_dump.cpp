@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-dump: turns parts of HDF5 files into plain text for gnuplot.
 //   snapshots FILE.h5 [--realization k]   rows "time position velocity mass first_particle",
 //                                         one block (blank line) per snapshot

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-merge: joins ensemble parts (shockgas-sim --first-realization k)
 // into one file with the datasets a single run of all realizations writes; its
 // root attributes are the run's (the first part's date and host), and

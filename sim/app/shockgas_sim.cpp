@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-sim: binds the command line to a shockgas::SimulationRequest, runs it
 // (shockgas::run_simulation, sim/run) and shows the outcome.
 #include <atomic>

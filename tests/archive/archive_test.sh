@@ -3,6 +3,7 @@
 # check that it reproduces from its own source in a fresh build directory, then
 # check altered copies and expect each alteration to be named.
 #   archive_test.sh <build dir> <python> <work dir>
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 build=$1 python=$2 work=$3
 tool="$(cd "$(dirname "$0")/../.." && pwd)/tools/reproduce-check"

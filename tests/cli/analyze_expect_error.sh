@@ -4,6 +4,7 @@
 # files): passes when COMMAND exits with status 2, prints exactly one line on
 # stderr matching REGEX, and leaves none of the OUTPUTs (space-separated)
 # behind, nor a temporary file of any of them.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 regex=$1 outputs=$2
 shift 3

@@ -8,6 +8,7 @@
 # and 100), short_tail.h5 (a far tail reaching z ~ 3.3), col06.h5 and col_one.h5
 # (delta = 0 runs that collapse: three realizations at r = 0.6, one at r = 0.5), col4k.h5
 # (three at N = 4000, r = 0.5).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 source "$(dirname "$0")/results_helpers.sh"
 analyze=$1 dump=$2 work=$3

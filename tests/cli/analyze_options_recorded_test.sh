@@ -8,6 +8,7 @@
 # 416 shocks). Also: scaling on an interrupted run stores how many
 # realizations each histogram time used. WORKDIR holds the fixture's runs
 # (snap1.h5, a.h5, hist.h5, interrupted.h5; tests/cli/analyze_tests.cmake).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 source "$(dirname "$0")/results_helpers.sh"
 analyze=$1 dump=$2 work=$3

@@ -5,6 +5,7 @@
 # file: each such run is refused before any work, with one line and status 2,
 # and the input is left byte for byte as it was. WORKDIR holds the fixture's
 # runs a.h5 (two realizations, r = 0.5) and e05.h5 (r = 0.9).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 analyze=$1 work=$2
 cd "$work" || exit 1

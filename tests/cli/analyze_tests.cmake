@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # End-to-end tests of shockgas-analyze's answers to bad input and to data that
 # do not determine a number: one line "shockgas-analyze: error: <what>", exit
 # status 2 and no output file (expect_error.sh), or a number reported as

@@ -5,6 +5,7 @@
 # seed, realization and law of a drawn start, or the run and its realization,
 # so that two profiles of other seeds can be told apart. RUN.h5: -N 400, seed 1, realizations 3 and 4 drawn
 # (--first-realization 3), Gaussian velocities, a snapshot at t = 20.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 burgers=$1 run=$2 work=$3
 mkdir -p "$work" && cd "$work" || exit 1

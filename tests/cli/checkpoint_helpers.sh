@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sourced by the checkpoint tests (sigkill_resume_test.sh, damaged_checkpoint_test.sh, faults_test.sh).
 
 # run_until_checkpoints COUNT SIGNAL ERRFILE -- COMMAND...

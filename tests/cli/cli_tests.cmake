@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # End-to-end tests of shockgas-sim: every bad input gives one line naming the
 # problem, a nonzero exit status and no output file; good runs write files
 # with the right status.

@@ -14,6 +14,7 @@
 # It also counts the damaged copies that were detected: with checksums on
 # every dataset and on the metadata nearly all must be (damage in unused
 # bytes of the file changes nothing and may pass).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 sim=$1 python=$2 same=$3 dir=$4
 source "$(dirname "$0")/checkpoint_helpers.sh"

@@ -3,6 +3,7 @@
 # Passes when COMMAND exits with status 2 (every shockgas program's status for
 # bad input; not 1, an internal error, nor >= 128, a crash), prints exactly
 # one line on stderr matching REGEX, and leaves no OUTPUT file behind.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 regex=$1 output=$2
 shift 3

@@ -26,6 +26,7 @@
 #                         line, exit 0, the file untouched and nothing run; an interrupted output, one of
 #                         another build or with other parameters, or one beside a checkpoint is recomputed
 #                         (or continued) as before; without --resume a rerun replaces it
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 case_name=$1 sim=$2 dir=$3 python=${4:-} same=${5:-}
 source "$(dirname "$0")/checkpoint_helpers.sh"

@@ -9,6 +9,7 @@
 #     (not 894.427).
 # WORKDIR holds the analyze fixture's runs: hist.h5 (N = 2000, r = 0.5, t = 1000, histograms at
 # t = 10 and 100) and short_tail.h5 (a far tail of the sticky gas at t = 100).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 analyze=$1 dump=$2 python=$3 source=$4 work=$5
 fail() { echo "FAIL: $*"; exit 1; }

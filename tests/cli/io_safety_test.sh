@@ -23,6 +23,7 @@
 #   output_not_creatable         -o in a directory where no file can be created (/sys, where even root
 #                                cannot): refused before any work; for root, access(W_OK) says yes, and a
 #                                run without checkpoints would find out only at its end, its results lost
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 case_name=$1 dir=$2 sim=$3 merge=$4 dump=$5 python=${6:-}
 source "$(dirname "$0")/checkpoint_helpers.sh"

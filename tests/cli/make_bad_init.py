@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes malformed --init files for the CLI tests (needs h5py)."""
 import sys
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Copies a shockgas-sim output (with snapshots) into files whose datasets or
 attributes disagree, as damage or a hand edit would leave them (needs h5py).
 

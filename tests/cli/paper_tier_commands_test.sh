@@ -11,6 +11,7 @@
 #  3. One command run for real: fig3's (CI_BUILD's quick tree, built by the figures fixture), its output
 #     moved to WORK_DIR, equals the pipeline's own file bit for bit (shockgas.compare.identical_runs; the
 #     version attribute aside, see below).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 tool=$1 python=$2 source=$3 ci_build=$4 work=$5
 fail() { echo "FAIL: $*"; exit 1; }

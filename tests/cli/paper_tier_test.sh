@@ -9,6 +9,7 @@
 # way (so a later start resumes it); and that paper-tier.times records each start and end; and that
 # --jobs 2 runs two targets at once (two that each wait for the other to start, so that one at a time
 # times out).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 tool=$1 sim=$2 work=$3
 fail() {

@@ -13,6 +13,7 @@
 #   3. build TARGET again: it must resume from the staged run's checkpoint,
 #      succeed, and leave RUN_H5 with status "complete".
 # It fails, rather than passing vacuously, if the run ends before it is stopped.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 build=$1 target=$2 out=$3 python=$4
 staged="${out%.h5}.running.h5"

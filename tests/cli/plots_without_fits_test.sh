@@ -10,6 +10,7 @@
 # r = 0.6), col_one.h5 (one, r = 0.5), col4k.h5 (three, N = 4000), col300.h5
 # (three, N = 300: N/m = 30, below the Gumbel fit's 50 regions), e05.h5
 # (four realizations, r = 0.9), e10_one.h5 (one, r = 0.8).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 analyze=$1 dump=$2 gnuplot=$3 figures=$4 work=$5
 cd "$work" || exit 1

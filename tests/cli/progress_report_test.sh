@@ -7,6 +7,7 @@
 # one at that time less what its checkpoint has spent); list a checkpoint moved aside by a run of another
 # code version, and apart from it one moved aside as another run's (--set-aside-other-runs: parameters
 # edited), with its size on disk; and report fig_tail (no parameter file): its sampler running, from paper-tier.log, then done.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 sim=$1 python=$2 report=$3 work=$4
 here=$(cd "$(dirname "$0")" && pwd)

@@ -4,6 +4,7 @@
 # (a gap at part 0). The tool must merge r = 0.5's two parts, leave r = 0.9 out (shockgas-merge
 # refuses a gap), fit the collapse and draw the figure. With r = 0.5 absent and r = 0.9 finished, the
 # legend labels r = 0.9's points r = 0.9. A part of another delta is refused with shockgas-merge's reason.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 sim=$1 merge=$2 dump=$3 analyze=$4 python=$5 work=$6
 here=$(cd "$(dirname "$0")" && pwd)

@@ -5,6 +5,7 @@
 # README's form (claim, quick tier, paper tier, paper / theory) with the
 # numbers of the files, so the README's results table can be regenerated from
 # a build instead of typed.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 build=$1 python=$2 work=$3
 sim=$build/bin/shockgas-sim analyze=$build/bin/shockgas-analyze

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sourced by the analysis tests that read results files back (needs $dump, shockgas-dump, and fail()).
 # has FILE GROUP LINE-REGEX: the group's attributes (shockgas-dump gnuplot-vars) include a line matching.
 has() {

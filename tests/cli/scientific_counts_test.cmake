@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # cmake -DSIM=shockgas-sim -DDUMP=shockgas-dump -DWORK=dir -P scientific_counts_test.cmake
 # Counts written in scientific notation (-N 1.2e3) run as the whole numbers they are: the run's
 # file records N = 1200, R = 2 and 80 histogram bins.

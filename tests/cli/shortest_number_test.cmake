@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # cmake -P: the pipeline's numbers as they were written (cmake/ShortestNumber.cmake).
 include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/ShortestNumber.cmake)
 foreach(case "0.9|0.9" "0.99|0.99" "0.0125|0.0125" "0.3|0.3" "2.5e-3|0.0025" "-0.5|-0.5" "100000|100000"

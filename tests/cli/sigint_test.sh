@@ -2,6 +2,7 @@
 # sigint_test.sh SIM OUTPUT: starts a run far too long to finish, sends SIGINT
 # after it has started, and checks that the file is written and says
 # status = interrupted (read back with h5dump if present, else strings).
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 sim=$1 output=$2
 rm -f "$output" "$output.checkpoint" "$output.checkpoint.previous"  # a fresh run: an earlier run's interrupted checkpoint would refuse it (no --resume)

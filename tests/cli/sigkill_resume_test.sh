@@ -10,6 +10,7 @@
 #      give datasets bit-identical to the reference (compare_outputs.py).
 # The test fails, rather than passing vacuously, if the run ends before it
 # can be killed.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 sim=$1 python=$2 same=$3 dir=$4
 source "$(dirname "$0")/checkpoint_helpers.sh"

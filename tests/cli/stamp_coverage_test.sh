@@ -15,6 +15,7 @@
 #     edits that do (the collision rule, an engine, the ensemble driver, the
 #     output writer) change it; the tail sampler's hash moves with the sampler
 #     and not with an engine.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 build=$1 source=$2 sim_directories=$3 tail_directories=$4
 fail() { echo "FAIL: $*"; exit 1; }

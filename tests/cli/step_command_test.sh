@@ -9,6 +9,7 @@
 # dump (its run is under a second): built, up to date, then its command record
 # changed -> the step reruns; configuring restores the record -> it reruns again,
 # and then nothing does.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 build=$1
 step='\[fig3\] world lines'

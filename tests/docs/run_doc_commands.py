@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Runs the commands of a user's page exactly as written, in a checkout that looks like a user's
 after the README's first command (label docs).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The quick-fidelity figures, through the real pipeline: every figure exists as
 // PNG and PDF, and the fitted numbers each figure reports agree with theory.
 // The FIXTURES_SETUP test figures.build ran `cmake --build --target figures`.

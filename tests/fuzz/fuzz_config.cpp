@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer harness: shockgas-sim's parameter and config-file parsing.
 //
 // shockgas_sim.cpp is compiled into this harness with main renamed (see

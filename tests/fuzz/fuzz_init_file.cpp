@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer harness: the --init reader on arbitrary bytes.
 //
 // Mode byte 0 (even): the bytes are written as they are to a temporary .h5

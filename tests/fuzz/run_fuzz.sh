@@ -8,6 +8,7 @@
 #   run OUT_DIR HARNESS CORPUS_DIR SECONDS
 #       fuzzes for SECONDS starting from the corpus (not modified: new inputs
 #       go to a scratch directory); a crash or sanitizer report fails.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 mode=$1
 shift

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """figures_build_test.py SOURCE_DIR WORK_DIR (label install; docs/install.md)
 
 `cmake --install` after the README's first build, which is `--target figures`, not the whole

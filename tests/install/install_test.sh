@@ -13,6 +13,7 @@
 #   4. the installed figure project (share/shockgas) builds Fig. 3 with the
 #      installed programs;
 #   5. the man pages are there and hold the programs' options.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) python=$3
 fail() { echo "FAIL: $*"; exit 1; }

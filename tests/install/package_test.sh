@@ -3,6 +3,7 @@
 # `cpack -G DEB` must write the two Debian packages, with their dependencies
 # declared (the libraries' packages, found by dpkg-shlibdeps, and those named in
 # cmake/Packaging.cmake) and the files each must hold; the packaged program must run.
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 build=$(cd "$1" && pwd) cpack=$2
 fail() { echo "FAIL: $*"; exit 1; }

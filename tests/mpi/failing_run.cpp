@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A stand-in for shockgas-sim whose rank 1 fails during its run, as an engine
 // exception or std::bad_alloc would: main catches it, prints its line and
 // returns. Rank 0 meanwhile "runs" far longer than the test's time limit, so

@@ -23,6 +23,7 @@
 #                 finds nothing to do, every rank leaves, exit 0, one line, the
 #                 file untouched
 # MPIEXEC... is the launcher and its process-count flag, e.g. "mpiexec -n".
+# SPDX-License-Identifier: GPL-3.0-or-later
 set -u
 case_name=$1 sim=$2 failing_run=$3 python=$4 work=$5
 shift 5

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The paper's numbers from quick-fidelity simulations (fixed seeds), run
 // through shockgas::run_ensemble and the analysis library. Every tolerance is
 // k = 3 standard errors of the estimate (jackknife over realizations), unless

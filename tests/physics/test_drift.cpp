@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The drift measurement (drift.hpp) called as a library: its rounding
 // bounds as formulas, a run of every equal-mass engine that stays within them,
 // and a start off by 1e-9 that must not.

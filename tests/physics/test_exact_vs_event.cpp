@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The exact sticky-gas engine against the event-driven engine at r = 0,
 // cluster for cluster: 60 seeds x 3 kinds of initial condition, N = 2..10^4,
 // from t < 1 to past the single-cluster final state.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Extremes: every engine path at the edges of parameter space.
 //
 // r in {0, 1e-6, 0.5, 1 - 1e-6, 1}, delta in {0, 1e-12, 1e-2, 1}, both

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The sticky gas's far tail at quick fidelity: the sampler (shockgas-tail's
 // library) at t = 100 gives Phi on the exact curve 10^-34 deep and the tail
 // exponent gamma = 3 (docs/far-tail.md). About 20 s of CPU.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The event engine against conservation laws and theory at small N, fixed seeds.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Exact-engine prefactor: T(t) t^(2/3) / kappa = 1 within its error at late times.
 
     PYTHONPATH=python /usr/bin/python3 tests/python/check_exact_prefactor.py RUN.h5

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Python cross-checks, label python. Each test makes its own input through a
 # FIXTURES_SETUP test (never the figure build) and exits 77 -> SKIPPED without numpy/scipy/h5py.
 if(NOT SHOCKGAS_PYTHON)

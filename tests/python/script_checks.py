@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Helpers for the tests of the project's Python scripts as a user runs them (tests/python/test_*_cli.py).
 
 A user's mistake must give exit status 2 and one line "<script>: error: <what>" on stderr, never a

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Unit test of reproduce-check's HDF5 comparison rules (shockgas.compare, shockgas.archive) on
 synthetic results files (label archive): same toolchain -> bit-identical required; another compiler
 -> numbers X with X_sigma must agree within k sqrt(sigma_a^2 + sigma_b^2); date, host and timings

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Every output of the Python scripts is written whole or not at all (ctest python.atomic_output,
 label python; about 3 s of CPU, most of it starting Python with numpy).
 

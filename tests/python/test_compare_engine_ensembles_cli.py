@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """tools/compare_engine_ensembles.py refuses what it cannot compare, and a NaN statistic fails
 (ctest python.compare_engine_ensembles, label python; about 10 s of CPU).
 

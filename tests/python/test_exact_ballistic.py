@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Checks of python/exact_ballistic.py and python/sticky_pav.py (plain asserts, no pytest).
 
     PYTHONPATH=python /usr/bin/python3 tests/python/test_exact_ballistic.py     (about 30 s on one core)

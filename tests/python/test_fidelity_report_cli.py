@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """tools/fidelity_report.py refuses what would print empty tables (ctest python.fidelity_report_inputs,
 label python; < 1 s).
 

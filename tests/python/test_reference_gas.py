@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """shockgas-sim against an independent plain reference, python/reference_gas.py (ctest python.reference).
 
     test_reference_gas.py SIM [WORK_DIR]        (SIM: the shockgas-sim program; about 7 s of CPU)

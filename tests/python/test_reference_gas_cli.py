@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """python/reference_gas.py as a user runs it (ctest python.reference_gas_inputs, label python; < 1 s).
 
     test_reference_gas_cli.py SIM WORK_DIR

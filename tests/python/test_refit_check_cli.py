@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """python/refit_check.py finds the run its results were computed from, or refuses; one realization;
 bad inputs (ctest python.refit_check_inputs, label python; about 1 s of CPU).
 

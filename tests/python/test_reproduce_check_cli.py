@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """tools/reproduce-check on archives it cannot read: exit 2, one line, no temporary left behind
 (ctest python.reproduce_check_unreadable, label python; < 1 s).
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Schema drift check: a shockgas-sim output against the "Output files" section of
 docs/cli-and-output.md, and the Python module shockgas against both.
 

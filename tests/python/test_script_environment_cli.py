@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """What the machine gives a script, refused in one line (ctest python.script_environment, label
 python; about 3 s of CPU, most of it starting Python with numpy and h5py): a package or the shockgas
 module missing, an output path that cannot be written.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Every Python command-line script refuses a bad command line in one line (ctest
 python.script_refusals, label python; about 4 s of CPU, most of it importing numpy and scipy).
 

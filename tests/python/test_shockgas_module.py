@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Python module shockgas (python/shockgas) against files the programs write (label python).
 
     test_shockgas_module.py SIM MERGE ANALYZE DRIFT TAIL WORK_DIR     (DRIFT may be "none")

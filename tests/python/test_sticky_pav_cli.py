@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """python/sticky_pav.py's ensemble comparison on small inputs (ctest python.sticky_pav_inputs, label
 python; about 17 s of CPU, most of it the exact theory's constants, computed by each of the two
 --compare runs through the command line; the other runs call main() with them given, CONSTANTS).

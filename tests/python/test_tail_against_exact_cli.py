@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """tools/tail_against_exact.py on small shockgas-tail runs (ctest python.tail_against_exact, label
 python; about 25 s of CPU, most of it the exact Phi's quadrature).
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Checks on the tracked files of the source tree (label docs).
 
     check_repository.py SOURCE_DIR machine-paths | hdf5-readers | doc-links | readme-entry

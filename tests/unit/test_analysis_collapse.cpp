@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The collapse estimators (analysis/src/collapse.cpp) and the fixed-slope fit
 // and information criteria they use, on synthetic data with known answers:
 // per-file collapse times and masses read back through the output schema,

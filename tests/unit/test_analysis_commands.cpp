@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The commands of shockgas-analyze called in-process, as the program calls them
 // (shockgas/analysis/commands.hpp, analyze_command.hpp): a run file in, a results file and a
 // data file out, and the checks made before any work.

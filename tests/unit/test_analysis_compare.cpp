@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // compare_temperatures: the deviation of one T(t) from a reference, and the
 // time from which on it stays outside the noise.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Every estimator of the analysis library on synthetic data with a known
 // answer: it recovers the answer, and its sigma is calibrated (about 68% of
 // independent synthetic samples land within one sigma).

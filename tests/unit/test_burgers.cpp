@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Burgers solver (analysis/src/burgers.cpp): analytic Riemann solutions, nu -> 0,
 // grid refinement, no overflow at small nu, the sticky-gas identity, and the comparison of a
 // run with Burgers (analysis/burgers_comparison.hpp).

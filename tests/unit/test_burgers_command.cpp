@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-burgers' work as the program calls it (shockgas/analysis/burgers_command.hpp):
 // the memory a solve needs and its refusal, the checks of the request, and a profile from
 // shockgas-sim's initial condition end to end.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Checkpoints (stability issue, "runs that survive being killed"): a damaged
 // engine state is refused; a run stopped mid-way and resumed from its
 // checkpoint file gives the uninterrupted run's result exactly; a checkpoint

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SHA-256 of init files, against the FIPS 180-4 example vectors.
 #include <filesystem>
 #include <fstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The collision rule (sim/model/include/shockgas/model/collision.hpp), Eq. (1) of the paper.
 #include <cmath>
 #include <limits>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-drift's work as the program calls it (drift.hpp: DriftRequest,
 // run_drift_command, drift_summary): the summary line's numbers, the checks
 // of the request, and a short run that writes its rows and passes its checks.

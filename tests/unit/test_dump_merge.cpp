@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-dump's and shockgas-merge's work as the programs call it
 // (shockgas/io/dump.hpp, shockgas/io/merge.hpp): gnuplot variables from a group's
 // attributes, the snapshot rows of one realization, and parts joined into one file.

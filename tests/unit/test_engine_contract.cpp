@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The engine contract: what every engine behind the Engine interface
 // (shockgas/engines/engine.hpp) promises, written once and run for each
 // engine as make_engine builds it from parameters.engine (event, reference,

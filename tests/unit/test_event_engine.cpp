@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The fast (windowed) engine against the reference global-order loop: the
 // 4-ary queue pops in exactly the reference order, and every engine
 // make_engine picks for "event" gives BIT-IDENTICAL states, collision counts

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The event queue returns events in exactly the order of a reference ordered
 // set, on randomized workloads of schedule / reschedule / remove / pop.
 #include <cstdint>

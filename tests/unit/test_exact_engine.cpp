@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The exact sticky-gas engine on cases solved by hand, on its symmetries, and
 // on a 10^7-particle initial condition whose clusters are known exactly.
 #include <algorithm>

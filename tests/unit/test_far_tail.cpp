@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The tail-exponent estimator (shockgas/analysis/far_tail.hpp) on synthetic
 // tails of known gamma with chain-by-chain noise, as the sampler delivers them.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Faults that must not lose work or change results silently (docs/reliability.md), at
 // the level of the library: the checkpoint unit's generations and fallback,
 // its lock, and the memory plan. End-to-end cases (damaged files resumed bit

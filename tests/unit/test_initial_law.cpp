@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The initial laws (--positions, --velocity-distribution): moments against
 // the laws' exact values, seeding, and how they are recorded and merged.
 #include <algorithm>

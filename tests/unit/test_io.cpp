@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The HDF5 layer, init files and the output schema.
 #include <atomic>
 #include <cmath>

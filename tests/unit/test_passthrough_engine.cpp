@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The pass-through engine (elastic collisions as crossing world lines) against
 // the reference event loop and against the exact crossing count of free lines;
 // and the hybrid engine (the windowed event engine handing over to the

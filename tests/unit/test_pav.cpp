@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one PAV (shockgas/model/pav.hpp) on the open line: cases solved by hand, and
 // agreement with the exact engine on the ring for clusters far from the seam.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Progress lines in batch logs (ProgressLog): which of the driver's reports,
 // about one a second, become lines. Synthetic reports, no clocks.
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The event engine on cases solved by hand.
 #include <cmath>
 #include <limits>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The end of a finite ring of sticky particles (r = 0, ballistic aggregation),
 // the last line of the paper's Eq. (3): the ring ends as one cluster, with
 // T ~ 1/N, reached at a time ~ N^(3/2). Run with the exact engine on the

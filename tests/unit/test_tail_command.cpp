@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-tail's work as the program calls it (shockgas/tail/tail_command.hpp):
 // the sampler's parameters from the options, the instanton starts, the summary's
 // deepest Phi, a small run end to end, and its progress line (sim/cli).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The far-tail sampler (shockgas/tail/tail_sampler.hpp): the weighted-histogram
 // combination on a law known in closed form down to 10^-30 and below, and the
 // tagged-cluster sampler against plain sampling where a histogram reaches.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Counts on the command line in scientific notation (cli::whole_number_digits):
 // exact whole numbers become their digits, computed from the text; fractions
 // are refused by name; anything else is left to the option's own checks.

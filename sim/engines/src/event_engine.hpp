@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The event engine (EventEngine, `--engine event`): exact time windows
 // (ARCHITECTURE.md, "The event engines" and "The event engine's windows"; its
 // speed: docs/engines.md).

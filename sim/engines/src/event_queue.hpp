@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The event queue: an indexed binary min-heap of pair collision times.
 //
 // Slot i holds the next collision time of the pair (i, next(i)). Keys compare

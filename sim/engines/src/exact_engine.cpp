@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The exact sticky-gas engine.
 //
 // THE LINE. For r = 0 every collision merges, so the particles found in one

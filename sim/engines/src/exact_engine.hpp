@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The exact sticky-gas engine (r = 0, ballistic aggregation): the clusters at
 // any time follow from the state at an earlier time without an event loop,
 // by the generalized variational principle (E, Rykov & Sinai, Commun. Math.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The hybrid engine (`--engine hybrid`; docs/passthrough-engine.md): the
 // event engine (EventEngine) early in a run, while most collisions are
 // inelastic and it is the faster, then the pass-through engine, once nearly

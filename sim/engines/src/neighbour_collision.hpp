@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The collision of neighbouring clusters i and next(i) at time t, written once
 // for the two event engines: ReferenceEventEngine (the global-order reference loop) and
 // EventEngine (its windowed twin, bit-identical to it). Both call this after

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The pass-through engine: elastic sub-threshold collisions as world lines
 // passing through each other (docs/passthrough-engine.md).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The event queue of EventEngine (and of the pass-through engine's kinetic
 // lists): an indexed 4-ary min-heap of (time, slot) entries stored
 // contiguously.

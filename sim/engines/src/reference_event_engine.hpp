@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The event-driven ring engine.
 //
 // State per cluster (one slot per original particle; a slot dies when its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The kinematics every event engine shares, written once so that the
 // reference loop and the event engine do the same arithmetic (their
 // results are compared bit for bit): the gap between neighbours at a later

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Saving and restoring the per-slot ring records that both event engines keep
 // (velocity, gap, clock, mass, next, prev), written once for both. Used by
 // ReferenceEventEngine and EventEngine's snapshot()/restore() (checkpoints).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-dump's work (shockgas/io/dump.hpp).
 #include "shockgas/io/dump.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-merge's work (shockgas/io/merge.hpp).
 #include "shockgas/io/merge.hpp"
 

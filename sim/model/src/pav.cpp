@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The open-line sticky solver on the one PAV (sim/model/include/shockgas/model/pav.hpp).
 #include "shockgas/model/pav.hpp"
 

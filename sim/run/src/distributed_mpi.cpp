@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The MPI implementation of distributed.hpp (build option SHOCKGAS_MPI).
 //
 // A rank's block travels to rank 0 as the bytes of an ordinary output file:

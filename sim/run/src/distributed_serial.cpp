@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one-rank implementation of distributed.hpp, compiled when SHOCKGAS_MPI
 // is off: the whole ensemble is this process's share, and there is nothing to
 // join, so shockgas-sim runs the ensemble in this one process, as without MPI.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-tail: the far tail of the sticky gas's Phi(z) by biased Markov
 // chains over the initial velocities of a window around a tagged particle
 // (docs/far-tail.md). Binds the command line to a shockgas::TailRequest, runs

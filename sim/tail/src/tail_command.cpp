@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-tail's work (shockgas/tail/tail_command.hpp).
 #include "shockgas/tail/tail_command.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The far-tail sampler: biased Metropolis chains over a window's initial
 // velocities, combined by WHAM (see shockgas/tail/tail_sampler.hpp, docs/far-tail.md).
 #include "shockgas/tail/tail_sampler.hpp"

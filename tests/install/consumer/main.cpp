@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Runs one realization of the event engine through the installed library and
 // prints T at t = 10 (r = 0.9, delta = 1e-2, N = 1000, seed 1).
 #include <cstdio>

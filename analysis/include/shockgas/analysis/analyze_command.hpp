@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-analyze as a library call: what the program's options ask for
 // (AnalyzeRequest, whose defaults are the program's), and the checks that come
 // before any work followed by the subcommand's command (run_analyze, calling

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The Burgers equation v_t + v v_x = nu v_xx on a periodic interval, from the
 // initial velocity field of a particle run (docs/continuum.md: nu -> 0 gives the
 // sticky gas; shocks <-> clusters, v = (x - q)/t between shocks, Eq. 7).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-burgers as a library call: what the program's options ask for
 // (BurgersRequest, whose defaults are the program's), and the work
 // (run_burgers): the Burgers profile from a particle run's initial condition,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A particle run against the Burgers equation from the same start (Fig. 5; Burgers with
 // nu -> 0 is the sticky gas: shocks <-> clusters, v = (x - q)/t between shocks, Eq. 7), and
 // the convergence of the Burgers solution itself (nu -> 0, grid refinement; docs/continuum.md).

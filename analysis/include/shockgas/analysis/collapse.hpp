@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Inelastic collapse of pure inelastic runs (delta = 0; P4): the time at which
 // collapse stops a realization and the mass of the collapsing cluster, per
 // file, and how they scale (docs/haff-and-collapse.md, "Collapse against eps and N").

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The commands of shockgas-analyze, one per estimator. Each reads its inputs (shockgas-sim or
 // shockgas-tail output), runs the estimators of this library on them, and writes the results file
 // (HDF5, with the invocation and the inputs' provenance), the gnuplot data files it is given paths

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // How far one run's T(t) lies from a reference run's: the measure of the
 // speed/accuracy trade (a larger threshold delta, or the sticky sub-threshold
 // mechanism, is cheaper; how much does T(t) move?). P5 of the paper: results

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The tail exponent gamma of Phi(z) ~ exp(-a z^gamma) (Eq. (6); exact value 3
 // for the sticky gas, EB9 of python/exact_ballistic.py) from the far-tail
 // sampler's output (shockgas-tail, docs/far-tail.md).

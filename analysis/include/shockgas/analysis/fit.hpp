@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one fitting core of the analysis library. Every power law, every tail
 // and every segment slope is fitted by weighted_linear_fit (GSL's
 // gsl_fit_wlinear); error bars of the fitted physics numbers come from the

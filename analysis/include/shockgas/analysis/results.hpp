@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the analysis programs write: a results file (HDF5 through shockgas::h5)
 // of fitted numbers that carries provenance forward, and small
 // whitespace-separated data files for gnuplot; and the checks every output

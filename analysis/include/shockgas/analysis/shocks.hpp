@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Shocks in a velocity snapshot (Eq. 7, Fig. 5): the late profile is a
 // sawtooth v = (x - q)/t, linear segments of slope 1/t between velocity
 // drops (shocks, i.e. clusters); the number of shocks is about N t^(-2/3).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Estimators on the temperature history T(t): the power-law decay exponent
 // of the sticky-gas regime (Fig. 1, P1) with its automatic window and window
 // scan, and the crossover times t_dissip and t_stick (Eq. 3, P3).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Estimators on the mass-weighted velocity distribution P(v, t): the scaling
 // collapse of Eq. (4) with its best exponent, the kurtosis of Phi, and the
 // tail exponent gamma of Eq. (6).

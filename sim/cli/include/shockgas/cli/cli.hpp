@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Argument parsing with the messages every shockgas program gives: one line
 // "<program>: error: <what>" and exit status 2 for any bad input, and for a
 // misspelt option, config-file key or subcommand the nearest real one. Header-only, for

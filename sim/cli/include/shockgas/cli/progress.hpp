@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // How the programs show the driver's progress reports: one line for a
 // terminal, and which reports a batch job's log gets.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // "Did you mean ...?": the nearest known name to a misspelt one, for the
 // command-line and config-file messages of every shockgas program.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The engine interface: advance one realization to a time, then report its
 // clusters. Every engine implements it (event, reference event, exact,
 // pass-through, hybrid; docs/engines.md), and programs choose one by name

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SHA-256 of a file (FIPS 180-4, computed by OpenSSL), so an output can prove which --init file
 // made it: the path alone does not (files are edited, moved, regenerated).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-dump as a library call: parts of HDF5 files as plain text for
 // gnuplot. The program (sim/app/shockgas_dump.cpp) binds its options to a
 // DumpRequest and calls run_dump.

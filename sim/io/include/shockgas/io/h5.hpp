@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The one HDF5 layer of shockgas: RAII handles around the HDF5 C API, with
 // errors turned into exceptions whose message names the file and the object.
 // Every reader and writer in sim/ and analysis/ goes through this header.

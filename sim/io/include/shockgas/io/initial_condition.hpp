@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Initial-condition files (--init): one exact start as HDF5 datasets.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the machine lets a process allocate, read from /proc and the cgroup
 // files, and the one way sizes in bytes are written and read: shared by the
 // run's memory plan (shockgas/run/memory_plan.hpp) and the programs that check

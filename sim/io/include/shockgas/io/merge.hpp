@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-merge as a library call: ensemble parts (shockgas-sim
 // --first-realization k) joined into one file with the datasets a single run
 // of all realizations writes. The program (sim/app/shockgas_merge.cpp) parses

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The simulation output schema (documented in docs/cli-and-output.md, "Output files").
 // Writer and reader live together so that the schema is defined once.
 #pragma once

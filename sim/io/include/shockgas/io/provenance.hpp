@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Provenance: what made a file. Written as root attributes of every HDF5 file
 // shockgas produces, and copied forward (prefixed "input_") into analysis
 // outputs, so any figure can be traced to the run and code that made it.

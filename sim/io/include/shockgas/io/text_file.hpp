@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // One text output (a gnuplot data file, a dump, a profile), written so that a
 // failure never leaves a file that looks complete: a new or regular file is
 // written as PATH.tmp.<pid> beside it and renamed onto PATH by commit(), and

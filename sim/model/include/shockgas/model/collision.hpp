@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The collision rule: the one place where velocities change.
 //
 // A pair (left, right) collides when left's velocity exceeds right's. What

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Exact constants of the paper's initial condition and of its two limits,
 // held in one place for the simulator, the analysis and the tests.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Observables of one cluster state: the temperature, kinetic energy and the
 // mass-weighted velocity histogram. Sums are compensated (Neumaier), so the
 // values do not depend on N's size beyond rounding of the final result.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Parameters of one shockgas simulation: the physics (collision model), the
 // system (ring, particles) and what to record. One struct, validated in one
 // place, so the CLI, the parameter files and the tests cannot disagree.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pool-adjacent-violators (PAV): the one implementation of the stack
 // algorithm that turns a sequence of blocks into the blocks of its isotonic
 // regression (Ayer et al., Ann. Math. Stat. 26, 641 (1955); Best &

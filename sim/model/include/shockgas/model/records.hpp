@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What runs produce and keep, as plain data: the collapse report, an engine's
 // saved state, and the ensemble's result tables. The engines fill them, the run
 // collects them, the I/O layer writes and reads them, and the analysis reads

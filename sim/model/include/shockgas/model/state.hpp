@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Initial conditions and the state of the ring at one time, shared by every
 // engine (event-driven and exact) so that both read and report the same way.
 #pragma once

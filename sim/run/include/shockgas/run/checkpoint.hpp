@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Checkpoint integrity: where a run's checkpoints live, how they are saved and
 // loaded, and who may use them. The format itself (the output schema plus
 // /checkpoint) is written and read in output.hpp, with the output schema.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Spreading one ensemble over processes: under `mpirun -np K shockgas-sim`
 // (build option SHOCKGAS_MPI) each rank runs a contiguous block of the
 // realizations and rank 0 joins the blocks into the file a single process

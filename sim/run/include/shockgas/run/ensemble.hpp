@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The ensemble driver: runs R independent realizations (in parallel on
 // `threads` threads), samples every realization at the same times, and
 // collects snapshots, histograms and collapse reports. Realization k always

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Memory planning: a run's need, estimated before anything is allocated, set
 // against what the process may use, so that a run too large for the machine
 // is refused with one line (or runs fewer realizations at once) instead of

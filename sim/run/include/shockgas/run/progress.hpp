@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // What the ensemble driver reports while it runs (run_ensemble's progress
 // callback): facts about each realization, not estimates. How long the rest
 // will take, and how a program shows it, is shockgas/cli/progress.hpp's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-sim as a library call: what the program's options ask for
 // (SimulationRequest), and the run that carries it out (run_simulation): read
 // and check the start, refuse what cannot run, resume or set aside

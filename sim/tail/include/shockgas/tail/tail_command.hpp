@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-tail as a library call: what the program's options ask for
 // (TailRequest, whose defaults are the program's), and the run that carries it
 // out (run_tail): check the options, build the sampler's parameters and the

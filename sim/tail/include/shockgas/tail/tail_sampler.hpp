@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Large-deviation sampler for the far tail of the sticky gas's mass-weighted
 // velocity distribution Phi(z), z = V t^(1/3) (docs/far-tail.md).
 //
