@@ -487,7 +487,8 @@ private:
             RealizationProgress& r = p.realization[k];
             r.time = live_[k].time.load(std::memory_order_relaxed);
             r.collisions = live_[k].collisions.load(std::memory_order_relaxed);
-            p.collisions_this_process += r.collisions - std::min(r.collisions, collisions_before_[k].load(std::memory_order_relaxed));
+            const std::uint64_t before = collisions_before_[k].load(std::memory_order_relaxed);
+            p.collisions_this_process += r.collisions - std::min(r.collisions, before);
             // A realization stopped by a signal has finished running but is not done: the
             // last line of a stopped run must not read "1/1 100.0% ETA 0 s". (outputs_[k] is
             // written before finished_[k] is set, so it is complete once that reads true.)

@@ -12,10 +12,10 @@
 #include "shockgas/engines/engine.hpp"
 #include "shockgas/io/checksum.hpp"
 #include "shockgas/io/h5.hpp"
+#include "shockgas/io/initial_condition.hpp"
 #include "shockgas/io/output.hpp"
 #include "shockgas/run/checkpoint.hpp"
 #include "shockgas/run/memory_plan.hpp"
-#include "shockgas/io/initial_condition.hpp"
 
 namespace shockgas {
 
@@ -36,11 +36,11 @@ SimulationOutcome run_simulation(SimulationRequest& request, DistributedSession&
     if (!p.init_file.empty()) {
         initial = read_initial_condition(p.init_file);
         if (request.particles_given && p.particles != initial.size())
-            throw InputError(fmt::format("--particles {} disagrees with the {} particles of '{}'",
-                                                   p.particles, initial.size(), p.init_file));
+            throw InputError(fmt::format("--particles {} disagrees with the {} particles of '{}'", p.particles,
+                                         initial.size(), p.init_file));
         if (request.ring_length_given && p.ring_length != initial.ring_length)
             throw InputError(fmt::format("--ring-length {} disagrees with the ring length {} of '{}'",
-                                                   p.ring_length, initial.ring_length, p.init_file));
+                                         p.ring_length, initial.ring_length, p.init_file));
         p.particles = initial.size();
         p.ring_length = initial.ring_length;
         // Recorded so that a result names its start beyond doubt: where
@@ -53,7 +53,8 @@ SimulationOutcome run_simulation(SimulationRequest& request, DistributedSession&
     // refuses parts of two. "auto" is resolved here (from the start's masses), so that --resume and
     // "already complete" compare the engine that runs, not the word asked for.
     p.engine = resolve_engine_name(p, p.init_file.empty() ? nullptr : &initial);
-    std::string checkpoint_file = request.checkpoint_file.empty() ? checkpoint_path_for(request.output) : request.checkpoint_file;
+    std::string checkpoint_file =
+        request.checkpoint_file.empty() ? checkpoint_path_for(request.output) : request.checkpoint_file;
     const std::string base_checkpoint = checkpoint_file;
     bool already_written = false;  // rank 0's: --resume of a run whose output is already complete
     if (session.is_root()) {

@@ -229,7 +229,10 @@ inline std::string whole_number_digits(const std::string& text, std::string& err
     if (i < text.size() && text[i] == '.') {
         ++i;
         plain = false;
-        while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0) digits += text[i++], ++after_point;
+        while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0) {
+            digits += text[i++];
+            ++after_point;
+        }
     }
     long long exponent = 0;
     bool exponent_ok = true;
