@@ -453,22 +453,30 @@ std::vector<Case> matrix() {
     return cases;
 }
 
-// The stall fallback: the event engine cannot decide the stall criterion in
-// its windows (StallUndecidable), and run_ensemble runs the realization again
-// on the reference loop, which decides it. At delta = 0 with the relative-speed
-// criterion off (--collapse-speed 0), r = 1e-6: a collapse the stall finds.
-// The stall window is shortened to 1000 events to keep the test short (10 s
-// at the default 10^6).
-TEST(ExtremesEnsemble, UndecidableStallFallsBackToReferenceAndReportsCollapse) {
+// Two realizations of a ring of 10 at r = 1e-6 and the given delta, seed 7:
+// near-sticky collisions crowd clusters together until events fall at one
+// instant (a stall), which the event engine cannot decide in its windows.
+SimulationParameters stalling_ring(double threshold) {
     SimulationParameters p;
     p.particles = 10;
-    p.collision = {1e-6, 0.0, Subthreshold::elastic};
-    p.collapse.collapse_speed = 0.0;
-    p.collapse.stall_events_min = 1000;
+    p.collision = {1e-6, threshold, Subthreshold::elastic};
     p.t_max = 1e3;
     p.seed = 7;
     p.realizations = 2;
     p.threads = 2;
+    return p;
+}
+
+// The stall fallback: the event engine cannot decide the stall criterion in
+// its windows (StallUndecidable), and run_ensemble runs the realization again
+// on the reference loop, which decides it. At delta = 0 with the relative-speed
+// criterion off (--collapse-speed 0): a collapse the stall finds. The stall
+// window is shortened to 1000 events to keep the test short (10 s at the
+// default 10^6).
+TEST(ExtremesEnsemble, UndecidableStallFallsBackToReferenceAndReportsCollapse) {
+    SimulationParameters p = stalling_ring(0.0);
+    p.collapse.collapse_speed = 0.0;
+    p.collapse.stall_events_min = 1000;
     const InitialCondition init = generate_initial_condition(p.particles, 10.0, p.seed, 0);
     ASSERT_TRUE(EventEngine::supports(init, p.collision, p.collapse));
     EventEngine windows(init, p.collision, p.collapse);
@@ -489,13 +497,7 @@ TEST(ExtremesEnsemble, UndecidableStallFallsBackToReferenceAndReportsCollapse) {
 // its windows either. No collapse (delta > 0 forbids one): the run stops with
 // one line naming a numerical failure, its realization and what to change.
 TEST(ExtremesEnsemble, StallWhereCollapseIsImpossibleIsANumericalFailure) {
-    SimulationParameters p;
-    p.particles = 10;
-    p.collision = {1e-6, 1e-12, Subthreshold::elastic};
-    p.t_max = 1e3;
-    p.seed = 7;
-    p.realizations = 2;
-    p.threads = 2;
+    const SimulationParameters p = stalling_ring(1e-12);
     const InitialCondition init = generate_initial_condition(p.particles, 10.0, p.seed, 0);
     ASSERT_TRUE(EventEngine::supports(init, p.collision, p.collapse));
     try {
