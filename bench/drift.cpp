@@ -37,13 +37,15 @@ Snapshot inspect(const ClusterState& state, double ring_length) {
     Snapshot s;
     const std::size_t n = state.size();
     for (std::size_t k = 0; k < n; ++k) {
-        const long double m = state.mass[k], v = state.velocity[k];
-        if (!std::isfinite(state.velocity[k]) || !std::isfinite(state.position[k]) || !std::isfinite(state.mass[k]))
-            ++s.nonfinite;
+        // In the lab, as the start's (the engines' frame is at rest for the
+        // generated starts this runs, ClusterState).
+        const double lab = state.lab_velocity(k);
+        const long double m = state.mass[k], v = lab;
+        if (!std::isfinite(lab) || !std::isfinite(state.position[k]) || !std::isfinite(state.mass[k])) ++s.nonfinite;
         s.momentum += m * v;
         s.momentum_scale += m * std::fabs(v);
         s.energy += 0.5L * m * v * v;
-        s.max_speed = std::max(s.max_speed, std::fabs(state.velocity[k]));
+        s.max_speed = std::max(s.max_speed, std::fabs(lab));
     }
     // Gaps in ring order from consecutive differences of positions wrapped
     // into [0, L), +L where the ring closes; any other negative difference is

@@ -150,6 +150,14 @@ shockgas_cli_error(sample_beyond_t_max "beyond t_max" -N 10 -t 10 --snapshot-tim
 shockgas_cli_error(bad_positions "positions must be 'lattice' or 'uniform'" -N 10 --positions random)
 shockgas_cli_error(bad_velocity_law "velocity distribution must be" -N 10 --velocity-distribution normal)
 shockgas_cli_error(init_missing_file "does not exist" --init "${_cli_dir}/no_such_file.h5")
+# The scales double precision must resolve (docs/reliability.md, "Scales and shifts"): one line
+# naming the limit and the way out (the model is scale-invariant).
+shockgas_cli_error(spacing_below_normal
+                   "^shockgas-sim: error: ring length L = 1e-306 gives a spacing L/N = 1e-309, below the smallest normal double 2.23e-308, where gaps lose significant bits; the model is scale-invariant \\(x -> lambda x, t -> lambda t\\): give L at least 2.23e-305 and scale t_max with it$"
+                   -N 1000 --ring-length 1e-306 -t 1e-300)
+shockgas_cli_error(ring_length_beyond_coordinates "ring length L = 1e\\+308 is beyond 1.12e\\+307 \\(2\\^1020\\)"
+                   -N 1000 --ring-length 1e308 -t 1e300)
+shockgas_cli_error(t_max_beyond_coordinates "t_max = 1e\\+307 is beyond 2.81e\\+306 \\(2\\^1018\\)" -N 10 -t 1e307)
 # Realization F + k past 2^63 - 1 is refused.
 shockgas_cli_error(first_realization_overflow "first realization 9223372036854775807 with 3 realizations runs past"
                    -N 10 -t 1 -R 3 --first-realization 9223372036854775807)
@@ -240,7 +248,8 @@ if(SHOCKGAS_PYTHON)
                               "unsorted|not sorted"
                               "out_of_range|outside \\[0, ring_length"
                               "nan_velocity|velocity\\[7\\] is not finite"
-                              "no_ring_length|ring_length")
+                              "no_ring_length|ring_length"
+                              "too_fast|speeds up to 1e\\+305 carry particles 1e\\+308 far by t_max = 1000, beyond 2.25e\\+307 \\(2\\^1021\\)")
     string(FIND "${case_regex}" "|" _bar)
     string(SUBSTRING "${case_regex}" 0 ${_bar} _case)
     math(EXPR _start "${_bar} + 1")

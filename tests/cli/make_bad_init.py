@@ -28,3 +28,5 @@ write("good", position=x, velocity=v)
 # Not equally spaced (particle 1 off the lattice): a start shockgas-sim runs, but shockgas-burgers,
 # whose profile is built on the lattice of the start, refuses, naming the file and the particle.
 write("off_lattice", position=np.array([0.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]), velocity=v)
+# Speeds so large that positions would overflow by the default t_max = 1000 (|v| t up to 1e308): refused up front.
+write("too_fast", position=x, velocity=v * 1e305)

@@ -429,11 +429,12 @@ TEST(PassThroughEngine, NearlyParallelLinesCrossOnce) {
 
 // ---- The hybrid engine -------------------------------------------------------
 
-// A rule that hands over at the first check, at time `at`: the test hook
-// that puts the switch early, where small systems are still busy.
-HybridSwitchRule switch_at(double at) {
+// A rule that hands over at the first check, at time `at` on the ring of
+// `start` (checks are in units of its L/N): the test hook that puts the
+// switch early, where small systems are still busy.
+HybridSwitchRule switch_at(double at, const InitialCondition& start) {
     HybridSwitchRule rule;
-    rule.first_check = at;
+    rule.first_check = at / shockgas::time_unit(start);
     rule.check_factor = 2.0;
     rule.max_inelastic_share = 1.0;
     return rule;
@@ -478,7 +479,7 @@ TEST(PassThroughEngine, CountsACrossingAtTheSampleTimeAsTheEventEngineDoes) {
             PassThroughEngine engine(c.start, model);
             engine.set_paths(paths);
             ReferenceEventEngine reference(c.start, model, CollapseCriterion{});
-            HybridEngine hybrid(c.start, model, CollapseCriterion{}, nullptr, switch_at(0.5));
+            HybridEngine hybrid(c.start, model, CollapseCriterion{}, nullptr, switch_at(0.5, c.start));
             for (const auto& [t, collisions] : c.expected) {
                 engine.advance_to(t);
                 reference.advance_to(t);
@@ -522,7 +523,7 @@ TEST(HybridEngine, HandsOverTheWholeState) {
     for (const double at : {0.5, 30.0, 200.0}) {
         const InitialCondition start = random_ring(2000, 3);
         EventEngine event(start, model, {});
-        HybridEngine hybrid(start, model, {}, nullptr, switch_at(at));
+        HybridEngine hybrid(start, model, {}, nullptr, switch_at(at, start));
         event.advance_to(at);
         hybrid.advance_to(at);
         ASSERT_TRUE(hybrid.switched());
@@ -547,7 +548,7 @@ TEST(HybridEngine, AgreesWithTheReferenceLoopAcrossTheSwitch) {
     const ComparisonTotals totals = compare_with_the_reference_loop(
         [&](const InitialCondition& start, const CollisionModel& model, std::uint64_t seed) {
             return std::make_unique<HybridEngine>(start, model, CollapseCriterion{}, nullptr,
-                                                  switch_at(switch_times[seed % switch_times.size()]));
+                                                  switch_at(switch_times[seed % switch_times.size()], start));
         },
         [](const HybridEngine& engine, double t) { return engine.switch_time() < t; });
     EXPECT_EQ(totals.cases, 54);

@@ -59,6 +59,8 @@ EventEngine::EventEngine(const InitialCondition& initial, const CollisionModel& 
       criterion_(collapse),
       live_(live),
       ring_length_(initial.ring_length),
+      time_unit_(time_unit(initial)),
+      frame_velocity_(frame_velocity(initial.velocity, initial.mass)),
       particles_(initial.size()),
       alive_(initial.size()),
       stall_window_(std::max<std::uint64_t>(collapse.stall_events_min, 10 * static_cast<std::uint64_t>(initial.size()))) {
@@ -67,18 +69,19 @@ EventEngine::EventEngine(const InitialCondition& initial, const CollisionModel& 
         throw std::logic_error("EventEngine: run not supported, use ReferenceEventEngine (see supports())");
     collapse_possible_ = shockgas::collapse_possible(model, collapse);
     const auto n = static_cast<std::int32_t>(initial.size());
-    link_ring(initial, node_);  // the same initial state and arithmetic as ReferenceEventEngine's
+    link_ring(initial, frame_velocity_, node_);  // the same initial state and arithmetic as ReferenceEventEngine's
     anchor_position_ = initial.position[0];
     for (std::int32_t i = 0; i < n; ++i) node_[static_cast<std::size_t>(i)].key = key_for(i);
     speed_bound_ = 0.0;
     for (const Node& c : node_) speed_bound_ = std::max(speed_bound_, std::abs(c.velocity));
     // The first window, first_window in units of the mean spacing L/N over the
-    // speed scale max(1, |v|max): a dense or fast start (--ring-length << N, or
-    // an --init file with large velocities) would otherwise put billions of
-    // events into one window, and the stop flag and the progress line are
-    // looked at only between windows. For the paper's start (L = N, |v| < 1)
-    // this is first_window itself; later windows adapt (advance_to).
-    window_length_ = first_window * (initial.ring_length / static_cast<double>(n)) / std::max(1.0, speed_bound_);
+    // speed scale max(1, |v|max) (|v| in the frame; 1 the velocity unit): a
+    // dense or fast start (--ring-length << N, or an --init file with large
+    // velocities) would otherwise put billions of events into one window, and
+    // the stop flag and the progress line are looked at only between windows.
+    // For the paper's start (L = N, |v| < 1) this is first_window itself;
+    // later windows adapt (advance_to).
+    window_length_ = first_window * time_unit_ / std::max(1.0, speed_bound_);
 }
 
 double EventEngine::gap_at(std::int32_t slot, double t) const {
@@ -230,7 +233,7 @@ void EventEngine::run_window(double window_end) {
     cut_reach_ = global_window_ ? never : 2.0 * speed_bound_ * (window_end_ - window_start_) * cut_safety;
     window_events_ = 0;
     blocks_last_window_ = 0;
-    stall_span_ = criterion_.stall_time_fraction * std::max(1.0, window_end);
+    stall_span_ = criterion_.stall_time_fraction * std::max(time_unit_, window_end);
     std::uint64_t run_events = 0;
     double next_speed_bound = 0.0;
 
@@ -440,7 +443,7 @@ void EventEngine::replay_cut(const Cut& cut, const std::vector<BoundaryChange>& 
 }
 
 // The global stall detector fires after stall_window_ consecutive events
-// within stall_time_fraction * max(1, t) of a reference event. Per block we
+// within stall_time_fraction * max(L/N, t) of a reference event. Per block we
 // count the densest such run with the span of this window (its end time, an
 // upper bound); a span-wide interval meets at most span/span' + 2 of a
 // window's runs counted with span', each holding at most (densest run + 1)
@@ -540,6 +543,7 @@ MidRunState EventEngine::mid_run_state() const {
     MidRunState out;
     out.ring_length = ring_length_;
     out.time = now_;
+    out.frame_velocity = frame_velocity_;
     out.collisions = collisions_;
     out.inelastic_collisions = inelastic_;
     std::vector<double> walk_position;
@@ -562,7 +566,7 @@ MidRunState EventEngine::mid_run_state() const {
 }
 
 void EventEngine::clusters(ClusterState& out) const {
-    walk_ring(node_, anchor_, anchor_position_, now_, alive_, ring_length_,
+    walk_ring(node_, anchor_, anchor_position_, now_, alive_, ring_length_, frame_velocity_,
               [this](std::int32_t slot, double t) { return gap_at(slot, t); }, out);
 }
 

@@ -43,7 +43,8 @@
 //    single block of the whole ring, which is the global loop itself; there
 //    the candidate is judged as ReferenceEventEngine judges it. The copy is taken only
 //    when collapse is possible (delta below --collapse-speed).
-//    The stall detector (max(10^6, 10 N) consecutive events within 10^-12 t)
+//    The stall detector (max(10^6, 10 N) consecutive events within
+//    10^-12 max(L/N, t))
 //    is bounded per window instead: each block counts its own densest run, and
 //    if the bound cannot exclude a stall the engine throws rather than guess
 //    (StallUndecidable; run_ensemble then reruns the realization with
@@ -213,6 +214,8 @@ private:
     CollapseCriterion criterion_;
     LiveStatus* live_;
     double ring_length_;
+    double time_unit_;       // L/N: the stall span's floor (CollapseCriterion)
+    double frame_velocity_;  // velocities are relative to it (frame_velocity, state.hpp)
     double now_ = 0.0;
     std::int64_t particles_;
     std::int64_t alive_;

@@ -149,13 +149,19 @@ bool less(Extended a, Extended b) { return a.hi < b.hi || (a.hi == b.hi && a.lo 
 }  // namespace
 
 ExactEngine::ExactEngine(const InitialCondition& initial, LiveStatus* live)
-    : live_(live), ring_length_(initial.ring_length), particles_(initial.size()) {
+    : live_(live),
+      ring_length_(initial.ring_length),
+      frame_velocity_(frame_velocity(initial.velocity, initial.mass)),
+      particles_(initial.size()) {
     validate(initial);
     const auto n = static_cast<std::size_t>(particles_);
     block_.resize(n);
+    // In the frame (state.hpp): the clusters are the same in any frame
+    // (Galilean invariance, the top of this file), and y = x + t v stays of
+    // size L + t |v - V| instead of L + t |v|.
     for (std::size_t i = 0; i < n; ++i)
-        block_[i] = {initial.mass[i], two_product(initial.mass[i], initial.velocity[i]), extended(0.0),
-                     initial.position[i], static_cast<std::int64_t>(i)};
+        block_[i] = {initial.mass[i], two_product(initial.mass[i], initial.velocity[i] - frame_velocity_),
+                     extended(0.0), initial.position[i], static_cast<std::int64_t>(i)};
 }
 
 // Y - anchor = (first moment + t momentum) / M: the cluster's centre of mass
@@ -259,6 +265,7 @@ bool ExactEngine::advance_to(double t) {
 void ExactEngine::clusters(ClusterState& out) const {
     out.clear();
     out.time = now_;
+    out.frame_velocity = frame_velocity_;
     const std::size_t count = block_.size();
     std::size_t start = 0;
     for (std::size_t k = 1; k < count; ++k)
@@ -285,6 +292,7 @@ void ExactEngine::clusters(ClusterState& out) const {
         out.mass.push_back(b.mass);
         out.first_particle.push_back(b.first_particle);
     }
+    frame_to_lab_positions(out, ring_length_);
 }
 
 }  // namespace shockgas

@@ -51,7 +51,7 @@ private:
     // size N t is ever formed.
     struct Block {
         double mass;
-        Extended momentum;      // sum_j m_j v_j
+        Extended momentum;      // sum_j m_j (v_j - V), V the frame velocity
         Extended first_moment;  // sum_j m_j (x_j - anchor), unrolled
         double anchor;
         std::int64_t first_particle;
@@ -67,6 +67,7 @@ private:
     std::vector<Block> block_;  // in ring order (a rotation of it)
     LiveStatus* live_;
     double ring_length_;
+    double frame_velocity_;  // momenta are relative to it (frame_velocity, state.hpp)
     std::int64_t particles_;
     double now_ = 0.0;
     std::optional<CollapseReport> no_collapse_;  // r = 0 never collapses

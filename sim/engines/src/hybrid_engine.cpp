@@ -34,7 +34,7 @@ HybridSwitchRule HybridSwitchRule::measured() {
 
 HybridEngine::HybridEngine(const InitialCondition& initial, const CollisionModel& model,
                            const CollapseCriterion& collapse, LiveStatus* live, const HybridSwitchRule& rule)
-    : model_(model), live_(live), rule_(rule), next_check_(rule.first_check) {
+    : model_(model), live_(live), rule_(rule), next_check_(rule.first_check * time_unit(initial)) {
     const std::string refusal = PassThroughEngine::unsupported_reason(initial.mass, model, collapse);
     if (!refusal.empty()) throw std::invalid_argument("HybridEngine cannot run this: " + refusal);
     if (!(rule.first_check > 0.0) || !(rule.check_factor > 1.0))

@@ -35,9 +35,11 @@
 namespace shockgas {
 
 struct HybridSwitchRule {
-    // Checks at first_check * check_factor^k (simulated time). A check costs
-    // one window boundary of the event engine (nothing measurable); the
-    // factor bounds how late a switch can come to 25% of its time.
+    // Checks at first_check * check_factor^k in units of the run's time unit
+    // L/N (time_unit, state.hpp; simulated time for the paper's L = N), so
+    // that they scale with the ring. A check costs one window boundary of the
+    // event engine (nothing measurable); the factor bounds how late a switch
+    // can come to 25% of its time.
     double first_check = 1.0;
     double check_factor = 1.25;
     // Hand over when at most this share of the collisions since the previous

@@ -19,6 +19,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "shockgas/model/collision.hpp"
 #include "shockgas/engines/engine.hpp"
@@ -76,6 +79,32 @@ inline bool collapse_candidate(const CollapseCriterion& criterion, CollisionKind
     return kind == CollisionKind::inelastic && relative_speed < criterion.collapse_speed;
 }
 inline constexpr std::int64_t collapse_min_members = 3;
+
+// Whether the model forbids inelastic collapse (infinitely many collisions
+// in finite time): with delta > 0 every inelastic collision removes at least
+// eps (1 - eps) delta^2 of a finite energy, so there are finitely many, and
+// between them the elastic ones are crossings of straight world lines, finitely
+// many in finite time; with r = 0 every collision merges two clusters. A
+// stall there is a numerical failure, never a collapse.
+inline bool collapse_forbidden(const CollisionModel& model) {
+    return model.restitution == 0.0 || model.velocity_threshold > 0.0;
+}
+
+// The one line a numerical stall throws (NumericalFailure): `events`
+// collisions from t = since to t advanced time by less than the stall span
+// where the model forbids collapse; relative_speed is the last one's.
+inline std::string stall_message(const CollisionModel& model, const CollapseCriterion& criterion,
+                                 std::uint64_t events, double since, double t, double relative_speed) {
+    return fmt::format(
+        "numerical failure: {} collisions between t = {:.17g} and t = {:.17g} advanced time by less than {:.3g} "
+        "max(L/N, t): collisions crowd at one instant beyond what double precision resolves (the last at relative "
+        "speed {:.3g}). With {} the model forbids collapse, so this is no physical event and the run cannot go on. "
+        "Change: a larger delta or r, so that relative speeds within a cluster (down to r delta = {:.3g}) stay far "
+        "above the rounding of velocities and positions, or a t_max before t = {:.6g}",
+        events, since, t, criterion.stall_time_fraction, relative_speed,
+        model.restitution == 0.0 ? std::string("r = 0") : fmt::format("delta = {:.3g} > 0", model.velocity_threshold),
+        model.restitution * model.velocity_threshold, since);
+}
 
 // The report of a collapse found at pair (i, next i) at time t.
 inline CollapseReport collapse_report(std::int32_t i, double relative_speed, double t, const char* criterion,

@@ -79,17 +79,21 @@ std::string PassThroughEngine::unsupported_reason(const std::vector<double>& mas
 }
 
 PassThroughEngine::PassThroughEngine(const InitialCondition& initial, const CollisionModel& model, LiveStatus* live)
-    : model_(model), live_(live), ring_length_(initial.ring_length) {
+    : model_(model),
+      live_(live),
+      ring_length_(initial.ring_length),
+      frame_velocity_(frame_velocity(initial.velocity, initial.mass)) {
     validate(initial);
     const auto n = static_cast<std::size_t>(initial.size());
     mass_ = initial.mass.front();
     line_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) line_[k] = {initial.position[k], initial.velocity[k], 0.0, 0, 0};
+    for (std::size_t k = 0; k < n; ++k)
+        line_[k] = {initial.position[k], initial.velocity[k] - frame_velocity_, 0.0, 0, 0};
     start_lines();
 }
 
 PassThroughEngine::PassThroughEngine(const MidRunState& state, const CollisionModel& model, LiveStatus* live)
-    : model_(model), live_(live), ring_length_(state.ring_length) {
+    : model_(model), live_(live), ring_length_(state.ring_length), frame_velocity_(state.frame_velocity) {
     const std::size_t n = state.position.size();
     if (n == 0 || state.velocity.size() != n || state.mass.size() != n || !(state.ring_length > 0.0))
         throw std::invalid_argument("PassThroughEngine: a mid-run state needs as many velocities and masses as positions");
@@ -1032,6 +1036,7 @@ void PassThroughEngine::write_back(const std::vector<Sorted>& buffer, std::int64
 void PassThroughEngine::clusters(ClusterState& out) const {
     out.clear();
     out.time = now_;
+    out.frame_velocity = frame_velocity_;
     const std::size_t n = line_.size();
     out.position.reserve(n);
     out.velocity.reserve(n);
@@ -1043,6 +1048,7 @@ void PassThroughEngine::clusters(ClusterState& out) const {
         out.mass.push_back(mass_);
         out.first_particle.push_back(static_cast<std::int64_t>(k));
     }
+    frame_to_lab_positions(out, ring_length_);
 }
 
 std::vector<double> PassThroughEngine::gaps() const {

@@ -84,7 +84,7 @@ public:
     PassThroughEngine(const InitialCondition& initial, const CollisionModel& model, LiveStatus* live = nullptr);
     // From the middle of a run (HybridEngine's hand-over): the lines start
     // straight from the given positions at state.time, line k at particle k,
-    // and the collision counts go on from the state's. Equal masses only (the
+    // in the state's frame, and the collision counts go on from the state's. Equal masses only (the
     // caller checked unsupported_reason); throws std::invalid_argument for a
     // state that is not one ring in order.
     PassThroughEngine(const MidRunState& state, const CollisionModel& model, LiveStatus* live = nullptr);
@@ -342,6 +342,7 @@ private:
     CollisionModel model_;
     LiveStatus* live_;
     double ring_length_;
+    double frame_velocity_ = 0.0;  // lines move relative to it (frame_velocity, state.hpp)
     double mass_;
     double now_ = 0.0;
     double step_ = 0.0;  // the next window's length (adapted)

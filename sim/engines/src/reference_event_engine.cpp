@@ -23,12 +23,14 @@ ReferenceEventEngine::ReferenceEventEngine(const InitialCondition& initial, cons
       criterion_(collapse),
       live_(live),
       ring_length_(initial.ring_length),
+      time_unit_(time_unit(initial)),
+      frame_velocity_(frame_velocity(initial.velocity, initial.mass)),
       particles_(initial.size()),
       alive_(initial.size()),
       stall_window_(std::max<std::uint64_t>(collapse.stall_events_min, 10 * static_cast<std::uint64_t>(initial.size()))) {
     validate(initial);
     const auto n = static_cast<std::int32_t>(initial.size());
-    link_ring(initial, cluster_);
+    link_ring(initial, frame_velocity_, cluster_);
     anchor_position_ = initial.position[0];
     for (std::int32_t i = 0; i < n; ++i) reschedule(i);
 }
@@ -95,9 +97,11 @@ void ReferenceEventEngine::collide_pair(std::int32_t i, double t) {
     const CollisionKind kind = classify(model_, relative_speed);
 
     // Collapse: time no longer advances, or relative speeds have decayed
-    // geometrically to nothing in an inelastic collision.
-    if (t - stall_reference_time_ <= criterion_.stall_time_fraction * std::max(1.0, t)) {
+    // geometrically to nothing in an inelastic collision. Where the model
+    // forbids collapse, time that no longer advances is a numerical failure.
+    if (t - stall_reference_time_ <= criterion_.stall_time_fraction * std::max(time_unit_, t)) {
         if (++stall_events_ >= stall_window_) {
+            if (detail::collapse_forbidden(model_)) numerical_stall(t, relative_speed);
             detect_collapse(i, relative_speed, t, "stall", detail::contact_cluster(*this, i, t));
             return;
         }
@@ -121,6 +125,11 @@ void ReferenceEventEngine::detect_collapse(std::int32_t i, double relative_speed
     // The collapsing cluster is the pair's contact cluster.
     collapse_ = detail::collapse_report(i, relative_speed, t, criterion, cluster);
     now_ = t;
+}
+
+void ReferenceEventEngine::numerical_stall(double t, double relative_speed) const {
+    throw NumericalFailure(
+        detail::stall_message(model_, criterion_, stall_window_, stall_reference_time_, t, relative_speed));
 }
 
 std::vector<double> ReferenceEventEngine::gaps() const {
@@ -170,7 +179,7 @@ void ReferenceEventEngine::restore(const EngineSnapshot& snapshot) {
 }
 
 void ReferenceEventEngine::clusters(ClusterState& out) const {
-    walk_ring(cluster_, anchor_, anchor_position_, now_, alive_, ring_length_,
+    walk_ring(cluster_, anchor_, anchor_position_, now_, alive_, ring_length_, frame_velocity_,
               [this](std::int32_t slot, double t) { return gap_at(slot, t); }, out);
 }
 

@@ -98,6 +98,9 @@ private:
     const std::vector<Cluster>& records() const { return cluster_; }
     void detect_collapse(std::int32_t left, double relative_speed, double t, const char* criterion,
                          const ContactCluster& cluster);
+    // Where the model forbids collapse a stall is a numerical failure: throws
+    // NumericalFailure naming it and what to change.
+    [[noreturn]] void numerical_stall(double t, double relative_speed) const;
     void move_anchor_clock(std::int32_t slot, double t);
 
     std::vector<Cluster> cluster_;
@@ -106,6 +109,8 @@ private:
     CollapseCriterion criterion_;
     LiveStatus* live_;
     double ring_length_;
+    double time_unit_;       // L/N: the stall criterion's floor (CollapseCriterion)
+    double frame_velocity_;  // velocities are relative to it (frame_velocity, state.hpp)
     double now_ = 0.0;
     std::int64_t particles_;
     std::int64_t alive_;

@@ -31,19 +31,19 @@ inline double contact_time(double gap, double closing_speed, double left_clock, 
 
 // The ring records of a start, for both event engines (same arithmetic, so
 // their results can be compared bit for bit): each particle a cluster of its
-// own with its velocity and mass, clock 0, the gap to its right neighbour
-// (the last one's across the seam), linked in ring order. Records are any
-// per-slot struct with velocity, gap, clock, mass, next and prev; other
-// fields are left as they are.
+// own with its velocity relative to the frame (frame_velocity, state.hpp) and
+// mass, clock 0, the gap to its right neighbour (the last one's across the
+// seam), linked in ring order. Records are any per-slot struct with velocity,
+// gap, clock, mass, next and prev; other fields are left as they are.
 template <class Record>
-void link_ring(const InitialCondition& initial, std::vector<Record>& records) {
+void link_ring(const InitialCondition& initial, double frame_velocity, std::vector<Record>& records) {
     const auto n = static_cast<std::int32_t>(initial.size());
     records.resize(static_cast<std::size_t>(n));
     for (std::int32_t i = 0; i < n; ++i) {
         const auto s = static_cast<std::size_t>(i);
         const double right = (i + 1 < n) ? initial.position[s + 1] : initial.position[0] + initial.ring_length;
         Record& r = records[s];
-        r.velocity = initial.velocity[s];
+        r.velocity = initial.velocity[s] - frame_velocity;
         r.gap = right - initial.position[s];
         r.clock = 0.0;
         r.mass = initial.mass[s];
@@ -79,14 +79,16 @@ std::size_t walk_positions(const std::vector<Record>& records, std::int32_t anch
     return first;
 }
 
-// Output in ring order from the smallest slot, positions wrapped into [0, L).
-// Records are any per-slot struct with velocity, clock, mass and next;
-// gap_at(slot, t) gives the gap after slot.
+// Output in ring order from the smallest slot, positions wrapped into [0, L)
+// and moved from the frame (velocity frame_velocity) into the lab; velocities
+// relative to the frame (ClusterState). Records are any per-slot struct with
+// velocity, clock, mass and next; gap_at(slot, t) gives the gap after slot.
 template <class Record, class GapAt>
 void walk_ring(const std::vector<Record>& records, std::int32_t anchor, double anchor_position, double now,
-               std::int64_t alive, double ring_length, GapAt gap_at, ClusterState& out) {
+               std::int64_t alive, double ring_length, double frame_velocity, GapAt gap_at, ClusterState& out) {
     out.clear();
     out.time = now;
+    out.frame_velocity = frame_velocity;
     const auto count = static_cast<std::size_t>(alive);
     std::vector<double> walk_position;
     std::vector<std::int32_t> walk_slot;
@@ -104,6 +106,7 @@ void walk_ring(const std::vector<Record>& records, std::int32_t anchor, double a
         out.mass.push_back(c.mass);
         out.first_particle.push_back(walk_slot[w]);
     }
+    frame_to_lab_positions(out, ring_length);
 }
 
 }  // namespace shockgas

@@ -17,10 +17,18 @@ namespace shockgas {
 
 namespace {
 
+// Velocities in the lab: the engines' frame (ClusterState) is added back,
+// rounded once (nothing changes where the frame is at rest).
 void write_state(h5::Group& group, const ClusterState& state) {
     group.set_attribute("time", state.time);
     group.write("position", state.position);
-    group.write("velocity", state.velocity);
+    if (state.frame_velocity == 0.0) {
+        group.write("velocity", state.velocity);
+    } else {
+        std::vector<double> lab(state.size());
+        for (std::size_t k = 0; k < lab.size(); ++k) lab[k] = state.lab_velocity(k);
+        group.write("velocity", lab);
+    }
     group.write("mass", state.mass);
     group.write("first_particle", state.first_particle);
 }

@@ -6,7 +6,8 @@
 
 namespace shockgas {
 
-Moments velocity_moments(const std::vector<double>& velocity, const std::vector<double>& mass) {
+Moments velocity_moments(const std::vector<double>& velocity, const std::vector<double>& mass,
+                         double frame_velocity) {
     CompensatedSum total_mass, momentum;
     for (std::size_t i = 0; i < velocity.size(); ++i) {
         total_mass.add(mass[i]);
@@ -14,12 +15,17 @@ Moments velocity_moments(const std::vector<double>& velocity, const std::vector<
     }
     Moments moments;
     moments.total_mass = total_mass.value();
-    moments.mean_velocity = momentum.value() / moments.total_mass;
+    moments.frame_mean_velocity = momentum.value() / moments.total_mass;
+    // In the frame at rest nothing is added, so the lab numbers are the
+    // frame's bit for bit.
+    const bool at_rest = frame_velocity == 0.0;
+    moments.mean_velocity = at_rest ? moments.frame_mean_velocity : frame_velocity + moments.frame_mean_velocity;
     CompensatedSum fluctuation, energy;
     for (std::size_t i = 0; i < velocity.size(); ++i) {
-        const double deviation = velocity[i] - moments.mean_velocity;
+        const double deviation = velocity[i] - moments.frame_mean_velocity;
         fluctuation.add(mass[i] * deviation * deviation);
-        energy.add(mass[i] * velocity[i] * velocity[i]);
+        const double lab = at_rest ? velocity[i] : frame_velocity + velocity[i];
+        energy.add(mass[i] * lab * lab);
     }
     moments.temperature = fluctuation.value() / moments.total_mass;
     moments.kinetic_energy = 0.5 * energy.value() / moments.total_mass;
@@ -34,12 +40,12 @@ std::vector<double> histogram_edges(double time, int bins, double range) {
     return edges;
 }
 
-void accumulate_histogram(const ClusterState& state, double mean_velocity, const std::vector<double>& edges,
+void accumulate_histogram(const ClusterState& state, double frame_mean_velocity, const std::vector<double>& edges,
                           std::vector<double>& counts) {
     const std::size_t bins = edges.size() - 1;
     counts.resize(bins + 2, 0.0);
     for (std::size_t i = 0; i < state.size(); ++i) {
-        const double v = state.velocity[i] - mean_velocity;
+        const double v = state.velocity[i] - frame_mean_velocity;
         std::size_t index;
         if (v < edges.front()) {
             index = 0;

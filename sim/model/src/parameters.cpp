@@ -61,6 +61,30 @@ void validate(const SimulationParameters& p) {
         throw InputError(fmt::format("ring length L must be positive, got {}", p.ring_length));
     if (!(p.t_max > 0.0) || !std::isfinite(p.t_max))
         throw InputError(fmt::format("t_max must be positive and finite, got {}", p.t_max));
+    // The scales double precision must resolve (docs/reliability.md, "Scales
+    // and shifts"). The model is invariant under x -> lambda x, t -> lambda t,
+    // so a ring outside them is the same physics as one scaled into them.
+    const double length = p.effective_ring_length();
+    const double spacing = length / static_cast<double>(p.particles);
+    constexpr double smallest_spacing = std::numeric_limits<double>::min();
+    if (spacing < smallest_spacing)
+        throw InputError(fmt::format(
+            "ring length L = {} gives a spacing L/N = {:.3g}, below the smallest normal double {:.3g}, where "
+            "gaps lose significant bits; the model is scale-invariant (x -> lambda x, t -> lambda t): give L at "
+            "least {:.3g} and scale t_max with it",
+            length, spacing, smallest_spacing, smallest_spacing * static_cast<double>(p.particles)));
+    if (length > largest_ring_length)
+        throw InputError(fmt::format(
+            "ring length L = {} is beyond {:.3g} (2^1020): the engines form coordinates of a few ring lengths, "
+            "which would overflow double precision; the model is scale-invariant (x -> lambda x, t -> lambda t): "
+            "give a smaller L and scale t_max with it",
+            length, largest_ring_length));
+    if (p.t_max > largest_t_max)
+        throw InputError(fmt::format(
+            "t_max = {} is beyond {:.3g} (2^1018): positions move by up to |v| t_max, which would overflow double "
+            "precision; the model is scale-invariant (x -> lambda x, t -> lambda t): give a smaller t_max, and "
+            "L with it",
+            p.t_max, largest_t_max));
     if (p.samples_per_decade < 1 || p.samples_per_decade > 1000)
         throw InputError(fmt::format("samples per decade must lie in [1, 1000], got {}", p.samples_per_decade));
     if (p.realizations < 1)

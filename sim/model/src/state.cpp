@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "shockgas/model/observables.hpp"
 #include "shockgas/model/parameters.hpp"
 
 namespace shockgas {
@@ -119,6 +120,50 @@ void validate(const InitialCondition& initial) {
             throw InputError(fmt::format("init: positions are not sorted: position[{}] = {} < position[{}] = {}", i, x,
                                          i - 1, initial.position[i - 1]));
     }
+}
+
+void validate_travel(const InitialCondition& initial, double t_max) {
+    double fastest = 0.0;
+    for (const double v : initial.velocity) fastest = std::max(fastest, std::abs(v));
+    if (fastest * t_max > largest_travel)
+        throw InputError(fmt::format(
+            "init: speeds up to {} carry particles {:.3g} far by t_max = {}, beyond {:.3g} (2^1021), where "
+            "positions would overflow double precision; give a smaller t_max",
+            fastest, fastest * t_max, t_max, largest_travel));
+}
+
+double frame_velocity(const std::vector<double>& velocity, const std::vector<double>& mass) {
+    if (velocity.empty()) return 0.0;
+    const auto [lowest, highest] = std::minmax_element(velocity.begin(), velocity.end());
+    const double spread = *highest - *lowest;
+    CompensatedSum momentum, total_mass;
+    for (std::size_t i = 0; i < velocity.size(); ++i) {
+        momentum.add(mass[i] * velocity[i]);
+        total_mass.add(mass[i]);
+    }
+    const double centre_of_mass = momentum.value() / total_mass.value();
+    // Below the velocity unit the frame stays at rest (the header's first case).
+    if (!(std::abs(centre_of_mass) >= 1.0)) return 0.0;
+    if (!(spread > 0.0)) return velocity.front();
+    if (!std::isfinite(spread)) return 0.0;  // speeds near overflow: no frame can help
+    // q: the power of two at or above the spread (frexp: spread = m 2^e, m in [1/2, 1)).
+    int exponent = 0;
+    const double mantissa = std::frexp(spread, &exponent);
+    const double q = std::ldexp(1.0, mantissa == 0.5 ? exponent - 1 : exponent);
+    // From 2^53 q on, every double is a multiple of q already (and V_cm / q
+    // could overflow).
+    if (std::abs(centre_of_mass) >= std::ldexp(q, 53)) return centre_of_mass;
+    return q * std::round(centre_of_mass / q) + 0.0;  // + 0.0: a frame of -0 is +0
+}
+
+void frame_to_lab_positions(ClusterState& state, double ring_length) {
+    if (state.frame_velocity == 0.0) return;
+    // V t = hi + lo exactly; hi mod L is exact (fmod), so the shift is
+    // (hi mod L) + lo, in (-L, L + |lo|), with one rounding.
+    const double hi = state.frame_velocity * state.time;
+    const double lo = std::fma(state.frame_velocity, state.time, -hi);
+    const double shift = std::fmod(hi, ring_length) + lo;
+    for (double& x : state.position) x = wrap_position(x + shift, ring_length);
 }
 
 double wrap_position(double x, double ring_length) {

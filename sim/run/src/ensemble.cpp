@@ -167,7 +167,7 @@ private:
             if (finished_[index].load()) continue;  // done before the checkpoint we resumed from
             started_[index].store(true);
             try {
-                run_realization(k);
+                run_realization_named(k);
             } catch (...) {
                 std::lock_guard lock(progress_mutex_);
                 if (!failure_) failure_ = std::current_exception();
@@ -222,6 +222,16 @@ private:
         }
     }
 
+    // run_realization, with a numerical failure (NumericalFailure: the run
+    // cannot go on where the model can) naming the realization.
+    void run_realization_named(std::int64_t k) {
+        try {
+            run_realization(k);
+        } catch (const NumericalFailure& failure) {
+            throw NumericalFailure(fmt::format("realization {}: {}", k, failure.what()));
+        }
+    }
+
     // Advances realization k from its next unrecorded sample time to t_max,
     // recording each sample; pauses for checkpoints when asked.
     void run_samples(std::int64_t k, Engine& engine) {
@@ -247,7 +257,7 @@ private:
                 continue;  // paused for a checkpoint: go on to the same sample time
             }
             engine.clusters(state);
-            const Moments moments = velocity_moments(state.velocity, state.mass);
+            const Moments moments = velocity_moments(state);
             const std::size_t cell = index * samples + s;
             result_.temperature[cell] = moments.temperature;
             result_.kinetic_energy[cell] = moments.kinetic_energy;
@@ -257,7 +267,7 @@ private:
             const auto h = std::find(histogram_times_.begin(), histogram_times_.end(), t);
             if (h != histogram_times_.end()) {
                 const auto edges = histogram_edges(t, parameters_.histogram_bins, parameters_.histogram_range);
-                accumulate_histogram(state, moments.mean_velocity, edges,
+                accumulate_histogram(state, moments.frame_mean_velocity, edges,
                                      out.histogram_counts[static_cast<std::size_t>(h - histogram_times_.begin())]);
             }
             out.samples_done = static_cast<std::int64_t>(++s);

@@ -49,6 +49,7 @@ SimulationOutcome run_simulation(SimulationRequest& request, DistributedSession&
         p.init_file_sha256 = file_sha256(p.init_file);
     }
     validate(p);
+    if (!p.init_file.empty()) validate_travel(initial, p.t_max);
     // The engine is part of what identifies a run: a checkpoint holds one engine's states, and merge
     // refuses parts of two. "auto" is resolved here (from the start's masses), so that --resume and
     // "already complete" compare the engine that runs, not the word asked for.

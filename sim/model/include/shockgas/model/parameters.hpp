@@ -48,10 +48,13 @@ struct CollisionModel {
 // below collapse_speed (geometric decay of relative speeds is the signature of
 // collapse, McNamara & Young 1992) while three or more clusters are in contact
 // (a slow pair alone is a cooled gas), or when max(stall_events_min, 10 N) consecutive events
-// advance simulated time by less than stall_time_fraction * max(1, t).
+// advance simulated time by less than stall_time_fraction * max(L/N, t): relative to t, and
+// near t = 0 to the run's time unit L/N (time_unit, state.hpp), never to an absolute time, so
+// that the criterion scales with the ring (x -> lambda x, t -> lambda t). Where collapse is
+// impossible (delta > 0, or r = 0) a stall is a numerical failure instead (NumericalFailure).
 struct CollapseCriterion {
     double collapse_speed = 1e-12;        // in units of the initial velocity scale (1)
-    double stall_time_fraction = 1e-12;   // relative advance of t regarded as no advance
+    double stall_time_fraction = 1e-12;   // advance of t, relative to max(L/N, t), regarded as no advance
     std::uint64_t stall_events_min = 1000000;  // the stall window is max(this, 10 N) events
 };
 
@@ -97,7 +100,33 @@ struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// Throws InputError naming the first problem found.
+// Thrown when a run meets what double precision cannot resolve although the
+// model allows it, and no input check could have foreseen it (a stall where
+// collapse is impossible: events crowding at one instant). The message is one
+// line naming the limit and what to change; an InputError, since the remedy
+// is a change of input.
+struct NumericalFailure : InputError {
+    using InputError::InputError;
+};
+
+// The largest coordinates a run may form. The engines form positions of up
+// to a few ring lengths (the pass-through engine's lines lie within one ring
+// length either side of the ring, and its sort margins add up to four) plus
+// the distance travelled, |v| t. With L <= 2^1020 and |v| t <= 2^1021 all of
+// them stay below 2^1023, under the largest double (2^1024 less an ulp).
+inline constexpr double largest_ring_length = 0x1p1020;  // about 1.1e307
+inline constexpr double largest_travel = 0x1p1021;       // max |v| t_max, about 2.2e307
+// t_max for a generated start, whose speeds are below this: uniform
+// velocities are within [-1, 1], and a Gaussian one (sigma = 1/sqrt 3)
+// exceeds 8 with probability 1e-43 per particle.
+inline constexpr double generated_speed_bound = 8.0;
+inline constexpr double largest_t_max = largest_travel / generated_speed_bound;  // 2^1018, about 2.8e306
+
+// Throws InputError naming the first problem found. Besides the ranges of
+// the options, the scales a run must resolve: the spacing L/N a normal double
+// (at least 2.2e-308; below it numbers lose significant bits, so gaps are no
+// longer resolved to double precision), L at most largest_ring_length and
+// t_max at most largest_t_max (an --init file's speeds: validate_travel).
 void validate(const SimulationParameters& parameters);
 
 // The sample grid: samples_per_decade log-spaced times from t = 1 to t_max

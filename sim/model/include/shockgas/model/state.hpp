@@ -56,17 +56,58 @@ double portable_log(double x);
 std::uint64_t realization_seed(std::uint64_t seed, std::int64_t realization);
 
 void validate(const InitialCondition& initial);  // throws InputError
+// Throws InputError if the start's speeds would carry positions beyond what
+// doubles hold by t_max: max |v| t_max, which bounds the distance any particle
+// and the frame (frame_velocity) travel, at most largest_travel
+// (parameters.hpp). For an --init file; generated starts are bounded by
+// generated_speed_bound.
+void validate_travel(const InitialCondition& initial, double t_max);
+
+// The run's own time unit: the mean spacing L/N over the velocity unit (the
+// initial velocity scale, 1, in which delta and the collapse speed are
+// given). Space and time scale together (x -> lambda x, t -> lambda t is an
+// exact symmetry of the model), so every time tolerance of the engines is a
+// multiple of this, never of an absolute time. 1 for the paper's L = N.
+inline double time_unit(const InitialCondition& initial) {
+    return initial.ring_length / static_cast<double>(initial.size());
+}
+
+// The engines' frame (docs/model.md, "The engines' frame"): a velocity V near
+// the centre-of-mass velocity of the start. Every engine advances the
+// velocities v - V and positions in the frame moving at V, and reports V
+// beside them (ClusterState::frame_velocity), so a Galilean shift of the
+// start costs no precision: the common motion is not carried in each
+// velocity. V = q round(V_cm / q), q the power of two at or above the
+// velocity spread max v - min v, or V = 0 while |V_cm| is below the velocity
+// unit (1). So
+//  * for the paper's start (|v| <= 1, hence |V_cm| < 1) V = 0 and the
+//    engines' arithmetic is unchanged, bit for bit; below the unit the common
+//    motion costs at most ulp(1) per velocity, the resolution every default
+//    run has;
+//  * for a start shifted by u (|u| >= 1 and a multiple of q, as any
+//    |u| >= 2^53 q is), V moves by u, and v + u - V is exact whenever v + u
+//    is (Sterbenz: |v + u - V| <= spread + q/2 <= 1.5 q, so v + u and V are
+//    within a factor 2 of each other once |V| >= 3 q): the engines run the
+//    unshifted velocities bit for bit.
+// All velocities equal: V is that velocity (if at least 1 in size).
+double frame_velocity(const std::vector<double>& velocity, const std::vector<double>& mass);
 
 // Clusters at one time, in ring order starting from the cluster whose slot
-// (index of its leftmost particle) is smallest. Positions wrapped into [0, L).
+// (index of its leftmost particle) is smallest. Positions wrapped into [0, L),
+// in the lab. Velocities are relative to frame_velocity: cluster k moves at
+// frame_velocity + velocity[k] in the lab. Galilean-invariant quantities
+// (the temperature, velocity differences) are computed from `velocity`
+// alone, to full precision; lab velocities (lab_velocity) are rounded once.
 struct ClusterState {
     double time = 0.0;
+    double frame_velocity = 0.0;
     std::vector<double> position;
     std::vector<double> velocity;
     std::vector<double> mass;
     std::vector<std::int64_t> first_particle;
 
     std::size_t size() const { return velocity.size(); }
+    double lab_velocity(std::size_t k) const { return frame_velocity + velocity[k]; }
     void clear() {
         position.clear();
         velocity.clear();
@@ -74,6 +115,13 @@ struct ClusterState {
         first_particle.clear();
     }
 };
+
+// Positions of a state computed in the frame moving at V (positions at
+// `time` in the frame, wrapped into [0, L)) moved into the lab: each x
+// becomes x + V t mod L. V t is reduced mod L before it is rounded (its
+// exact product hi + lo by fma, fmod exact), so the shift carries one
+// rounding of a number below L, however large V t. Nothing changes for V = 0.
+void frame_to_lab_positions(ClusterState& state, double ring_length);
 
 // The physical state of an equal-or-unequal-mass ring in the middle of a run,
 // for handing a realization from one engine to another (HybridEngine): one
@@ -83,6 +131,7 @@ struct ClusterState {
 struct MidRunState {
     double ring_length = 0.0;
     double time = 0.0;
+    double frame_velocity = 0.0;  // positions and velocities are in the frame moving at this (frame_velocity())
     std::uint64_t collisions = 0;
     std::uint64_t inelastic_collisions = 0;  // of those, at or above delta (a diagnostic)
     std::vector<double> position;
