@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Metamorphic tests: transformations of a start that the model maps onto the
 // same dynamics, so that every engine must give the same collision counts and
 // temperatures (docs/reliability.md, "Scales and shifts"):
