@@ -17,7 +17,7 @@ int main() {
     engine->advance_to(10.0);
     shockgas::ClusterState state;
     engine->clusters(state);
-    const auto moments = shockgas::velocity_moments(state.velocity, state.mass);
+    const auto moments = shockgas::velocity_moments(state);
     std::printf("engine %s t %.17g collisions %llu T %.17g\n", engine->name().c_str(), engine->time(),
                 static_cast<unsigned long long>(engine->collisions()), moments.temperature);
     return 0;
