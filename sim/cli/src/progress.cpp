@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -60,45 +62,42 @@ double ProgressEstimator::expected_total(std::size_t k, const RealizationProgres
 void ProgressEstimator::update(Progress& p) {
     using State = RealizationProgress::State;
     history_.resize(p.realization.size());
-    double finished_total = 0.0, running_done = 0.0, running_expected = 0.0;
-    std::int64_t finished = 0, running = 0, waiting = 0;
+    double finished_total = 0.0, running_done = 0.0, running_extrapolated = 0.0;
+    std::int64_t finished = 0, waiting = 0;
+    std::vector<std::pair<double, double>> running;  // (collisions so far, extrapolated total) of each running one
     double slowest = p.t_max;
-    bool any_running = false;
     for (std::size_t k = 0; k < p.realization.size(); ++k) {
         const RealizationProgress& r = p.realization[k];
+        const auto collisions = static_cast<double>(r.collisions);
         if (r.state == State::finished) {
-            finished_total += static_cast<double>(r.collisions);
+            finished_total += collisions;
             ++finished;
         } else if (r.state == State::running) {
-            running_done += static_cast<double>(r.collisions);
-            running_expected += expected_total(k, r, p.t_max);
-            slowest = any_running ? std::min(slowest, r.time) : r.time;
-            any_running = true;
-            ++running;
+            const double total = expected_total(k, r, p.t_max);
+            running.emplace_back(collisions, total);
+            running_done += collisions;
+            running_extrapolated += total;
+            slowest = running.size() == 1 ? r.time : std::min(slowest, r.time);
+            if (history_[k].empty() || r.time > history_[k].back().time) history_[k].push_back({r.time, collisions});
         } else {
             ++waiting;
         }
-        if (r.state == State::running &&
-            (history_[k].empty() || r.time > history_[k].back().time))
-            history_[k].push_back({r.time, static_cast<double>(r.collisions)});
     }
     p.shown_time = slowest;
     // What one realization costs: measured once one has finished, else the running ones' extrapolations.
-    const double per_realization = finished > 0   ? finished_total / static_cast<double>(finished)
-                                   : running > 0 ? running_expected / static_cast<double>(running)
-                                                 : 0.0;
+    const double per_realization = finished > 0        ? finished_total / static_cast<double>(finished)
+                                   : !running.empty() ? running_extrapolated / static_cast<double>(running.size())
+                                                      : 0.0;
     double remaining = static_cast<double>(waiting) * per_realization;
-    for (std::size_t k = 0; k < p.realization.size(); ++k) {
-        const RealizationProgress& r = p.realization[k];
-        if (r.state != State::running) continue;
-        const double expected = finished > 0 ? std::max(per_realization, static_cast<double>(r.collisions))
-                                             : expected_total(k, r, p.t_max);
-        remaining += std::max(0.0, expected - static_cast<double>(r.collisions));
+    for (const auto& [done_so_far, extrapolated] : running) {
+        const double expected = finished > 0 ? std::max(per_realization, done_so_far) : extrapolated;
+        remaining += std::max(0.0, expected - done_so_far);
     }
     const double done = finished_total + running_done;
-    p.fraction_done = done + remaining > 0.0 ? done / (done + remaining) : (waiting + running == 0 ? 1.0 : 0.0);
+    const bool all_done = waiting == 0 && running.empty();
+    p.fraction_done = done + remaining > 0.0 ? done / (done + remaining) : (all_done ? 1.0 : 0.0);
     p.eta_seconds = p.collisions_per_second > 0.0 && per_realization > 0.0 ? remaining / p.collisions_per_second
-                    : waiting + running == 0                               ? 0.0
+                    : all_done                                             ? 0.0
                                                                            : -1.0;
 }
 
