@@ -55,7 +55,7 @@ edit() { printf '\n// an edit\n' >>"$copy/$1" || fail "editing $1"; }
 unedit() { (cd "$source" && cp "$1" "$copy/$1") || fail "restoring $1"; }
 
 # Not the simulation: each leaves the simulator's hash as it was.
-for f in sim/app/shockgas_dump.cpp sim/app/shockgas_sim.cpp analysis/src/burgers.cpp sim/cli/src/suggest.cpp \
+for f in analysis/app/shockgas_dump.cpp analysis/src/dump.cpp sim/app/shockgas_sim.cpp analysis/src/burgers.cpp sim/cli/src/suggest.cpp \
          sim/tail/src/tail_sampler.cpp; do
   [ -f "$copy/$f" ] || fail "no $f in the tree: update this test's list"
   edit "$f"

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-dump's and shockgas-merge's work as the programs call it
-// (shockgas/io/dump.hpp, shockgas/io/merge.hpp): gnuplot variables from a group's
+// (shockgas/analysis/dump.hpp, shockgas/io/merge.hpp): gnuplot variables from a group's
 // attributes, the snapshot rows of one realization, and parts joined into one file.
 #include <cmath>
 #include <cstdio>
@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "shockgas/io/dump.hpp"
+#include "shockgas/analysis/dump.hpp"
 #include "shockgas/io/h5.hpp"
 #include "shockgas/io/merge.hpp"
 #include "shockgas/io/output.hpp"

@@ -6,14 +6,14 @@
 //                                         each numeric attribute of GROUP as "P_name = value",
 //                                         each string attribute as P_name = "value"
 // Binds the command line to a shockgas::DumpRequest and runs it (shockgas::run_dump,
-// shockgas/io/dump.hpp), which reads and checks the input in full before the output is
+// shockgas/analysis/dump.hpp), which reads and checks the input in full before the output is
 // opened and leaves no output, nor a partial one, after a bad input or a failed write.
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "shockgas/cli/cli.hpp"
-#include "shockgas/io/dump.hpp"
+#include "shockgas/analysis/dump.hpp"
 #include "shockgas/io/provenance.hpp"
 
 namespace {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// shockgas-dump's work (shockgas/io/dump.hpp).
-#include "shockgas/io/dump.hpp"
+// shockgas-dump's work (shockgas/analysis/dump.hpp).
+#include "shockgas/analysis/dump.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-dump as a library call: parts of HDF5 files as plain text for
-// gnuplot. The program (sim/app/shockgas_dump.cpp) binds its options to a
+// gnuplot. The program (analysis/app/shockgas_dump.cpp) binds its options to a
 // DumpRequest and calls run_dump.
 //   snapshots     rows "time position velocity mass first_particle" of every
 //                 snapshot of one realization, one block (blank lines) each
