@@ -168,6 +168,35 @@ void add_compare(CLI::App& app, AnalyzeRequest& r) {
     compare->add_option("--curves", r.curves, "deviation against time, one block per input");
 }
 
+void add_validity(CLI::App& app, AnalyzeRequest& r) {
+    auto* validity = app.add_subcommand(
+        "validity", "when each observable of the delta > 0 gas leaves the sticky gas: the validity map of delta");
+    validity
+        ->add_option("inputs", r.inputs,
+                     "shockgas-sim outputs with snapshots: the sticky-gas references (r = 0, delta = 0) and the runs "
+                     "compared with the reference of their N and seed")
+        ->required()
+        ->check(CLI::ExistingFile);
+    validity->add_option("-o,--output", r.output, "results HDF5 file, holding /validity_map")->capture_default_str();
+    validity->add_option("--data", r.data, "table: t* per run, observable and criterion, and the fitted mu");
+    validity->add_option("--curves", r.curves, "each observable's deviation against t, one block per run and observable");
+    validity->add_option("--fidelity", r.fidelity, "the map's label: the tier its runs belong to")->capture_default_str();
+    validity
+        ->add_option("--cluster-gap", r.validity.cluster_gap_fraction,
+                     "clusters: neighbours closer than this fraction of the sticky gas's cluster spacing t^(2/3)/nu")
+        ->capture_default_str();
+    validity
+        ->add_option("--small-gap", r.validity.small_gap_fraction,
+                     "small_gap_fraction counts empty gaps shorter than this fraction of their mean")
+        ->capture_default_str();
+    validity
+        ->add_option("--wavenumber", r.validity.structure_wavenumber,
+                     "structure_function is S(k) t^(-2/3) at k = this / t^(2/3) (units of the spacing)")
+        ->capture_default_str();
+    validity->add_option("--k-sigma", r.validity.k_sigma, "the 3sigma criterion's number of paired jackknife sigmas")
+        ->capture_default_str();
+}
+
 void add_far_tail(CLI::App& app, AnalyzeRequest& r) {
     auto* far_tail = app.add_subcommand("far-tail", "tail exponent gamma of Phi from shockgas-tail output");
     far_tail->add_option("input", r.input, "shockgas-tail output")->required()->check(CLI::ExistingFile);
@@ -189,7 +218,8 @@ int main(int argc, char** argv) {
     app.set_help_all_flag("--help-all", "print the options of every subcommand");
     app.require_subcommand(1);
     AnalyzeRequest request;
-    for (const auto add : {add_decay, add_crossover, add_scaling, add_shocks, add_collapse, add_compare, add_far_tail})
+    for (const auto add : {add_decay, add_crossover, add_scaling, add_shocks, add_collapse, add_compare, add_validity,
+                           add_far_tail})
         add(app, request);
     if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
     const CLI::App& subcommand = *app.get_subcommands().front();

@@ -113,6 +113,16 @@ void check_and_run(AnalyzeRequest& request, const std::vector<std::string>& all_
             {{"-o", request.output, false}, {"--data", request.data, true}, {"--curves", request.curves, true}},
             all_inputs);
         run_compare(invocation, request.reference, request.inputs, request.output, request.data, request.curves);
+    } else if (command == "validity") {
+        require_positive("--cluster-gap", request.validity.cluster_gap_fraction, " (a fraction of the cluster spacing)");
+        require_positive("--small-gap", request.validity.small_gap_fraction, " (a fraction of the mean gap)");
+        require_positive("--wavenumber", request.validity.structure_wavenumber, " (k t^(2/3))");
+        require_positive("--k-sigma", request.validity.k_sigma);
+        check_outputs(
+            {{"-o", request.output, false}, {"--data", request.data, true}, {"--curves", request.curves, true}},
+            all_inputs);
+        run_validity(invocation, request.inputs, request.output, request.data, request.curves, request.fidelity,
+                     request.validity);
     } else if (command == "far-tail") {
         if (!(request.z_hi > request.z_lo) || !std::isfinite(request.z_hi))
             throw InputError(

@@ -19,38 +19,50 @@ namespace shockgas::analysis {
 
 namespace {
 
-// Paired realizations 0..n-1: the ratio of the sums and its delete-one-pair
-// jackknife error (the analysis library's jackknife, Efron & Tibshirani 1993,
-// Eq. 11.5; sigma NaN with one pair).
-Estimate paired_ratio(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference,
-                      std::size_t j, std::size_t n) {
+// Paired realizations 0..n-1: the ratio of the sums minus 1 (relative) or
+// the difference of the means (absolute), and its delete-one-pair jackknife
+// error (the analysis library's jackknife, Efron & Tibshirani 1993, Eq. 11.5;
+// sigma NaN with one pair).
+Estimate paired_deviation(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference,
+                          std::size_t j, std::size_t n, Deviation deviation) {
     double sum = 0.0, reference_sum = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         sum += run.at(i, k);
         reference_sum += reference.at(i, j);
     }
     return jackknife(n, [&](std::optional<std::size_t> left_out) {
-        return left_out ? (sum - run.at(*left_out, k)) / (reference_sum - reference.at(*left_out, j))
-                        : sum / reference_sum;
+        const double a = left_out ? sum - run.at(*left_out, k) : sum;
+        const double b = left_out ? reference_sum - reference.at(*left_out, j) : reference_sum;
+        const double count = static_cast<double>(left_out ? n - 1 : n);
+        return deviation == Deviation::relative ? a / b - 1.0 : (a - b) / count;
     });
 }
 
-// Independent ensembles: the ratio of the means, its error by first-order
-// propagation of both standard errors.
-Estimate independent_ratio(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference,
-                           std::size_t j) {
+// Independent ensembles: the ratio of the means minus 1, or their
+// difference, its error by first-order propagation of both standard errors.
+Estimate independent_deviation(const TemperatureHistory& run, std::size_t k, const TemperatureHistory& reference,
+                               std::size_t j, Deviation deviation) {
     const double mean = run.mean(k), reference_mean = reference.mean(j);
+    if (deviation == Deviation::absolute) {
+        const double error = std::hypot(run.standard_error(k), reference.standard_error(j));
+        return {mean - reference_mean, std::isfinite(error) ? error : std::numeric_limits<double>::quiet_NaN()};
+    }
     const double value = mean / reference_mean;
     const double relative_error =
         std::hypot(run.standard_error(k) / mean, reference.standard_error(j) / reference_mean);
-    return {value, std::isfinite(relative_error) ? std::abs(value) * relative_error
-                                                 : std::numeric_limits<double>::quiet_NaN()};
+    return {value - 1.0, std::isfinite(relative_error) ? std::abs(value) * relative_error
+                                                       : std::numeric_limits<double>::quiet_NaN()};
 }
 
 }  // namespace
 
 TemperatureComparison compare_temperatures(const TemperatureHistory& run, const TemperatureHistory& reference,
                                            Realizations realizations, double k_sigma, double floor) {
+    return compare_histories(run, reference, realizations, Deviation::relative, k_sigma, floor);
+}
+
+TemperatureComparison compare_histories(const TemperatureHistory& run, const TemperatureHistory& reference,
+                                        Realizations realizations, Deviation mode, double k_sigma, double floor) {
     TemperatureComparison out;
     const bool paired = realizations == Realizations::paired;
     const std::size_t common = std::min(run.realizations, reference.realizations);
@@ -66,15 +78,15 @@ TemperatureComparison compare_temperatures(const TemperatureHistory& run, const 
         std::size_t j = 0;
         while (j < reference.time.size() && reference.time[j] != run.time[k]) ++j;
         if (j == reference.time.size()) continue;
-        const Estimate estimate =
-            paired ? paired_ratio(run, k, reference, j, common) : independent_ratio(run, k, reference, j);
-        const double ratio = estimate.value, sigma = estimate.sigma;
+        const Estimate estimate = paired ? paired_deviation(run, k, reference, j, common, mode)
+                                         : independent_deviation(run, k, reference, j, mode);
+        const double sigma = estimate.sigma;
         // One realization (in common): no standard error, not a zero one.
         if (std::isnan(sigma))
             out.sigma_note = std::string(paired ? "one realization in common" : "a run of one realization") +
                              " has no standard error; departure judged by the " +
                              std::to_string(static_cast<int>(std::lround(100.0 * floor))) + "% floor alone";
-        const double deviation = ratio - 1.0;
+        const double deviation = estimate.value;
         out.time.push_back(run.time[k]);
         out.relative_deviation.push_back(deviation);
         out.relative_sigma.push_back(sigma);
@@ -117,7 +129,8 @@ std::string attribute_text(const h5::Group& root, const std::string& name, Store
 
 }  // namespace
 
-std::string comparison_differences(const std::string& reference_path, const std::string& run_path) {
+std::string comparison_differences(const std::string& reference_path, const std::string& run_path,
+                                   bool same_restitution) {
     // The parameters that make two runs one ensemble up to delta and the
     // sub-threshold rule (compare.hpp), as write_parameter_attributes stores them.
     static const std::pair<const char*, Stored> shared[] = {
@@ -133,6 +146,7 @@ std::string comparison_differences(const std::string& reference_path, const std:
     check_simulation_output(run, run_path);
     std::vector<std::string> differences;
     for (const auto& [name, stored] : shared) {
+        if (!same_restitution && std::string(name) == "restitution") continue;
         if (!reference.has_attribute(name) || !run.has_attribute(name)) continue;
         const std::string ours = attribute_text(run, name, stored), theirs = attribute_text(reference, name, stored);
         if (ours != theirs)

@@ -14,12 +14,13 @@
 #include "shockgas/analysis/results.hpp"
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
+#include "shockgas/analysis/validity.hpp"
 #include "shockgas/analysis/velocity_distribution.hpp"
 
 namespace shockgas::analysis {
 
 struct AnalyzeRequest {
-    // The subcommand: decay, crossover, scaling, shocks, collapse, compare or far-tail.
+    // The subcommand: decay, crossover, scaling, shocks, collapse, compare, validity or far-tail.
     std::string command;
     // The command line and the subcommand's options as run, for the results file.
     AnalysisInvocation invocation;
@@ -47,6 +48,9 @@ struct AnalyzeRequest {
     // far-tail: the fit window and its systematic.
     double z_lo = 2.0, z_hi = 5.5, window_shift = 0.25;
     bool free_linear = false;
+    // validity: the definitions of its observables, and the map's fidelity label.
+    ValidityRule validity;
+    std::string fidelity = "quick";
 };
 
 // Checks, before any work, that no input is a run in progress (a checkpoint),

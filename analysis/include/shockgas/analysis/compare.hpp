@@ -51,6 +51,18 @@ struct TemperatureComparison {
 TemperatureComparison compare_temperatures(const TemperatureHistory& run, const TemperatureHistory& reference,
                                            Realizations realizations, double k_sigma = 3.0, double floor = 0.02);
 
+// What a deviation from the reference is: relative, <X>/<X_ref> - 1 (T, whose
+// tolerances are fractions), or absolute, <X> - <X_ref> (an observable whose
+// reference may be 0, such as the sticky gas's fragmentation rate).
+enum class Deviation { relative, absolute };
+
+// compare_temperatures for any R x K table of one observable (the history's
+// `temperature` holds its values), with the deviation `mode`: what
+// shockgas-analyze validity judges every observable by. relative_deviation
+// and relative_sigma then hold the absolute difference and its error.
+TemperatureComparison compare_histories(const TemperatureHistory& run, const TemperatureHistory& reference,
+                                        Realizations realizations, Deviation mode, double k_sigma, double floor);
+
 // compare measures what the threshold delta and the sub-threshold rule cost
 // in accuracy: a run and its reference must be the same ensemble otherwise,
 // or the deviation measures something else (another N, r or start). They
@@ -62,6 +74,9 @@ TemperatureComparison compare_temperatures(const TemperatureHistory& run, const 
 // An attribute that only one of the files has (an older schema) is not compared.
 // Returns the differences as "particles 1000 vs 2000, restitution 0.8 vs 0.9"
 // (the run's value first), empty when the runs are comparable.
-std::string comparison_differences(const std::string& reference_path, const std::string& run_path);
+// With same_restitution false, r may differ too (validity compares every r
+// with the sticky gas, r = 0).
+std::string comparison_differences(const std::string& reference_path, const std::string& run_path,
+                                   bool same_restitution = true);
 
 }  // namespace shockgas::analysis
