@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Install rules (docs/install.md), in the usual GNUInstallDirs layout:
 #
-#   bin/                                 shockgas-sim, -merge, -dump, -burgers, -analyze
+#   bin/                                 shockgas-sim, -merge, -dump, -burgers, -analyze, -tail, -plan
 #   include/shockgas/<room>/             the public headers of each library (model, io, engines,
 #                                        run, tail, analysis)
 #   lib/<multiarch>/                     libshockgas_<room>.a
@@ -29,7 +29,8 @@ mark_as_advanced(SHOCKGAS_INSTALL_CMAKEDIR)
 
 # The libraries, one a room (the umbrella shockgas_sim is an interface target, no file of its own).
 set(SHOCKGAS_LIBRARIES shockgas_model shockgas_io shockgas_engines shockgas_run shockgas_tail shockgas_analysis)
-set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail)
+set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail
+                      shockgas-plan)
 
 # First of all the rules: the built files are all there, or nothing is installed
 # (cmake/InstallCheck.cmake; install-needs.txt is written at the end of this file).

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-sim: binds the command line to a shockgas::SimulationRequest, runs it
-// (shockgas::run_simulation, sim/run) and shows the outcome.
+// (shockgas::run_simulation, sim/run) and shows the outcome, after the validity
+// map's warning when it has one (shockgas/analysis/validity_warning.hpp).
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/analysis/validity_warning.hpp"
 #include "shockgas/cli/cli.hpp"
 #include "shockgas/cli/progress.hpp"
 #include "shockgas/io/provenance.hpp"
@@ -46,6 +48,7 @@ extern "C" void on_hangup(int) {
 struct Display {
     double progress_interval = 60.0;
     bool quiet = false;
+    std::string validity_map;  // --validity-map: the map the warning reads ("": none)
 };
 
 // Every option, bound to the request's fields (their defaults are the request's).
@@ -141,6 +144,11 @@ void add_options(CLI::App& app, shockgas::SimulationRequest& request, Display& d
                    "free); fewer realizations run at once if all do not fit, and a run of which not even one fits "
                    "is refused");
     app.add_flag("-q,--quiet", display.quiet, "do not print the T(t) table");
+    app.add_option("--validity-map", display.validity_map,
+                   "the validity map of delta (a results file holding /validity_map; docs/validity.md) from which a "
+                   "warning is printed before a run whose t_max lies past where its T leaves the sticky gas by 1 %; "
+                   "'' checks none; default: $SHOCKGAS_VALIDITY_MAP if set, else this build tree's fig_validity "
+                   "map, when there is one. The run is the same either way");
     app.set_version_flag("--version", "shockgas-sim " + shockgas::build_info().version);
     app.footer("Output schema: docs/cli-and-output.md (installed in share/doc/shockgas). Ctrl-C writes what has been computed, marked "
                "interrupted, and a checkpoint that --resume continues. The checkpoint is removed once the output "
@@ -203,7 +211,19 @@ int main(int argc, char** argv) {
         request.ring_length_given = app.count("--ring-length") > 0;
         const bool terminal = isatty(STDERR_FILENO) != 0;
         request.checkpoint.note = shockgas::cli::rank_note("shockgas-sim", session.rank(), session.ranks(), terminal);
-        shockgas::SimulationHooks hooks{&interrupt_requested, install_signal_handlers,
+        const bool map_given = app.count("--validity-map") > 0;
+        const std::string warning = shockgas::analysis::validity_warning_for_run(
+            map_given ? display.validity_map
+                      : shockgas::analysis::default_validity_map({SHOCKGAS_PAPER_VALIDITY_MAP, SHOCKGAS_QUICK_VALIDITY_MAP}),
+            map_given, request.parameters.collision.restitution, request.parameters.collision.velocity_threshold,
+            request.subthreshold, request.parameters.t_max);
+        // Printed once the run is known to start (its input checked), so that a
+        // refused run still says one line.
+        const auto before_run = [&] {
+            if (!warning.empty() && session.is_root()) fmt::print(stderr, "shockgas-sim: warning: {}\n", warning);
+            install_signal_handlers();
+        };
+        shockgas::SimulationHooks hooks{&interrupt_requested, before_run,
                                         shockgas::cli::progress_printer("shockgas-sim", display.progress_interval)};
         const shockgas::SimulationOutcome outcome = shockgas::run_simulation(request, session, hooks);
         if (!outcome.nothing_to_do.empty()) fmt::print(stderr, "shockgas-sim: {}\n", outcome.nothing_to_do);

@@ -31,6 +31,9 @@ if [ "$mode" = build ]; then
   rooms=(model io engines run cli)
   for room in "${rooms[@]}"; do flags+=(-I"$source_dir/sim/$room/include"); done
   flags+=(-I"$source_dir/sim/engines/src")
+  # shockgas-sim's main also reads the validity map for its warning (analysis/src: two files that
+  # need no GSL). The harness has no build tree, so no default map: empty names, none looked up.
+  flags+=(-I"$source_dir/analysis/include" -DSHOCKGAS_PAPER_VALIDITY_MAP='""' -DSHOCKGAS_QUICK_VALIDITY_MAP='""')
   # CMake lists arrive ';'-separated.
   IFS=';' read -ra include_list <<< "$hdf5_includes"
   for dir in "${include_list[@]}"; do flags+=(-isystem "$dir"); done
@@ -42,10 +45,12 @@ if [ "$mode" = build ]; then
   # define the same symbols).
   sources=()
   for room in "${rooms[@]}"; do sources+=("$source_dir/sim/$room"/src/*.cpp); done
+  sources+=("$source_dir/analysis/src/validity_map.cpp" "$source_dir/analysis/src/validity_warning.cpp")
   for src in "${sources[@]}" "$build_info"; do
     [ "$(basename "$src")" = distributed_mpi.cpp ] && continue
     obj="$out_dir/$(basename "${src%.cpp}").o"
-    if [ ! -e "$obj" ] || [ "$src" -nt "$obj" ] || [ -n "$(find "$source_dir/sim" -name '*.hpp' -newer "$obj" -print -quit)" ]; then
+    if [ ! -e "$obj" ] || [ "$src" -nt "$obj" ] || [ -n "$(find "$source_dir/sim" -name '*.hpp' -newer "$obj" -print -quit)" ] ||
+       [ -n "$(find "$source_dir/analysis/include" -name '*.hpp' -newer "$obj" -print -quit)" ]; then
       clang++ "${flags[@]}" -c "$src" -o "$obj" &
     fi
     objects+=("$obj")

@@ -31,7 +31,7 @@ export PATH="$prefix/bin:$PATH"
 # Not grep -q: it stops reading at the match, and under pipefail the writer's SIGPIPE fails the line.
 shockgas-sim --help | grep -- "--restitution" >/dev/null || fail "shockgas-sim --help lacks --restitution"
 shockgas-sim --version | grep -q "^shockgas-sim " || fail "shockgas-sim --version: $(shockgas-sim --version)"
-for program in shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail shockgas-look; do
+for program in shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail shockgas-plan shockgas-look; do
   "$program" --help >/dev/null || fail "$program --help"
   "$program" --version | grep "^$program [^ ]" >/dev/null || fail "$program --version: $("$program" --version 2>&1)"
 done
@@ -117,10 +117,11 @@ head -c 8 figures/figures/quick/fig3.png | grep -q PNG || fail "no fig3.png from
 grep -q "^%PDF" figures/figures/quick/fig3.pdf || fail "no fig3.pdf from the installed copy"
 
 # 5. Man pages.
-for program in shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze; do
+for program in shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-plan; do
   page="$prefix/share/man/man1/$program.1.gz"
   gzip -dc "$page" | grep "^\.TH \"\?${program^^}" >/dev/null || fail "$page is not a man page of $program"
 done
 gzip -dc "$prefix/share/man/man1/shockgas-sim.1.gz" | grep -- "restitution" >/dev/null || fail "shockgas-sim.1 lacks its options"
 gzip -dc "$prefix/share/man/man1/shockgas-analyze.1.gz" | grep -- "decay" >/dev/null || fail "shockgas-analyze.1 lacks its subcommands"
+gzip -dc "$prefix/share/man/man1/shockgas-plan.1.gz" | grep -- "tolerance" >/dev/null || fail "shockgas-plan.1 lacks its options"
 echo "ok: installed into $prefix and used from outside the source tree"

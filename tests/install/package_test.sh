@@ -40,6 +40,7 @@ dpkg-deb --info "$runtime"
 expect_depends "$runtime" 'libhdf5-[0-9a-z.-]+' 'libgsl[0-9]+' 'libfmt[0-9]+' 'libstdc\+\+6' python3 python3-numpy python3-h5py
 expect_files "$runtime" \
   usr/bin/shockgas-sim usr/bin/shockgas-merge usr/bin/shockgas-dump usr/bin/shockgas-burgers usr/bin/shockgas-analyze \
+  usr/bin/shockgas-plan usr/share/man/man1/shockgas-plan.1.gz \
   usr/share/man/man1/shockgas-sim.1.gz usr/share/man/man1/shockgas-merge.1.gz usr/share/man/man1/shockgas-dump.1.gz \
   usr/share/man/man1/shockgas-burgers.1.gz usr/share/man/man1/shockgas-analyze.1.gz \
   usr/lib/python3/dist-packages/shockgas/__init__.py usr/share/shockgas/CMakeLists.txt \

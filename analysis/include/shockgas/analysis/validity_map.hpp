@@ -66,10 +66,40 @@ struct ValidityMap {
     std::vector<ValidityFit> fits;
 };
 
-// Writes the map into `group` (a results file's /validity_map).
+// Writes the map into `group` (a results file's /validity_map; the layout is
+// docs/cli-and-output.md, "Validity map"). Names are HDF5 group names, so a run
+// name or observable holding '/' is a defect of the caller (std::invalid_argument).
 void write_validity_map(h5::Group& group, const ValidityMap& map);
 // Reads the map from a file that holds /validity_map; throws InputError naming
 // the file and the object that is missing or malformed.
 ValidityMap read_validity_map(const std::string& path);
+
+// Two restitutions are the same run parameter when they agree within this
+// (absolute): the map's r are the parameter files' numbers (0.5, 0.9), read back
+// from doubles, and a user types them the same way.
+inline constexpr double same_restitution_tolerance = 1e-9;
+bool same_restitution(double a, double b);
+
+// The run's departure of `observable` by `criterion`; nullptr when the run did
+// not measure that pair.
+const ValidityDeparture* find_departure(const ValidityRun& run, const std::string& observable,
+                                        const std::string& criterion);
+
+// y(x) between two measured points, linear in (ln x, ln y): t* against delta and
+// collisions per particle against t are power laws locally. Linear in (x, y)
+// where a y is not positive (no collision yet), where logarithms do not exist.
+double log_log_interpolate(double x0, double y0, double x1, double y1, double x);
+
+// The run's mean collisions per particle at t, interpolated in log-log between
+// its sample times; NaN outside [time.front(), time.back()]: the map's cost is
+// measured, never extrapolated.
+double collisions_per_particle_at(const ValidityRun& run, double t);
+
+// The map a program reads when none is given: the environment variable
+// SHOCKGAS_VALIDITY_MAP when it is set (an empty value: none, which is how the
+// test suite keeps every run independent of a map the figure pipeline may have
+// made), else the first of build_tree_maps that exists (the build tree's paper
+// map, then its quick one), else "".
+std::string default_validity_map(const std::vector<std::string>& build_tree_maps);
 
 }  // namespace shockgas::analysis
