@@ -94,8 +94,8 @@ Band band_of(const std::string& observable, const std::string& criterion, const 
     // the clusters splitting per unit ln t).
     const Deviation mode = observable == "fragmentation_rate" ? Deviation::absolute : Deviation::relative;
     if (criterion == "3sigma") return {mode, rule.k_sigma, 0.0};
-    if (criterion == "1percent") return {mode, 0.0, 0.01};
-    if (criterion == "5percent") return {mode, 0.0, 0.05};
+    if (criterion == "1percent") return {mode, 2.0, 0.01};
+    if (criterion == "5percent") return {mode, 2.0, 0.05};
     throw InputError(fmt::format("no criterion '{}' for {} (3sigma, 1percent or 5percent)", criterion, observable));
 }
 
@@ -107,20 +107,27 @@ const std::vector<std::string>& criteria() {
 // The start of the final stretch outside the band (+inf: inside at the last
 // time), provided the observable had joined the sticky gas before it: inside the
 // band at two consecutive sample times, so that one noisy sample that happens
-// to fall inside does not count as joining. NaN: it never joined.
+// to fall inside does not count as joining. NaN: it never joined. Outside
+// means |deviation| > floor + k_sigma sigma: beyond 3 sigma (floor 0), or
+// beyond the 1 % or 5 % band by 2 sigma, so that noise alone (the kurtosis of
+// a few realizations scatters by 5 % at late times) is not a departure.
 double departure_time(const TemperatureHistory& run, const TemperatureHistory& reference, const Band& band) {
     const TemperatureComparison c =
         compare_histories(run, reference, Realizations::paired, band.mode, band.k_sigma, band.floor);
-    auto inside = [&](std::size_t k) {
-        const double sigma = c.relative_sigma[k];
-        const double limit = std::isnan(sigma) ? band.floor : std::max(band.k_sigma * sigma, band.floor);
-        return !(std::abs(c.relative_deviation[k]) > limit);
+    auto outside = [&](std::size_t k) {
+        const double sigma = std::isnan(c.relative_sigma[k]) ? 0.0 : c.relative_sigma[k];
+        return std::abs(c.relative_deviation[k]) > band.floor + band.k_sigma * sigma;
     };
+    double departure = infinity;
+    for (std::size_t k = c.time.size(); k-- > 0;) {
+        if (!outside(k)) break;
+        departure = c.time[k];
+    }
     bool joined = false;
     for (std::size_t k = 0; k + 1 < c.time.size() && !joined; ++k)
-        joined = inside(k) && inside(k + 1) && c.time[k + 1] < c.departure_time;
-    if (std::isinf(c.departure_time)) return c.departure_time;
-    return joined ? c.departure_time : not_a_number;
+        joined = !outside(k) && !outside(k + 1) && c.time[k + 1] < departure;
+    if (std::isinf(departure)) return departure;
+    return joined ? departure : not_a_number;
 }
 
 }  // namespace

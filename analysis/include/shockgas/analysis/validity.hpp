@@ -89,7 +89,7 @@ std::vector<ObservableHistory> observable_histories(const std::string& run_path,
 
 // t* of one observable against its reference by one criterion ("3sigma":
 // k_sigma paired jackknife errors; "1percent", "5percent": a relative band,
-// |X / X_ref - 1| > 0.01 or 0.05; for the fragmentation rate, whose reference
+// |X / X_ref - 1| > 0.01 or 0.05 by 2 sigma; for the fragmentation rate, whose reference
 // is 0, an absolute one: that fraction of the clusters splitting per unit
 // ln t), with its delete-one-pair jackknife sigma (runs paired by realization).
 ValidityDeparture departure(const ObservableHistory& run, const ObservableHistory& reference,
