@@ -224,39 +224,38 @@ VALIDITY_CLAIMS = [  # (r, observable, criterion, what the claim names it)
 def validity_rows():
     """fig_validity: t* ∝ δ^(−μ) of T and of the structure function (elastic below δ), and the observables
     that never joined the sticky gas in any run."""
-    import h5py  # the report's other readers go through python/shockgas, which imports it too
     path = os.path.join(base, "fig_validity", "validity.h5")
     if not os.path.exists(path):
         return []
     rows = []
-    with h5py.File(path, "r") as f:
-        fits = [dict(g.attrs) for g in f["validity_map/fits"].values()]
-        runs = [g for g in f["validity_map/runs"].values()]
-        sizes_of_runs = [int(g.attrs["particles"]) for g in runs]
-        main_n = max(set(sizes_of_runs), key=sizes_of_runs.count)  # the map's N; the N check is one run
-        reals = max(int(g.attrs["realizations"]) for g in runs)
-        t_end = max(float(g.attrs["t_end"]) for g in runs)
-        for r, observable, criterion, name in VALIDITY_CLAIMS:
-            fit = next((x for x in fits if abs(x["restitution"] - r) < 1e-9 and x["subthreshold"] == "elastic"
-                        and x["observable"] == observable and x["criterion"] == criterion), None)
-            if fit is None:
-                continue
-            cell = (f"μ = {fit['mu']:.2f} ± {fit['mu_sigma']:.2f} ({fit['points']} δ; {fit['follows']})"
-                    if fit["mu"] == fit["mu"] else fit["follows"])
-            rows.append((f"δ validity: t* ∝ δ^(−μ) of {name}, r = {r:g}, elastic below δ",
-                         f"{cell}; N = {power(main_n)}, {reals} real., t ≤ {power(t_end)}",
-                         "δ⁻³ (v ~ t^(−1/3) reaches δ); δ⁻¹ (Shinde, Das & Rajesh)"))
-        never = []
-        for observable in ["cluster_density", "small_gap_fraction", "fragmentation_rate"]:
-            notes = [g[f"departures/{observable}/5percent"].attrs["departure_time"] for g in runs
-                     if int(g.attrs["particles"]) == main_n and g.attrs["restitution"] > 0.85
-                     and g.attrs["subthreshold"] == "elastic"]
-            if notes and all(t != t for t in notes):
-                never.append(observable.replace("_", " "))
-        if never:
-            rows.append(("δ validity: cluster structure, r = 0.9, elastic below δ",
-                         f"{', '.join(never)}: never within 5 % of the sticky gas for any δ (t ≤ {power(t_end)})",
-                         "sticky-gas-like for t ≪ δ⁻¹ (Shinde, Das & Rajesh)"))
+    f = shockgas.read_results(path)
+    fits = [g.attrs for g in f["validity_map/fits"].groups.values()]
+    runs = list(f["validity_map/runs"].groups.values())
+    sizes_of_runs = [int(g.attrs["particles"]) for g in runs]
+    main_n = max(set(sizes_of_runs), key=sizes_of_runs.count)  # the map's N; the N check is one run
+    reals = max(int(g.attrs["realizations"]) for g in runs)
+    t_end = max(float(g.attrs["t_end"]) for g in runs)
+    for r, observable, criterion, name in VALIDITY_CLAIMS:
+        fit = next((x for x in fits if abs(x["restitution"] - r) < 1e-9 and x["subthreshold"] == "elastic"
+                    and x["observable"] == observable and x["criterion"] == criterion), None)
+        if fit is None:
+            continue
+        cell = (f"μ = {fit['mu']:.2f} ± {fit['mu_sigma']:.2f} ({fit['points']} δ; {fit['follows']})"
+                if fit["mu"] == fit["mu"] else fit["follows"])
+        rows.append((f"δ validity: t* ∝ δ^(−μ) of {name}, r = {r:g}, elastic below δ",
+                     f"{cell}; N = {power(main_n)}, {reals} real., t ≤ {power(t_end)}",
+                     "δ⁻³ (v ~ t^(−1/3) reaches δ); δ⁻¹ (Shinde, Das & Rajesh)"))
+    never = []
+    for observable in ["cluster_density", "small_gap_fraction", "fragmentation_rate"]:
+        notes = [g[f"departures/{observable}/5percent"].attrs["departure_time"] for g in runs
+                 if int(g.attrs["particles"]) == main_n and g.attrs["restitution"] > 0.85
+                 and g.attrs["subthreshold"] == "elastic"]
+        if notes and all(t != t for t in notes):
+            never.append(observable.replace("_", " "))
+    if never:
+        rows.append(("δ validity: cluster structure, r = 0.9, elastic below δ",
+                     f"{', '.join(never)}: never within 5 % of the sticky gas for any δ (t ≤ {power(t_end)})",
+                     "sticky-gas-like for t ≪ δ⁻¹ (Shinde, Das & Rajesh)"))
     return rows
 
 
