@@ -38,7 +38,7 @@ do for [p = 1:3] {
     r = (p == 2) ? 0.5 : 0.9
     sticky = (p == 3) ? 1 : 0
     set title panel(r, sticky, word('a b c', p)) font ',10'
-    set label 1 'open triangles: still inside at the last time; an observable not drawn never joined the sticky gas' \
+    set label 1 '△: still inside at the last time; not drawn: never joined' \
         at graph 0.02, graph 0.04 font ',7'
     plot for [o = 0:5] d using 6:(sel(r, sticky, o, 0, 0)):8 with yerrorbars lt (o + 1) pt 7 title word(names, o + 1), \
          for [o = 0:5] d using 6:(fitline(r, sticky, o, 0)) with lines lt (o + 1) dt 2 notitle, \
