@@ -33,8 +33,9 @@ void add_options(CLI::App& app, shockgas::analysis::PlanRequest& request) {
                    "structure_function or fragmentation_rate (the map lists its own)")
         ->required();
     app.add_option("--tolerance", request.tolerance,
-                   "how close: 3sigma (within 3 jackknife sigma of the sticky gas), 1percent or 5percent (relative "
-                   "difference; the map measures these for the temperature only)")
+                   "how close: 3sigma (within 3 jackknife sigma of the sticky gas), 1percent or 5percent "
+                   "(within a relative band of 1 % or 5 %, left only when beyond it by 2 sigma; for the "
+                   "fragmentation rate an absolute rate)")
         ->required();
     app.add_option("--map", request.map_file,
                    "a results file whose /validity_map holds the map (shockgas-analyze validity); default: "
