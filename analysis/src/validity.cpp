@@ -28,18 +28,13 @@ namespace {
 constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
-// nu of the sticky gas's cluster density n = nu t^(-2/3) (docs/exact-theory.md:
-// clusters per particle x t^(2/3) -> 1.9156786, from python/exact_ballistic.py).
-constexpr double sticky_gas_cluster_prefactor = 1.9156786;
-// The kurtosis of the sticky gas's exact Phi (docs/exact-theory.md, the same
-// source), the value a sticky-gas run's kurtosis approaches.
-constexpr double sticky_gas_kurtosis = 3.0410;
-
-// t in units of the initial spacing a = L/N over the velocity unit: x -> lambda x,
-// t -> lambda t is an exact symmetry of the model, so lengths scale with a and
-// the sticky gas's cluster spacing is a (t/a)^(2/3) / nu.
-double scaled_time(double time, double ring_length, std::int64_t particles) {
-    return time / (ring_length / static_cast<double>(particles));
+// (t/a)^(2/3), t in units of the initial spacing a = L/N over the velocity
+// unit: x -> lambda x, t -> lambda t is an exact symmetry of the model, so
+// lengths scale with a, the sticky gas's cluster spacing is a (t/a)^(2/3) / nu
+// and its T is kappa (t/a)^(-2/3).
+double two_thirds_power_of_scaled_time(double time, double ring_length, std::int64_t particles) {
+    const double scaled = time / (ring_length / static_cast<double>(particles));
+    return std::cbrt(scaled * scaled);
 }
 
 // The gap from entry i to the next in ring order (positions in [0, L) from the
@@ -55,7 +50,7 @@ double gap_after(const ClusterState& state, std::size_t i, double ring_length) {
 
 double cluster_gap_cut(double time, double ring_length, std::int64_t particles, const ValidityRule& rule) {
     const double spacing = ring_length / static_cast<double>(particles);
-    return rule.cluster_gap_fraction * spacing * std::cbrt(std::pow(scaled_time(time, ring_length, particles), 2.0)) /
+    return rule.cluster_gap_fraction * spacing * two_thirds_power_of_scaled_time(time, ring_length, particles) /
            sticky_gas_cluster_prefactor;
 }
 
@@ -155,8 +150,7 @@ SnapshotObservables snapshot_observables(const ClusterState& state, double ring_
                                          const ValidityRule& rule) {
     SnapshotObservables out;
     const std::size_t n = state.size();
-    const double s = scaled_time(state.time, ring_length, particles);
-    const double t23 = std::cbrt(s * s);
+    const double t23 = two_thirds_power_of_scaled_time(state.time, ring_length, particles);
     // Kurtosis of the mass-weighted velocity distribution about its mean (Eq. 4's Phi).
     double mass = 0.0, momentum = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -255,12 +249,11 @@ std::vector<ObservableHistory> observable_histories(const std::string& run_path,
             }
         TemperatureHistory history = table(times, realizations);
         for (std::int64_t r = 0; r < realizations; ++r)
-            for (std::size_t j = 0; j < times.size(); ++j) {
-                const double s = scaled_time(times[j], ring_length, particles);
+            for (std::size_t j = 0; j < times.size(); ++j)
                 history.temperature[static_cast<std::size_t>(r) * times.size() + j] =
                     result.temperature[static_cast<std::size_t>(r) * result.times.size() + columns[j]] *
-                    std::cbrt(s * s) / exact::sticky_gas_temperature_prefactor;
-            }
+                    two_thirds_power_of_scaled_time(times[j], ring_length, particles) /
+                    exact::sticky_gas_temperature_prefactor;
         out.push_back({"temperature", std::move(history)});
     }
     // The snapshots, by realization and time.
@@ -331,25 +324,19 @@ ValidityDeparture departure(const ObservableHistory& run, const ObservableHistor
     double grid_variance = 0.0;
     const auto at = static_cast<std::size_t>(std::find(times.begin(), times.end(), out.departure_time) - times.begin());
     if (at > 0 && at < times.size()) grid_variance = std::pow(std::log(times[at] / times[at - 1]), 2.0) / 12.0;
-    double jackknife_variance = not_a_number;
-    if (n >= 2) {
-        std::vector<double> replicas;
-        for (std::size_t i = 0; i < n; ++i) {
-            double t = departure_time(without_realization(run.values, i), without_realization(reference.values, i),
-                                      band);
-            if (std::isnan(t)) t = times.front();
-            if (std::isinf(t)) t = t_end;
-            replicas.push_back(std::log(t));
-        }
-        double mean = 0.0;
-        for (const double v : replicas) mean += v / static_cast<double>(n);
-        jackknife_variance = 0.0;
-        for (const double v : replicas) jackknife_variance += (v - mean) * (v - mean);
-        jackknife_variance *= static_cast<double>(n - 1) / static_cast<double>(n);
-    } else {
+    const Estimate log_departure = jackknife(n, [&](std::optional<std::size_t> left_out) {
+        if (!left_out) return std::log(out.departure_time);
+        double t = departure_time(without_realization(run.values, *left_out),
+                                  without_realization(reference.values, *left_out), band);
+        if (std::isnan(t)) t = times.front();
+        if (std::isinf(t)) t = t_end;
+        return std::log(t);
+    });
+    double jackknife_variance = 0.0;
+    if (std::isnan(log_departure.sigma))
         out.note = "one realization in common: sigma is the sampling grid's alone";
-        jackknife_variance = 0.0;
-    }
+    else
+        jackknife_variance = log_departure.sigma * log_departure.sigma;
     out.departure_sigma = out.departure_time * std::sqrt(jackknife_variance + grid_variance);
     return out;
 }

@@ -15,8 +15,8 @@ namespace {
 
 // Doubles computed from a handful of exact inputs: equal up to rounding.
 constexpr double rounding = 1e-12;
-// nu of the sticky gas's cluster density (docs/exact-theory.md).
-constexpr double nu = 1.9156786;
+// nu of the sticky gas's cluster density, which scales the cluster rule's cut.
+constexpr double nu = sticky_gas_cluster_prefactor;
 
 // A ring of unit-mass particles at the given positions (ring order), velocities v.
 ClusterState ring(double time, std::vector<double> position, std::vector<double> velocity) {

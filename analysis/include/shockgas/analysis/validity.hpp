@@ -19,13 +19,20 @@
 
 namespace shockgas::analysis {
 
+// nu of the sticky gas's cluster density n = nu t^(-2/3) (docs/exact-theory.md:
+// clusters per particle x t^(2/3) -> 1.9156786, from python/exact_ballistic.py).
+inline constexpr double sticky_gas_cluster_prefactor = 1.9156786;
+// The kurtosis of the sticky gas's exact Phi (docs/exact-theory.md, the same
+// source), the value a sticky-gas run's kurtosis approaches.
+inline constexpr double sticky_gas_kurtosis = 3.0410;
+
 // The definitions behind the structural observables, each with why it is
 // what it is (docs/validity.md).
 struct ValidityRule {
     // A cluster of a gas whose particles need not stick: a maximal run of ring
     // neighbours whose gaps are below this fraction of the sticky gas's mean
     // cluster spacing at the same t, t^(2/3) / nu (in units of L/N; nu =
-    // 1.9156786, docs/exact-theory.md). The sticky gas's own clusters are
+    // sticky_gas_cluster_prefactor). The sticky gas's own clusters are
     // points, and 5-8 % of its empty gaps are that short (tested), so the rule
     // finds 92-95 % of its clusters for t >= 100; a cluster of the delta gas,
     // whose particles need not stick, has an extent, and stays one cluster
