@@ -2,12 +2,9 @@
 // shockgas-sim: binds the command line to a shockgas::SimulationRequest, runs it
 // (shockgas::run_simulation, sim/run) and shows the outcome, after the validity
 // map's warning when it has one (shockgas/analysis/validity_warning.hpp).
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <string>
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -16,33 +13,11 @@
 #include "shockgas/analysis/validity_warning.hpp"
 #include "shockgas/cli/cli.hpp"
 #include "shockgas/cli/progress.hpp"
+#include "shockgas/cli/signals.hpp"
 #include "shockgas/io/provenance.hpp"
 #include "shockgas/run/simulation.hpp"
 
 namespace {
-
-std::atomic<bool> interrupt_requested{false};
-
-extern "C" void on_interrupt(int) { interrupt_requested.store(true); }
-
-// Which of stdout and stderr were terminals when the run began (isatty is not
-// safe inside a signal handler).
-bool stdout_terminal = false;
-bool stderr_terminal = false;
-
-// A hung-up terminal fails every later write (EIO), which would end the run
-// with an error before its checkpoint: its streams go to /dev/null (open and
-// dup2 are async-signal-safe), and the run stops as on SIGINT.
-extern "C" void on_hangup(int) {
-    const int null = open("/dev/null", O_WRONLY);
-    if (null >= 0) {
-        if (stdout_terminal) dup2(null, STDOUT_FILENO);
-        if (stderr_terminal) dup2(null, STDERR_FILENO);
-        close(null);
-    }
-    interrupt_requested.store(true);
-}
-
 
 // What only the program does with a run: its progress line and its table.
 struct Display {
@@ -155,17 +130,6 @@ void add_options(CLI::App& app, shockgas::SimulationRequest& request, Display& d
                "is written.");
 }
 
-void install_signal_handlers() {
-    // SIGHUP too (on_hangup): a closed terminal or a dropped ssh session
-    // stops the run as Ctrl-C does, with its checkpoint and interrupted
-    // output, instead of killing it with up to a checkpoint interval lost.
-    stdout_terminal = isatty(STDOUT_FILENO) != 0;
-    stderr_terminal = isatty(STDERR_FILENO) != 0;
-    std::signal(SIGINT, on_interrupt);
-    std::signal(SIGTERM, on_interrupt);
-    std::signal(SIGHUP, on_hangup);
-}
-
 void print_table(const shockgas::EnsembleResult& result) {
     fmt::print("# {:>12} {:>14} {:>14} {:>14}\n", "t", "T(t)", "coll/particle", "clusters");
     const std::size_t samples = result.times.size();
@@ -221,9 +185,9 @@ int main(int argc, char** argv) {
         // refused run still says one line.
         const auto before_run = [&] {
             if (!warning.empty() && session.is_root()) fmt::print(stderr, "shockgas-sim: warning: {}\n", warning);
-            install_signal_handlers();
+            shockgas::cli::install_stop_handlers();
         };
-        shockgas::SimulationHooks hooks{&interrupt_requested, before_run,
+        shockgas::SimulationHooks hooks{&shockgas::cli::stop_flag(), before_run,
                                         shockgas::cli::progress_printer("shockgas-sim", display.progress_interval)};
         const shockgas::SimulationOutcome outcome = shockgas::run_simulation(request, session, hooks);
         if (!outcome.nothing_to_do.empty()) fmt::print(stderr, "shockgas-sim: {}\n", outcome.nothing_to_do);

@@ -11,14 +11,15 @@
 
 #include "shockgas/cli/cli.hpp"
 #include "shockgas/cli/progress.hpp"
+#include "shockgas/cli/signals.hpp"
 #include "shockgas/io/h5.hpp"
 #include "shockgas/io/provenance.hpp"
 #include "shockgas/spheres/ensemble.hpp"
 
 namespace {
 
-void add_options(CLI::App& app, shockgas::spheres::SphereParameters& p, std::string& start, std::string& output,
-                 double& progress_interval) {
+void add_options(CLI::App& app, shockgas::spheres::SphereParameters& p, shockgas::spheres::SphereRunOptions& run,
+                 std::string& start, std::string& output, double& progress_interval) {
     app.set_version_flag("--version", "shockgas-spheres " + shockgas::build_info().version);
     app.add_option("--dimension,-D", p.dimension, "2 (disks) or 3 (spheres)")->capture_default_str();
     app.add_option("--particles,-N", p.particles, "number of particles, diameter 1, mass 1")->capture_default_str();
@@ -69,7 +70,17 @@ void add_options(CLI::App& app, shockgas::spheres::SphereParameters& p, std::str
                    "when stderr is not a terminal, write a progress line every this many wall seconds")
         ->check(shockgas::cli::finite_non_negative)
         ->capture_default_str();
+    app.add_option("--checkpoint", run.checkpoint,
+                   "checkpoint file (default OUTPUT.checkpoint); kept until the output is written")
+        ->capture_default_str();
+    app.add_option("--checkpoint-interval", run.checkpoint_interval_seconds,
+                   "wall seconds between checkpoints of each realization")
+        ->check(shockgas::cli::finite_non_negative)
+        ->capture_default_str();
+    app.add_flag("--resume", run.resume, "continue from the checkpoint, bit for bit as an uninterrupted run");
     app.add_option("--output,-o", output, "output HDF5 file")->required();
+    app.footer("Output schema: docs/spheres.md. Ctrl-C (or SIGTERM, SIGHUP) saves a checkpoint that --resume "
+               "continues, and exits with status 130.");
 }
 
 }  // namespace
@@ -78,17 +89,29 @@ int main(int argc, char** argv) {
     CLI::App app{"Inelastic hard disks (d = 2) or spheres (d = 3) in a periodic box, with the paper's "
                  "threshold rule on the normal relative velocity (docs/spheres.md)"};
     shockgas::spheres::SphereParameters parameters;
+    shockgas::spheres::SphereRunOptions run;
     std::string start = "insertion", output;
     double progress_interval = 60.0;
-    add_options(app, parameters, start, output, progress_interval);
+    add_options(app, parameters, run, start, output, progress_interval);
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-spheres"); status >= 0) return status;
     return shockgas::cli::run("shockgas-spheres", [&] {
         parameters.start = shockgas::spheres::start_method_from_string(start);
         shockgas::spheres::validate(parameters);
         shockgas::h5::check_writable(output);
+        if (run.checkpoint.empty()) run.checkpoint = output + ".checkpoint";
+        shockgas::h5::check_not_an_input(output, {run.checkpoint});
+        run.stop = &shockgas::cli::stop_flag();
+        run.note = [](const std::string& text) { fmt::print(stderr, "shockgas-spheres: {}\n", text); };
+        shockgas::cli::install_stop_handlers();
         const auto result = shockgas::spheres::run_spheres(
-            parameters, shockgas::cli::progress_printer("shockgas-spheres", progress_interval));
+            parameters, shockgas::cli::progress_printer("shockgas-spheres", progress_interval), run);
+        if (result.interrupted) {
+            fmt::print(stderr, "\nshockgas-spheres: interrupted; the checkpoint {} continues it with --resume\n",
+                       run.checkpoint);
+            return 130;
+        }
         shockgas::spheres::write_spheres_output(output, parameters, result);
+        shockgas::spheres::remove_spheres_checkpoint(run.checkpoint);
         fmt::print("{}D, N = {}, phi = {}: {} collisions ({:.4g} per particle per realization) in {:.3g} CPU-s "
                    "({:.3g} of them making the starts); T(t_max) = {:.6g} in realization 0; {}\n",
                    parameters.dimension, parameters.particles, parameters.packing_fraction,
