@@ -2,7 +2,9 @@
 #include "shockgas/spheres/start.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <numeric>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -92,6 +94,30 @@ std::vector<double> lattice_sites(int d, std::int64_t n, double box, std::mt1993
 
 }  // namespace
 
+void sort_by_cell(SphereState& state) {
+    const int d = state.dimension;
+    const auto n = static_cast<std::size_t>(state.particles());
+    const int m = cells_per_side(state.box_length);
+    const double width = state.box_length / m;
+    std::vector<std::pair<std::int64_t, std::size_t>> keys(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        std::int64_t key = 0;
+        for (int k = d - 1; k >= 0; --k)
+            key = key * m + std::min<std::int64_t>(m - 1, static_cast<std::int64_t>(state.positions[i * static_cast<std::size_t>(d) + static_cast<std::size_t>(k)] / width));
+        keys[i] = {key, i};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<double> positions(state.positions.size()), velocities(state.velocities.size());
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < d; ++k) {
+            const std::size_t from = keys[i].second * static_cast<std::size_t>(d) + static_cast<std::size_t>(k);
+            positions[i * static_cast<std::size_t>(d) + static_cast<std::size_t>(k)] = state.positions[from];
+            velocities[i * static_cast<std::size_t>(d) + static_cast<std::size_t>(k)] = state.velocities[from];
+        }
+    state.positions = std::move(positions);
+    state.velocities = std::move(velocities);
+}
+
 double temperature(const std::vector<double>& velocities, int dimension) {
     const std::size_t n = velocities.size() / static_cast<std::size_t>(dimension);
     double mean[3] = {0.0, 0.0, 0.0};
@@ -157,6 +183,7 @@ SphereState make_start(const SphereParameters& p, std::int64_t realization) {
         state = melt.state();
     }
     state.time = 0.0;
+    sort_by_cell(state);
     draw_maxwell_velocities(state, random);
     return state;
 }

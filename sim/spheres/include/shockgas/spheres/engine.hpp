@@ -99,6 +99,8 @@ public:
     const CollisionCounts& counts() const;
     // The state at time(): positions brought to it, wrapped into [0, L).
     SphereState state() const;
+    // Bytes the engine holds: particles, predictions, cells, the queue.
+    std::size_t memory_bytes() const;
     // Velocities at time() (they change only at events; no positions are moved).
     std::vector<double> velocities() const;
 

@@ -27,6 +27,11 @@ SphereState place_particles(const SphereParameters& parameters, std::mt19937_64&
 // exactly, in a fixed order of summation.
 void draw_maxwell_velocities(SphereState& state, std::mt19937_64& random);
 
+// Renumbers the particles in the order of the cells (side >= 1) they lie in,
+// row by row: particles near in space are then near in memory, which the
+// engine's neighbour searches reward (docs/spheres.md, "Speed").
+void sort_by_cell(SphereState& state);
+
 // T = sum |v - V|^2 / (d N), V the mean velocity (per degree of freedom, m = k_B = 1).
 double temperature(const std::vector<double>& velocities, int dimension);
 
