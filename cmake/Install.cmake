@@ -28,9 +28,10 @@ set(SHOCKGAS_INSTALL_DATADIR "${CMAKE_INSTALL_DATADIR}/shockgas")
 mark_as_advanced(SHOCKGAS_INSTALL_CMAKEDIR)
 
 # The libraries, one a room (the umbrella shockgas_sim is an interface target, no file of its own).
-set(SHOCKGAS_LIBRARIES shockgas_model shockgas_io shockgas_engines shockgas_run shockgas_tail shockgas_analysis)
+set(SHOCKGAS_LIBRARIES shockgas_model shockgas_io shockgas_engines shockgas_run shockgas_tail shockgas_spheres
+                       shockgas_analysis)
 set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail
-                      shockgas-plan)
+                      shockgas-plan shockgas-spheres)
 
 # First of all the rules: the built files are all there, or nothing is installed
 # (cmake/InstallCheck.cmake; install-needs.txt is written at the end of this file).
@@ -55,7 +56,8 @@ install(TARGETS ${SHOCKGAS_PROGRAMS}
 # editing this list. The engines' internals (sim/engines/src) stay private.
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/sim/model/include/" "${PROJECT_SOURCE_DIR}/sim/io/include/"
                   "${PROJECT_SOURCE_DIR}/sim/engines/include/" "${PROJECT_SOURCE_DIR}/sim/run/include/"
-                  "${PROJECT_SOURCE_DIR}/sim/tail/include/" "${PROJECT_SOURCE_DIR}/analysis/include/"
+                  "${PROJECT_SOURCE_DIR}/sim/tail/include/" "${PROJECT_SOURCE_DIR}/sim/spheres/include/"
+                  "${PROJECT_SOURCE_DIR}/analysis/include/"
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev
         FILES_MATCHING PATTERN "*.hpp")
 

@@ -22,6 +22,7 @@ set(_shockgas-burgers_name "Burgers-equation profiles from a shockgas run's init
 set(_shockgas-analyze_name "estimators and fits on shockgas-sim output")
 set(_shockgas-tail_name "far tail of the sticky gas velocity distribution by biased Markov chains")
 set(_shockgas-plan_name "the cheapest threshold delta the validity map says keeps an observable as in the sticky gas")
+set(_shockgas-spheres_name "inelastic hard disks and spheres with the threshold rule, event-driven")
 # Programs with subcommands print every subcommand's options with --help-all.
 set(_shockgas-dump_help --help-all)
 set(_shockgas-analyze_help --help-all)

@@ -38,8 +38,10 @@ if(SHOCKGAS_PIPELINE_FROM_INSTALL)
   # depend on the installed programs themselves, so a new installation reruns them.
   set(SHOCKGAS_SIM_STAMP "$<TARGET_FILE:shockgas-sim>")
   set(SHOCKGAS_TAIL_STAMP "$<TARGET_FILE:shockgas-tail>")
+  set(SHOCKGAS_SPHERES_STAMP "$<TARGET_FILE:shockgas-spheres>")
   add_custom_target(shockgas_sim_stamp)
   add_custom_target(shockgas_tail_stamp)
+  add_custom_target(shockgas_spheres_stamp)
 else()
   # The simulator's stamp: sim/model, sim/io, sim/engines and sim/run
   # (SHOCKGAS_SIM_DIRECTORIES), the same hash the programs record as simulator_sha256.
@@ -49,6 +51,11 @@ else()
   # The far-tail sampler's: sim/tail with the model and I/O it uses (SHOCKGAS_TAIL_DIRECTORIES).
   set(SHOCKGAS_TAIL_STAMP "${CMAKE_BINARY_DIR}/shockgas-tail.stamp")
   _shockgas_stamp_target(shockgas_tail_stamp "${SHOCKGAS_TAIL_STAMP}" "${SHOCKGAS_TAIL_DIRECTORIES}" shockgas-tail)
+  # The disk and sphere gas's: sim/spheres with what it uses (SHOCKGAS_SPHERES_DIRECTORIES), the hash
+  # its outputs record as spheres_sha256.
+  set(SHOCKGAS_SPHERES_STAMP "${CMAKE_BINARY_DIR}/shockgas-spheres.stamp")
+  _shockgas_stamp_target(shockgas_spheres_stamp "${SHOCKGAS_SPHERES_STAMP}" "${SHOCKGAS_SPHERES_DIRECTORIES}"
+                         shockgas-spheres)
 endif()
 
 include(${PROJECT_SOURCE_DIR}/cmake/ShortestNumber.cmake)  # _shockgas_shortest_number
@@ -67,12 +74,13 @@ function(_shockgas_run_to output result)
 endfunction()
 
 # _shockgas_manifest_line(<output> <staged> <arguments>): appends to the caller's `manifest` the line
-# "<output><TAB><command>" for shockgas_figure_runs' simulations.tsv. The command runs shockgas-sim with
+# "<output><TAB><command>" for shockgas_figure_runs' simulations.tsv. The command runs the caller's
+# `program` (shockgas-sim or shockgas-spheres) with
 # <arguments> in this directory (as the rule does) and renames <staged> to <output> once it succeeds;
 # every word is single-quoted for the shell.
 function(_shockgas_manifest_line output staged arguments)
   set(quoted)
-  foreach(word IN ITEMS "${CMAKE_CURRENT_BINARY_DIR}" "$<TARGET_FILE:shockgas-sim>" ${arguments} "${staged}" "${output}")
+  foreach(word IN ITEMS "${CMAKE_CURRENT_BINARY_DIR}" "$<TARGET_FILE:${program}>" ${arguments} "${staged}" "${output}")
     string(REPLACE "'" "'\\''" word "${word}")
     list(APPEND quoted "'${word}'")
   endforeach()
@@ -96,6 +104,21 @@ function(shockgas_figure_runs figure)
   endif()
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${parameter_file}")
   file(READ "${parameter_file}" json)
+  # "program": the simulator the runs' options are for: shockgas-sim (the ring, the default) or
+  # shockgas-spheres (disks and spheres; one part a run: it has no merge yet). Each has its stamp.
+  string(JSON program ERROR_VARIABLE no_program GET "${json}" program)
+  if(no_program)
+    set(program shockgas-sim)
+  endif()
+  if(program STREQUAL "shockgas-sim")
+    set(stamp ${SHOCKGAS_SIM_STAMP})
+    set(run_flags --quiet --resume --set-aside-other-runs)
+  elseif(program STREQUAL "shockgas-spheres")
+    set(stamp ${SHOCKGAS_SPHERES_STAMP})
+    set(run_flags --resume)
+  else()
+    message(FATAL_ERROR "${parameter_file}: program '${program}' is neither shockgas-sim nor shockgas-spheres")
+  endif()
   set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/${SHOCKGAS_FIDELITY}/${figure}")
   file(MAKE_DIRECTORY "${out_dir}")
   set(manifest "")  # _shockgas_manifest_line appends to it
@@ -130,17 +153,19 @@ function(shockgas_figure_runs figure)
     file(CONFIGURE OUTPUT "${out_dir}/${name}.args" CONTENT "${args_text}\n")
     if(parts EQUAL 1)
       _shockgas_run_to("${h5}" staged)
-      set(run_arguments ${args} --realizations ${realizations} --quiet --resume --set-aside-other-runs
-                        --output "${staged}")
+      set(run_arguments ${args} --realizations ${realizations} ${run_flags} --output "${staged}")
       _shockgas_manifest_line("${h5}" "${staged}" "${run_arguments}")
       add_custom_command(
         OUTPUT "${h5}"
-        COMMAND shockgas-sim ${run_arguments}
+        COMMAND ${program} ${run_arguments}
         COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${h5}"
-        DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
+        DEPENDS "${out_dir}/${name}.args" ${stamp}
         COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}: ${args_text}"
         VERBATIM)
     else()
+      if(NOT program STREQUAL "shockgas-sim")
+        message(FATAL_ERROR "${parameter_file}: run ${name} has parts, which only shockgas-sim's runs can have")
+      endif()
       math(EXPR per_part "(${realizations} + ${parts} - 1) / ${parts}")
       set(part_files)
       set(first 0)
@@ -207,7 +232,7 @@ function(shockgas_plot figure)
   # its files; built first through its own target, it is up to date before any of them looks, so
   # two figures built in parallel never run it twice at once (CMake's advice for an output that
   # several targets depend on).
-  add_dependencies(${figure} shockgas_sim_stamp shockgas-analyze shockgas-dump shockgas_theory)
+  add_dependencies(${figure} shockgas_sim_stamp shockgas_spheres_stamp shockgas-analyze shockgas-dump shockgas_theory)
   set_property(GLOBAL APPEND PROPERTY SHOCKGAS_FIGURES ${figure})
 endfunction()
 

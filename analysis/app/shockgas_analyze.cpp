@@ -197,6 +197,16 @@ void add_validity(CLI::App& app, AnalyzeRequest& r) {
         ->capture_default_str();
 }
 
+void add_cooling(CLI::App& app, AnalyzeRequest& r) {
+    auto* cooling = app.add_subcommand(
+        "cooling", "disk and sphere gases: T(t) against Haff's law, t0 fitted, the clustering index");
+    cooling->add_option("inputs", r.inputs, "shockgas-spheres outputs")->required()->check(CLI::ExistingFile);
+    cooling->add_option("-o,--output", r.output, "results HDF5 file")->capture_default_str();
+    cooling->add_option("--data", r.data, "table: T(t), T_Haff and their ratio, a block per input");
+    cooling->add_option("--clustering", r.clustering, "table: the clustering index at each snapshot, a block per input");
+    cooling->add_option("--picture", r.picture, "realization 0's disk centres at the last snapshot of the first 2D input");
+}
+
 void add_far_tail(CLI::App& app, AnalyzeRequest& r) {
     auto* far_tail = app.add_subcommand("far-tail", "tail exponent gamma of Phi from shockgas-tail output");
     far_tail->add_option("input", r.input, "shockgas-tail output")->required()->check(CLI::ExistingFile);
@@ -213,13 +223,13 @@ void add_far_tail(CLI::App& app, AnalyzeRequest& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"shockgas-analyze: estimators on shockgas-sim output (see analysis/README.md)"};
+    CLI::App app{"shockgas-analyze: estimators on shockgas-sim and shockgas-spheres output (see analysis/README.md)"};
     app.set_version_flag("--version", "shockgas-analyze " + build_info().version);
     app.set_help_all_flag("--help-all", "print the options of every subcommand");
     app.require_subcommand(1);
     AnalyzeRequest request;
     for (const auto add : {add_decay, add_crossover, add_scaling, add_shocks, add_collapse, add_compare, add_validity,
-                           add_far_tail})
+                           add_far_tail, add_cooling})
         add(app, request);
     if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
     const CLI::App& subcommand = *app.get_subcommands().front();

@@ -130,6 +130,13 @@ void check_and_run(AnalyzeRequest& request, const std::vector<std::string>& all_
         check_outputs({{"-o", request.output, false}, {"--data", request.data, true}}, all_inputs);
         run_far_tail(invocation, request.input, request.output, request.data, request.z_lo, request.z_hi,
                      request.window_shift, request.free_linear);
+    } else if (command == "cooling") {
+        check_outputs({{"-o", request.output, false},
+                       {"--data", request.data, true},
+                       {"--clustering", request.clustering, true},
+                       {"--picture", request.picture, true}},
+                      all_inputs);
+        run_cooling(invocation, request.inputs, request.output, request.data, request.clustering, request.picture);
     } else {
         throw std::invalid_argument(fmt::format("shockgas-analyze has no subcommand '{}'", command));
     }
@@ -146,8 +153,10 @@ void run_analyze(AnalyzeRequest request) {
         // An input that is a run in progress (a checkpoint), whatever the
         // subcommand; then option values, then every output path, before
         // any work.
-        check_inputs(all_inputs, request.command == "far-tail" ? "a far-tail sampler file (made by shockgas-tail)"
-                                                               : "a shockgas-sim output");
+        // (cooling reads shockgas-spheres outputs, whose reader refuses anything else itself.)
+        if (request.command != "cooling")
+            check_inputs(all_inputs, request.command == "far-tail" ? "a far-tail sampler file (made by shockgas-tail)"
+                                                                   : "a shockgas-sim output");
         check_and_run(request, all_inputs);
     } catch (const InsufficientData& error) {
         // Estimator messages say what is missing. Work on one input names

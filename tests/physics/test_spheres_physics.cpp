@@ -9,8 +9,8 @@
 #include <cmath>
 #include <numbers>
 
-
 #include "shockgas/spheres/ensemble.hpp"
+#include "shockgas/spheres/kinetic_theory.hpp"
 #include "shockgas/spheres/engine.hpp"
 #include "shockgas/spheres/start.hpp"
 
@@ -18,32 +18,6 @@ using namespace shockgas;
 using namespace shockgas::spheres;
 
 namespace {
-
-// The pair correlation at contact of the equilibrium hard-sphere fluid:
-// Henderson, Mol. Phys. 30, 971 (1975) for disks, g = (1 - 7 phi/16) / (1 - phi)^2;
-// Carnahan & Starling, J. Chem. Phys. 51, 635 (1969) for spheres,
-// g = (1 - phi/2) / (1 - phi)^3.
-double contact_value(int d, double phi) {
-    return d == 2 ? (1.0 - 7.0 * phi / 16.0) / ((1.0 - phi) * (1.0 - phi))
-                  : (1.0 - phi / 2.0) / ((1.0 - phi) * (1.0 - phi) * (1.0 - phi));
-}
-
-// Enskog's collision frequency per particle at temperature T (m = sigma = 1):
-// omega = (2 pi^((d-1)/2) / Gamma(d/2)) n g(sigma) sqrt(T),
-// i.e. 2 sqrt(pi) n g sqrt(T) for disks and 4 sqrt(pi) n g sqrt(T) for spheres
-// (Chapman & Cowling, ch. 16); n = phi / v_d.
-double enskog_frequency(int d, double phi, double temperature) {
-    const double n = phi / sphere_volume(d);
-    const double prefactor = d == 2 ? 2.0 * std::sqrt(std::numbers::pi) : 4.0 * std::sqrt(std::numbers::pi);
-    return prefactor * n * contact_value(d, phi) * std::sqrt(temperature);
-}
-
-// Haff's law T(t) = T0 / (1 + t/t0)^2 with 1/t0 = (1 - r^2) omega(T0) / (2 d): each
-// collision takes (1 - r^2) g_n^2 / 4 of kinetic energy and <g_n^2> over collisions
-// is 4 T, so dT/dt = -(1 - r^2) omega(T) T / d (Haff, J. Fluid Mech. 134, 401 (1983)).
-double haff_time(int d, double phi, double restitution) {
-    return 2.0 * d / ((1.0 - restitution * restitution) * enskog_frequency(d, phi, 1.0));
-}
 
 SphereParameters gas(int d, std::int64_t n, double phi) {
     SphereParameters p;
@@ -140,7 +114,7 @@ TEST(SpheresPhysics, ElasticGasIsMaxwellian) {
     EXPECT_LT(chi2, 70.0);
 }
 
-// Haff's law before clustering: N = 2000 at phi = 0.05, 4 realizations, T(t)
+// Haff's law (kinetic_theory.hpp) before clustering: N = 2000 at phi = 0.05, 4 realizations, T(t)
 // against T0 / (1 + t/t0)^2 at t = t0/4, t0/2 and t0 (T down to a quarter).
 // Measured (docs/spheres.md): within 1.4 % everywhere, the ensemble's standard
 // error 0.1-0.8 %; the Sonine correction to the cooling rate is 0.3 % at r = 0.9

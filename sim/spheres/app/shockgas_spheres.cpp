@@ -15,11 +15,12 @@
 #include "shockgas/io/h5.hpp"
 #include "shockgas/io/provenance.hpp"
 #include "shockgas/spheres/ensemble.hpp"
+#include "shockgas/spheres/start.hpp"
 
 namespace {
 
 void add_options(CLI::App& app, shockgas::spheres::SphereParameters& p, shockgas::spheres::SphereRunOptions& run,
-                 std::string& start, std::string& output, double& progress_interval) {
+                 std::string& start, std::string& output, std::string& export_start, double& progress_interval) {
     app.set_version_flag("--version", "shockgas-spheres " + shockgas::build_info().version);
     app.add_option("--dimension,-D", p.dimension, "2 (disks) or 3 (spheres)")->capture_default_str();
     app.add_option("--particles,-N", p.particles, "number of particles, diameter 1, mass 1")->capture_default_str();
@@ -78,7 +79,10 @@ void add_options(CLI::App& app, shockgas::spheres::SphereParameters& p, shockgas
         ->check(shockgas::cli::finite_non_negative)
         ->capture_default_str();
     app.add_flag("--resume", run.resume, "continue from the checkpoint, bit for bit as an uninterrupted run");
-    app.add_option("--output,-o", output, "output HDF5 file")->required();
+    app.add_option("--export-start", export_start,
+                   "write the start of realization --first-realization to this text file (d N L, then x and v of "
+                   "each particle) for other codes, and stop");
+    app.add_option("--output,-o", output, "output HDF5 file");
     app.footer("Output schema: docs/spheres.md. Ctrl-C (or SIGTERM, SIGHUP) saves a checkpoint that --resume "
                "continues, and exits with status 130.");
 }
@@ -90,13 +94,19 @@ int main(int argc, char** argv) {
                  "threshold rule on the normal relative velocity (docs/spheres.md)"};
     shockgas::spheres::SphereParameters parameters;
     shockgas::spheres::SphereRunOptions run;
-    std::string start = "insertion", output;
+    std::string start = "insertion", output, export_start;
     double progress_interval = 60.0;
-    add_options(app, parameters, run, start, output, progress_interval);
+    add_options(app, parameters, run, start, output, export_start, progress_interval);
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-spheres"); status >= 0) return status;
     return shockgas::cli::run("shockgas-spheres", [&] {
         parameters.start = shockgas::spheres::start_method_from_string(start);
         shockgas::spheres::validate(parameters);
+        if (!export_start.empty()) {
+            shockgas::spheres::write_start_text(
+                shockgas::spheres::make_start(parameters, parameters.first_realization), export_start);
+            return 0;
+        }
+        if (output.empty()) throw shockgas::InputError("--output is required");
         shockgas::h5::check_writable(output);
         if (run.checkpoint.empty()) run.checkpoint = output + ".checkpoint";
         shockgas::h5::check_not_an_input(output, {run.checkpoint});

@@ -2,6 +2,7 @@
 #include "shockgas/spheres/start.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <algorithm>
 #include <numeric>
 #include <utility>
@@ -116,6 +117,20 @@ void sort_by_cell(SphereState& state) {
         }
     state.positions = std::move(positions);
     state.velocities = std::move(velocities);
+}
+
+void write_start_text(const SphereState& state, const std::string& path) {
+    std::FILE* file = std::fopen(path.c_str(), "w");
+    if (file == nullptr) throw InputError(fmt::format("cannot write the start to '{}'", path));
+    const int d = state.dimension;
+    fmt::print(file, "{} {} {:.17g}\n", d, state.particles(), state.box_length);
+    for (std::int64_t i = 0; i < state.particles(); ++i) {
+        const auto base = static_cast<std::size_t>(i * d);
+        for (int k = 0; k < d; ++k) fmt::print(file, "{:.17g} ", state.positions[base + static_cast<std::size_t>(k)]);
+        for (int k = 0; k < d; ++k)
+            fmt::print(file, "{:.17g}{}", state.velocities[base + static_cast<std::size_t>(k)], k + 1 < d ? " " : "\n");
+    }
+    if (std::fclose(file) != 0) throw InputError(fmt::format("cannot write the start to '{}'", path));
 }
 
 double temperature(const std::vector<double>& velocities, int dimension) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "shockgas/analysis/commands.hpp"
+#include "shockgas/analysis/cooling.hpp"
 #include "shockgas/analysis/results.hpp"
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
@@ -20,7 +21,7 @@
 namespace shockgas::analysis {
 
 struct AnalyzeRequest {
-    // The subcommand: decay, crossover, scaling, shocks, collapse, compare, validity or far-tail.
+    // The subcommand: decay, crossover, scaling, shocks, collapse, compare, validity, far-tail or cooling.
     std::string command;
     // The command line and the subcommand's options as run, for the results file.
     AnalysisInvocation invocation;
@@ -30,6 +31,8 @@ struct AnalyzeRequest {
     std::vector<std::string> inputs;
     std::string output = "analysis.h5";
     std::string data, scan, hazard, curves;
+    // cooling (shockgas-spheres outputs): the clustering table and the 2D picture's positions.
+    std::string clustering, picture;
     // decay: the window ends when given, and whether --scan-width was given.
     DecayOptions decay;
     double t_lo = 0.0, t_hi = 0.0;

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <random>
+#include <string>
 
 #include "shockgas/spheres/engine.hpp"
 #include "shockgas/spheres/parameters.hpp"
@@ -31,6 +32,12 @@ void draw_maxwell_velocities(SphereState& state, std::mt19937_64& random);
 // row by row: particles near in space are then near in memory, which the
 // engine's neighbour searches reward (docs/spheres.md, "Speed").
 void sort_by_cell(SphereState& state);
+
+// Writes a start as text for other codes (docs/spheres.md, "Starts for other
+// codes"): a first line "d N L", then one line per particle, its d coordinates
+// and d velocity components, each with 17 significant digits so that the
+// doubles read back exactly. Throws h5::Error-free InputError if unwritable.
+void write_start_text(const SphereState& state, const std::string& path);
 
 // T = sum |v - V|^2 / (d N), V the mean velocity (per degree of freedom, m = k_B = 1).
 double temperature(const std::vector<double>& velocities, int dimension);
