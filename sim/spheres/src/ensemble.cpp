@@ -11,6 +11,7 @@
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <cstdio>
 #include <thread>
 
@@ -113,6 +114,12 @@ struct RealizationRecord {
 
 constexpr const char* checkpoint_schema = "spheres-checkpoint";
 
+// A checkpoint of another build of the engine: passed over (the run starts
+// anew, as shockgas-sim does with another simulator's checkpoint), not refused.
+struct OtherSimulator : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 void write_checkpoint(const std::string& path, const SphereParameters& p,
                       const std::vector<std::optional<RealizationRecord>>& book) {
     h5::write_atomically(
@@ -170,10 +177,11 @@ std::vector<std::optional<RealizationRecord>> read_checkpoint(const std::string&
     if (!root.has_attribute("schema") || root.attribute_string("schema") != checkpoint_schema)
         throw InputError(fmt::format("{} is not a checkpoint of shockgas-spheres", path));
     if (root.attribute_string("spheres_sha256") != spheres_sha256())
-        throw InputError(fmt::format("{} was written by another version of the disk and sphere engine "
-                                     "(spheres_sha256 {} vs this build's {}); remove it to start anew",
-                                     path, root.attribute_string("spheres_sha256").substr(0, 12),
-                                     spheres_sha256().substr(0, 12)));
+        throw OtherSimulator(fmt::format("{} was written by another version of the disk and sphere engine "
+                                         "(spheres_sha256 {} vs this build's {}), which would not continue it "
+                                         "bit for bit",
+                                         path, root.attribute_string("spheres_sha256").substr(0, 12),
+                                         spheres_sha256().substr(0, 12)));
     const auto differences = parameter_differences(p, read_parameter_attributes(root));
     if (!differences.empty())
         throw InputError(fmt::format("{} is the checkpoint of another run ({} in the checkpoint); remove it to "
@@ -286,9 +294,12 @@ SphereResult run_spheres(const SphereParameters& p, const ProgressCallback& prog
                 } catch (const h5::Error& error) {
                     note(fmt::format("warning: {} cannot be read ({}); trying the older generation", path,
                                      error.what()));
+                } catch (const OtherSimulator& other) {
+                    note(fmt::format("warning: {}; starting from t = 0", other.what()));
+                    break;
                 }
             }
-            if (!loaded) note("nothing to resume: starting from t = 0");
+            if (!loaded) book.assign(realizations, std::nullopt);
         }
     }
 

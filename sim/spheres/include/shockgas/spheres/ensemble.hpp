@@ -72,8 +72,9 @@ double velocity_kurtosis(const std::vector<double>& velocities, int dimension);
 //    when stopped; the file is written whole, atomically, keeping the one it
 //    replaces as CHECKPOINT.previous (the fallback if the newer is damaged).
 //  - resume continues every realization from the checkpoint, bit for bit as an
-//    uninterrupted run; a checkpoint of other parameters or another simulator
-//    (spheres_sha256) is refused. Without resume an existing checkpoint is refused.
+//    uninterrupted run; a checkpoint of other parameters is refused, one of
+//    another build of the engine (spheres_sha256) is passed over with a note
+//    and the run starts anew. Without resume an existing checkpoint is refused.
 //  - Once the output is written the checkpoint is removed (remove_spheres_checkpoint).
 struct SphereRunOptions {
     std::string checkpoint;
