@@ -13,6 +13,9 @@
 #include "shockgas/spheres/engine.hpp"
 #include "shockgas/spheres/start.hpp"
 
+#include "calendar_queue.hpp"  // the engine's private header (sim/spheres/src)
+#include "quaternary_heap.hpp"
+
 using namespace shockgas;
 using namespace shockgas::spheres;
 
@@ -348,4 +351,46 @@ TEST(SpheresCheckpoint, StoppedAndResumedRunEqualsUninterrupted) {
     EXPECT_EQ(last.snapshots[0].density, whole.snapshots[0].density);
     EXPECT_EQ(last.counts.collisions(), whole.counts.collisions());
     remove_spheres_checkpoint(checkpoint);
+}
+
+// The calendar pops in exactly the ring's heap's order, (time, particle),
+// through rescheduling, removals, equal times, far-future entries, a day
+// width off by 10^6 both ways, and times that jump by decades (a cooling gas).
+TEST(SpheresCalendar, PopsInTheHeapsOrder) {
+    for (const double spread : {1e-6, 1.0, 1e6}) {
+        const std::int32_t slots = 3000;
+        shockgas::spheres::CalendarQueue calendar(slots);
+        shockgas::QuaternaryHeap heap(slots);
+        std::mt19937_64 random(11);
+        double now = 0.0;
+        for (std::int32_t s = 0; s < slots; ++s) {
+            const double t = std::floor(unit_uniform(random) * 1000.0) * 1e-3 * spread;  // many equal times
+            calendar.append_unordered(s, t);
+            heap.append_unordered(s, t);
+        }
+        calendar.heapify();
+        heap.heapify();
+        for (int step = 0; step < 200000; ++step) {
+            ASSERT_EQ(calendar.top_slot(), heap.top_slot()) << "step " << step;
+            ASSERT_EQ(calendar.top_time(), heap.top_time());
+            now = heap.top_time();
+            const std::int32_t top = heap.top_slot();
+            calendar.popped();
+            // The top moves on; one other slot is rescheduled or removed.
+            const double scale = spread * (step > 100000 ? 100.0 : 1.0);  // events slow down 100x
+            const double gap = unit_uniform(random) < 0.01 ? 1e4 * scale : unit_uniform(random) * scale;
+            calendar.schedule(top, now + gap);
+            heap.schedule(top, now + gap);
+            const auto other = static_cast<std::int32_t>(unit_uniform(random) * slots);
+            if (unit_uniform(random) < 0.05) {
+                calendar.remove(other);
+                heap.remove(other);
+            } else if (other != top) {
+                const double t = now + std::floor(unit_uniform(random) * 8.0) * 0.125 * scale;
+                calendar.schedule(other, t);
+                heap.schedule(other, t);
+            }
+            ASSERT_EQ(calendar.size(), heap.size());
+        }
+    }
 }

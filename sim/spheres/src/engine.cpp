@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "quaternary_heap.hpp"
+#include "calendar_queue.hpp"
 #include "shockgas/model/collision.hpp"
 #include "shockgas/spheres/parameters.hpp"
 
@@ -224,7 +224,7 @@ public:
     std::size_t memory_bytes() const override {
         const std::size_t n = particles_.size();
         return n * (sizeof(Particle) + sizeof(Prediction) + sizeof(std::uint32_t) + sizeof(CellCoordinates) +
-                    sizeof(std::int32_t) + sizeof(QuaternaryHeap::Entry) + sizeof(std::int32_t)) +
+                    sizeof(std::int32_t) + CalendarQueue::bytes_per_slot + sizeof(std::int32_t)) +
                head_.size() * sizeof(std::int32_t);
     }
 
@@ -318,18 +318,24 @@ private:
     // |dr + dv s| = 1 with dr.dv < 0: s = (dr^2 - 1) / (-dr.dv + sqrt((dr.dv)^2 - dv^2 (dr^2 - 1))),
     // the smaller root written without cancellation. An approaching pair
     // already closer than 1 by round-off collides at once (the overlap policy).
-    double contact_time(const Particle& a, const Particle& b) const {
+    // Pairs that cannot touch before `earliest` are passed over as never
+    // before the square root: s >= (dr^2 - 1) / (-2 dr.dv), since the root is
+    // at most -dr.dv. The time of a pair that can is computed in full, so the
+    // result never depends on `earliest`.
+    double contact_time(const Particle& a, const Particle& b, double earliest = never) const {
         std::array<double, D> dr, dv;
         separation(a, b, dr, dv);
-        double approach = 0.0, dr2 = 0.0, dv2 = 0.0;
+        double approach = 0.0;
+        for (int k = 0; k < D; ++k) approach += dr[k] * dv[k];
+        if (approach >= 0.0) return never;
+        double dr2 = 0.0, dv2 = 0.0;
         for (int k = 0; k < D; ++k) {
-            approach += dr[k] * dv[k];
             dr2 += dr[k] * dr[k];
             dv2 += dv[k] * dv[k];
         }
-        if (approach >= 0.0) return never;
         const double excess = dr2 - 1.0;
         if (excess <= 0.0) return now;
+        if (excess > (earliest - now) * (-2.0 * approach)) return never;
         const double discriminant = approach * approach - dv2 * excess;
         if (discriminant <= 0.0) return never;
         return now + excess / (std::sqrt(discriminant) - approach);
@@ -340,7 +346,7 @@ private:
     void scan_cell(std::int32_t i, const Particle& a, std::size_t cell, Prediction& e) const {
         for (std::int32_t j = head_[cell]; j != no_particle; j = particles_[static_cast<std::size_t>(j)].next) {
             if (j == i) continue;
-            const double t = contact_time(a, particles_[static_cast<std::size_t>(j)]);
+            const double t = contact_time(a, particles_[static_cast<std::size_t>(j)], e.collision_time);
             if (t < e.collision_time) {
                 e.collision_time = t;
                 e.partner = j;
@@ -439,6 +445,7 @@ private:
         const std::int32_t i = queue_.top_slot();
         const auto u = static_cast<std::size_t>(i);
         const double t = queue_.top_time();
+        queue_.popped();
         watch_for_stall(t);
         now = t;
         Prediction& e = predictions_[u];
@@ -570,7 +577,7 @@ private:
     std::vector<std::uint32_t> collisions_of_;
     std::vector<CellCoordinates> cell_;
     std::vector<std::int32_t> head_, previous_;
-    QuaternaryHeap queue_;
+    CalendarQueue queue_;
     double stall_start_ = 0.0;
     std::uint64_t stall_events_ = 0;
 };

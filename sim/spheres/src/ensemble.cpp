@@ -329,6 +329,11 @@ SphereResult run_spheres(const SphereParameters& p, const ProgressCallback& prog
             facts[r] = {RealizationProgress::State::finished, record.end_time, record.counts.collisions()};
             return;
         }
+        {
+            std::lock_guard lock(mutex);
+            facts[r] = {RealizationProgress::State::running, record.samples_done > 0 ? result.time[static_cast<std::size_t>(record.samples_done - 1)] : 0.0,
+                        record.counts.collisions()};
+        }
         std::optional<HardSphereEngine> engine;
         if (record.has_engine) {
             engine.emplace(record.engine, p.collision, p.collapse_speed);

@@ -6,8 +6,9 @@
 //
 // - One event per particle in the queue (Marin, Risso & Cordero, J. Comput.
 //   Phys. 109, 306 (1993)): the earlier of its next collision and its next cell
-//   crossing, in the ring's indexed 4-ary heap keyed by (time, particle), so
-//   equal times are taken in particle order and every run is deterministic.
+//   crossing, in an event calendar (calendar_queue.hpp) keyed by (time,
+//   particle), so equal times are taken in particle order and every run is
+//   deterministic.
 // - Delayed states: a particle's position is kept at its own clock and brought
 //   up to date only when it takes part in an event.
 // - A collision invalidates the events of other particles predicted with its
@@ -57,8 +58,8 @@ enum class EngineStatus {
 // The whole state of an engine, for checkpoints: every particle's position at
 // its own clock, velocity, cell and collision count, every prediction, the cell
 // lists and the counters. An engine made from it continues exactly as the one
-// it was taken from, bit for bit (the queue is rebuilt from the predictions;
-// it pops in (time, particle) order whatever its layout).
+// it was taken from, bit for bit (the calendar is rebuilt from the
+// predictions; it pops in (time, particle) order whatever its layout).
 struct EngineRecord {
     int dimension = 3;
     double box_length = 0.0;

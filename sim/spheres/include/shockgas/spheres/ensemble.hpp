@@ -103,7 +103,7 @@ struct SphereOutput {
 SphereOutput read_spheres_output(const std::string& path);
 
 // SHA-256 over what decides this simulation's numbers (sim/spheres with the
-// model, the I/O layer and the ring's event queue it uses; compiler and flags),
+// model, the I/O layer and the progress record it uses; compiler and flags),
 // recorded in every output as spheres_sha256 and the pipeline's stamp.
 const std::string& spheres_sha256();
 
