@@ -519,3 +519,15 @@ if(SHOCKGAS_PYTHON)
   set_tests_properties(cli.error.dump_short_velocity cli.error.merge_short_collisions cli.error.merge_bad_sample_times
                        cli.error.merge_unknown_status PROPERTIES FIXTURES_REQUIRED inconsistent_runs)
 endif()
+
+# shockgas-spheres refuses what it cannot run in one line, status 2, and writes no output
+# (docs/spheres.md, "The model").
+foreach(_case IN ITEMS "dimension;^shockgas-spheres: error: --dimension 4 is not 2 or 3$;-D;4"
+                      "box_too_small;less than 3 diameters: use more particles$;-N;4"
+                      "restitution_zero;disks and spheres do not merge;-r;0"
+                      "threshold_negative;--threshold -1 must be finite and >= 0$;-d;-1"
+                      "insertion_too_dense;--start lattice goes further;--phi;0.4"
+                      "lattice_too_dense;is outside .0, 0.5236.,;--start;lattice;--phi;0.6"
+                      "start_method;unknown start method 'random' .insertion or lattice.$;--start;random")
+  shockgas_error_case(spheres "${_case}" $<TARGET_FILE:shockgas-spheres> -t 1)
+endforeach()
