@@ -62,12 +62,14 @@ int main(int argc, char** argv) {
     CLI::App app{"Speed of the disk and sphere engine: collisions per CPU second on the anchors' workloads"};
     double collisions_per_particle = 20.0, equilibrate = 5.0;
     bool scaling = false, quick = false;
+    std::string only;
     app.add_option("--collisions-per-particle", collisions_per_particle, "timed collisions per particle")
         ->capture_default_str();
     app.add_option("--equilibrate", equilibrate, "collisions per particle of the start's elastic run (not timed)")
         ->capture_default_str();
     app.add_flag("--scaling", scaling, "also N = 10^3 ... 10^6 (3D elastic, phi = 0.25)");
     app.add_flag("--quick", quick, "N = 10^4 instead of 10^5 (a smoke test)");
+    app.add_option("--workload", only, "run only the workload of this name (e.g. '3D elastic')");
     CLI11_PARSE(app, argc, argv);
     const std::int64_t n3 = quick ? 10648 : 97556, n2 = quick ? 10000 : 99856;
     std::vector<Workload> workloads{
@@ -81,5 +83,6 @@ int main(int argc, char** argv) {
             workloads.push_back({fmt::format("3D elastic N={}", n), 3, n, 0.25, 1.0, 0.0});
     fmt::print("{:<22} {:>2} {:>8} {:>5} {:>5} {:>6} {:>11} {:>8} {:>8} {:>12} {:>10} {:>9}\n", "# workload", "d", "N",
                "phi", "r", "delta", "collisions", "CPU s", "wall s", "coll/CPU-s", "coll/time", "B/part");
-    for (const auto& w : workloads) run(w, collisions_per_particle, equilibrate);
+    for (const auto& w : workloads)
+        if (only.empty() || w.name == only) run(w, collisions_per_particle, equilibrate);
 }
