@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "shockgas/analysis/fit.hpp"
 #include "shockgas/spheres/ensemble.hpp"
 
 using namespace shockgas;
@@ -49,14 +50,6 @@ std::map<std::string, Case> read_reference() {
         sample.collisions_per_particle.push_back(2.0 * collisions / static_cast<double>(c.particles));
     }
     return cases;
-}
-
-std::pair<double, double> mean_and_error(const std::vector<double>& values) {
-    const double n = static_cast<double>(values.size());
-    double mean = 0, squares = 0;
-    for (double v : values) mean += v / n;
-    for (double v : values) squares += (v - mean) * (v - mean);
-    return {mean, std::sqrt(squares / (n * (n - 1)))};
 }
 
 // The two means differ by less than 4 combined standard errors: with 42
@@ -99,8 +92,10 @@ TEST(SpheresAgainstDynamo, SameEnsembleFromTheSameStarts) {
             for (const auto& [label, a, b] : {std::tuple{"T", mine.temperature, reference.temperature},
                                               std::tuple{"collisions per particle", mine.collisions_per_particle,
                                                          reference.collisions_per_particle}}) {
-                const auto [ours_mean, ours_error] = mean_and_error(a);
-                const auto [their_mean, their_error] = mean_and_error(b);
+                const analysis::Estimate ours_estimate = analysis::mean_and_standard_error(a);
+                const analysis::Estimate their_estimate = analysis::mean_and_standard_error(b);
+                const double ours_mean = ours_estimate.value, ours_error = ours_estimate.sigma;
+                const double their_mean = their_estimate.value, their_error = their_estimate.sigma;
                 const double combined = std::hypot(ours_error, their_error);
                 if (c.restitution == 1.0 && std::string(label) == "T") {
                     // Elastic: T = 1 in both, to round-off (10^-14 after 10^5 collisions).
