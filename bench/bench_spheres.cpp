@@ -6,22 +6,16 @@
 // workloads the anchors were measured on, and N from 10^3 to 10^6.
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "shockgas/spheres/ensemble.hpp"
 #include "shockgas/spheres/start.hpp"
 
 namespace {
-
-double thread_cpu_seconds() {
-    timespec now{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
 
 struct Workload {
     std::string name;
@@ -43,10 +37,10 @@ void run(const Workload& w, double collisions_per_particle, double equilibrate) 
     const SphereState start = make_start(p, 0);
     HardSphereEngine engine(start, shockgas::CollisionModel{w.restitution, w.threshold, shockgas::Subthreshold::elastic});
     const auto collisions = static_cast<std::uint64_t>(collisions_per_particle * static_cast<double>(w.particles) / 2.0);
-    const double cpu0 = thread_cpu_seconds();
+    const double cpu0 = shockgas::spheres::thread_cpu_seconds();
     const auto wall0 = std::chrono::steady_clock::now();
     engine.run_collisions(collisions);
-    const double cpu = thread_cpu_seconds() - cpu0;
+    const double cpu = shockgas::spheres::thread_cpu_seconds() - cpu0;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     fmt::print("{:<22} {:>2} {:>8} {:>5} {:>5} {:>6} {:>11} {:>8.2f} {:>8.2f} {:>12.0f} {:>10.0f} {:>9.1f}\n", w.name,
                w.dimension, w.particles, w.packing_fraction, w.restitution, w.threshold,

@@ -31,20 +31,6 @@ double process_cpu_seconds() {
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
     return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
-double thread_cpu_seconds() {
-    timespec now{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
-std::vector<double> mean_velocity(const std::vector<double>& v, int d) {
-    std::vector<double> mean(static_cast<std::size_t>(d), 0.0);
-    const std::size_t n = v.size() / static_cast<std::size_t>(d);
-    for (std::size_t i = 0; i < n; ++i)
-        for (int k = 0; k < d; ++k) mean[static_cast<std::size_t>(k)] += v[i * static_cast<std::size_t>(d) + static_cast<std::size_t>(k)];
-    for (double& m : mean) m /= static_cast<double>(n);
-    return mean;
-}
 
 bool listed(const std::vector<double>& times, double t) {
     return std::find(times.begin(), times.end(), t) != times.end();
@@ -80,6 +66,12 @@ void coarse_fields(const SphereState& state, int cells_per_side, double* density
 }
 
 }  // namespace
+
+double thread_cpu_seconds() {
+    timespec now{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
 
 double velocity_kurtosis(const std::vector<double>& v, int d) {
     const auto mean = mean_velocity(v, d);
@@ -120,14 +112,16 @@ struct OtherSimulator : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// cpu_seconds: the run's CPU time so far, this process's and that of the runs it continues.
 void write_checkpoint(const std::string& path, const SphereParameters& p,
-                      const std::vector<std::optional<RealizationRecord>>& book) {
+                      const std::vector<std::optional<RealizationRecord>>& book, double cpu_seconds) {
     h5::write_atomically(
         path,
         [&](h5::Group& root) {
             write_provenance(root, "shockgas-spheres");
             root.set_attribute("spheres_sha256", spheres_sha256());
             root.set_attribute("schema", checkpoint_schema);
+            root.set_attribute("cpu_seconds", cpu_seconds);
             write_parameter_attributes(root, p);
             auto all = root.create_group("realizations");
             for (std::size_t r = 0; r < book.size(); ++r) {
@@ -171,7 +165,8 @@ void write_checkpoint(const std::string& path, const SphereParameters& p,
         previous_checkpoint_path(path));
 }
 
-std::vector<std::optional<RealizationRecord>> read_checkpoint(const std::string& path, const SphereParameters& p) {
+std::vector<std::optional<RealizationRecord>> read_checkpoint(const std::string& path, const SphereParameters& p,
+                                                              double& cpu_seconds) {
     const auto file = h5::File::open_read(path);
     const auto root = file.root();
     if (!root.has_attribute("schema") || root.attribute_string("schema") != checkpoint_schema)
@@ -188,6 +183,7 @@ std::vector<std::optional<RealizationRecord>> read_checkpoint(const std::string&
                                      "start anew",
                                      path, fmt::join(differences, ", ")));
     std::vector<std::optional<RealizationRecord>> book(static_cast<std::size_t>(p.realizations));
+    cpu_seconds = root.attribute_double("cpu_seconds");
     const auto all = root.open_group("realizations");
     for (const auto& name : all.children()) {
         const auto r = static_cast<std::size_t>(std::stoll(name));
@@ -267,6 +263,7 @@ SphereResult run_spheres(const SphereParameters& p, const ProgressCallback& prog
     // the lock, since the checkpoint writer reads them all.
     std::vector<std::optional<RealizationRecord>> book(realizations);
     std::optional<CheckpointLock> lock_file;
+    double previous_cpu_seconds = 0.0;  // of the runs a resumed checkpoint continues
     if (!options.checkpoint.empty()) {
         lock_file.emplace(options.checkpoint);
         const auto generations = checkpoint_generations(options.checkpoint);
@@ -281,7 +278,7 @@ SphereResult run_spheres(const SphereParameters& p, const ProgressCallback& prog
             for (const auto& path : generations) {
                 if (h5::probe(path).kind == h5::Probe::Kind::absent) continue;
                 try {
-                    book = read_checkpoint(path, p);
+                    book = read_checkpoint(path, p, previous_cpu_seconds);
                     loaded = true;
                     std::size_t finished = 0, started = 0;
                     for (const auto& record : book) {
@@ -314,7 +311,7 @@ SphereResult run_spheres(const SphereParameters& p, const ProgressCallback& prog
 
     // Under the lock: writes the book whole (every realization's latest record).
     auto write_book = [&] {
-        write_checkpoint(options.checkpoint, p, book);
+        write_checkpoint(options.checkpoint, p, book, previous_cpu_seconds + process_cpu_seconds() - cpu_start);
         last_write = std::chrono::steady_clock::now();
     };
 
@@ -522,7 +519,7 @@ SphereResult run_spheres(const SphereParameters& p, const ProgressCallback& prog
         result.counts.stale_events += record.counts.stale_events;
         result.start_seconds += record.start_seconds;
     }
-    result.cpu_seconds = process_cpu_seconds() - cpu_start;
+    result.cpu_seconds = previous_cpu_seconds + process_cpu_seconds() - cpu_start;
     result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     return result;
 }

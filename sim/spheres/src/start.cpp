@@ -133,24 +133,28 @@ void write_start_text(const SphereState& state, const std::string& path) {
     if (std::fclose(file) != 0) throw InputError(fmt::format("cannot write the start to '{}'", path));
 }
 
+std::vector<double> mean_velocity(const std::vector<double>& v, int d) {
+    std::vector<double> mean(static_cast<std::size_t>(d), 0.0);
+    const std::size_t n = v.size() / static_cast<std::size_t>(d);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < d; ++k)
+            mean[static_cast<std::size_t>(k)] += v[i * static_cast<std::size_t>(d) + static_cast<std::size_t>(k)];
+    for (double& m : mean) m /= static_cast<double>(n);
+    return mean;
+}
+
 double temperature(const std::vector<double>& velocities, int dimension) {
-    const std::size_t n = velocities.size() / static_cast<std::size_t>(dimension);
-    double mean[3] = {0.0, 0.0, 0.0};
-    for (std::size_t i = 0; i < n; ++i)
-        for (int k = 0; k < dimension; ++k) mean[k] += velocities[i * static_cast<std::size_t>(dimension) + static_cast<std::size_t>(k)];
-    for (int k = 0; k < dimension; ++k) mean[k] /= static_cast<double>(n);
+    const auto mean = mean_velocity(velocities, dimension);
     double sum = 0.0;
-    for (std::size_t i = 0; i < n; ++i)
-        for (int k = 0; k < dimension; ++k) {
-            const double u = velocities[i * static_cast<std::size_t>(dimension) + static_cast<std::size_t>(k)] - mean[k];
-            sum += u * u;
-        }
-    return sum / (static_cast<double>(n) * dimension);
+    for (std::size_t i = 0; i < velocities.size(); ++i) {
+        const double u = velocities[i] - mean[i % static_cast<std::size_t>(dimension)];
+        sum += u * u;
+    }
+    return sum / static_cast<double>(velocities.size());
 }
 
 void draw_maxwell_velocities(SphereState& state, std::mt19937_64& random) {
     const int d = state.dimension;
-    const std::size_t n = static_cast<std::size_t>(state.particles());
     auto& v = state.velocities;
     double second = 0.0;
     bool have_second = false;
@@ -163,12 +167,8 @@ void draw_maxwell_velocities(SphereState& state, std::mt19937_64& random) {
             have_second = true;
         }
     }
-    double mean[3] = {0.0, 0.0, 0.0};
-    for (std::size_t i = 0; i < n; ++i)
-        for (int k = 0; k < d; ++k) mean[k] += v[i * static_cast<std::size_t>(d) + static_cast<std::size_t>(k)];
-    for (int k = 0; k < d; ++k) mean[k] /= static_cast<double>(n);
-    for (std::size_t i = 0; i < n; ++i)
-        for (int k = 0; k < d; ++k) v[i * static_cast<std::size_t>(d) + static_cast<std::size_t>(k)] -= mean[k];
+    const auto mean = mean_velocity(v, d);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] -= mean[i % static_cast<std::size_t>(d)];
     const double scale = 1.0 / std::sqrt(temperature(v, d));
     for (double& component : v) component *= scale;
 }

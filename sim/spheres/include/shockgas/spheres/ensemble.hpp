@@ -63,6 +63,10 @@ struct SphereResult {
     }
 };
 
+// The CPU seconds this thread has used (what the ensemble's start_seconds and
+// bench_spheres count).
+double thread_cpu_seconds();
+
 // <u^4> / <u^2>^2 over every particle and component, u = v - V (3 for Maxwell).
 double velocity_kurtosis(const std::vector<double>& velocities, int dimension);
 

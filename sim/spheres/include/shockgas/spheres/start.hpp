@@ -39,6 +39,9 @@ void sort_by_cell(SphereState& state);
 // doubles read back exactly. Throws h5::Error-free InputError if unwritable.
 void write_start_text(const SphereState& state, const std::string& path);
 
+// V = sum v / N, component by component.
+std::vector<double> mean_velocity(const std::vector<double>& velocities, int dimension);
+
 // T = sum |v - V|^2 / (d N), V the mean velocity (per degree of freedom, m = k_B = 1).
 double temperature(const std::vector<double>& velocities, int dimension);
 
