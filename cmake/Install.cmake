@@ -3,7 +3,7 @@
 #
 #   bin/                                 shockgas-sim, -merge, -dump, -burgers, -analyze, -tail, -plan
 #   include/shockgas/<room>/             the public headers of each library (model, io, engines,
-#                                        run, tail, analysis)
+#                                        run, tail, ranks, spheres, analysis)
 #   lib/<multiarch>/                     libshockgas_<room>.a
 #   lib/<multiarch>/cmake/shockgas/      find_package(shockgas CONFIG): shockgas::sim (all of the
 #                                        simulator), each room's library, shockgas::analysis
@@ -28,8 +28,8 @@ set(SHOCKGAS_INSTALL_DATADIR "${CMAKE_INSTALL_DATADIR}/shockgas")
 mark_as_advanced(SHOCKGAS_INSTALL_CMAKEDIR)
 
 # The libraries, one a room (the umbrella shockgas_sim is an interface target, no file of its own).
-set(SHOCKGAS_LIBRARIES shockgas_model shockgas_io shockgas_engines shockgas_run shockgas_tail shockgas_spheres
-                       shockgas_analysis)
+set(SHOCKGAS_LIBRARIES shockgas_model shockgas_io shockgas_engines shockgas_run shockgas_tail shockgas_ranks
+                       shockgas_spheres shockgas_analysis)
 set(SHOCKGAS_PROGRAMS shockgas-sim shockgas-merge shockgas-dump shockgas-burgers shockgas-analyze shockgas-tail
                       shockgas-plan shockgas-spheres)
 
@@ -56,7 +56,8 @@ install(TARGETS ${SHOCKGAS_PROGRAMS}
 # editing this list. The engines' internals (sim/engines/src) stay private.
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/sim/model/include/" "${PROJECT_SOURCE_DIR}/sim/io/include/"
                   "${PROJECT_SOURCE_DIR}/sim/engines/include/" "${PROJECT_SOURCE_DIR}/sim/run/include/"
-                  "${PROJECT_SOURCE_DIR}/sim/tail/include/" "${PROJECT_SOURCE_DIR}/sim/spheres/include/"
+                  "${PROJECT_SOURCE_DIR}/sim/tail/include/" "${PROJECT_SOURCE_DIR}/sim/ranks/include/"
+                  "${PROJECT_SOURCE_DIR}/sim/spheres/include/"
                   "${PROJECT_SOURCE_DIR}/analysis/include/"
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev
         FILES_MATCHING PATTERN "*.hpp")

@@ -26,7 +26,8 @@ from ._h5 import decode, walk
 # peak memory depend on the machine's load). An archive records them in MANIFEST
 # but they are never compared. Analysis results copy them forward as input_<name> / input<k>_<name>.
 # A merged run's merged_date (shockgas-merge) is when the merge ran.
-RUN_DEPENDENT_ATTRIBUTES = {"date", "host", "wall_seconds", "cpu_seconds", "peak_memory_bytes", "merged_date"}
+RUN_DEPENDENT_ATTRIBUTES = {"date", "host", "wall_seconds", "cpu_seconds", "start_cpu_seconds", "peak_memory_bytes",
+                            "merged_date"}
 # The code and toolchain that made a file. Compared separately: a difference is
 # reported (code version) or selects the tolerant comparison (compiler, flags,
 # build type, HDF5 library), it is not itself a data difference. simulator_sha256

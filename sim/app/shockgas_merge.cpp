@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// shockgas-merge: joins ensemble parts (shockgas-sim --first-realization k)
-// into one file with the datasets a single run of all realizations writes; its
-// root attributes are the run's (the first part's date and host), and
-// merged_by, merged_date and merged_from say that and how it was merged.
-// Parses the paths and calls shockgas::merge_parts (shockgas/io/merge.hpp).
+// shockgas-merge: joins ensemble parts (shockgas-sim or shockgas-spheres
+// --first-realization k) into one file with the datasets a single run of all
+// realizations writes; merged_by, merged_date and merged_from say that and how
+// it was merged. Parses the paths and calls shockgas::merge_parts
+// (shockgas/io/merge.hpp) or, for shockgas-spheres files,
+// shockgas::spheres::merge_spheres_files (shockgas/spheres/job.hpp).
 #include <string>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "shockgas/cli/cli.hpp"
 #include "shockgas/io/merge.hpp"
 #include "shockgas/io/provenance.hpp"
+#include "shockgas/spheres/ensemble.hpp"
+#include "shockgas/spheres/job.hpp"
 
 int main(int argc, char** argv) {
     std::string output;
@@ -23,6 +26,12 @@ int main(int argc, char** argv) {
     app.add_option("inputs", inputs, "part files, in realization order")->required()->check(CLI::ExistingFile);
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-merge"); status >= 0) return status;
     return shockgas::cli::run("shockgas-merge", [&] {
+        if (shockgas::spheres::is_spheres_output(inputs.front())) {
+            const auto realizations = shockgas::spheres::merge_spheres_files(inputs, output, "shockgas-merge");
+            fmt::print(stderr, "shockgas-merge: {}\n",
+                       shockgas::merge_summary({realizations, inputs.size(), "complete"}, output));
+            return 0;
+        }
         const shockgas::MergeOutcome outcome = shockgas::merge_parts(inputs, output, "shockgas-merge");
         fmt::print(stderr, "shockgas-merge: {}\n", shockgas::merge_summary(outcome, output));
         return 0;

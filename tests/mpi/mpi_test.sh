@@ -32,64 +32,25 @@ here=$(cd "$(dirname "$0")" && pwd)
 compare="$here/../compare_outputs.py"  # shared with the checkpoint tests
 ranks=2
 
-# Open MPI refuses root without these, and by default binds each rank to
-# one core and refuses more ranks than cores; a test machine may be a
-# container run as root with few cores.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_hwloc_base_binding_policy=none
-# Containers often forbid the cross-memory attach Open MPI uses for large
-# messages on one node; plain copies work everywhere.
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-
 # The run of the task: N = 2000, r = 0.9, delta = 1e-2 to t = 100, with
 # snapshots and histograms so that every dataset kind is compared.
 physics=(-N 2000 -r 0.9 -d 1e-2 -t 100 --snapshot-times 10,100 --histogram-times 10,100 -q)
 
-fail() { echo "FAIL: $*"; exit 1; }
-
-mkdir -p "$work" && cd "$work" || fail "cannot enter $work"
-rm -f ./*.h5 ./*.h5.* ./*.stderr
+program=$sim
+# shellcheck source=mpi_common.sh
+. "$here/mpi_common.sh"
+enter_work_folder "$work"
 
 case "$case_name" in
 identical)
-  "$sim" "${physics[@]}" -R 5 -s 7 -o single.h5 || fail "single-process run failed"
-  "${mpiexec[@]}" "$ranks" "$sim" "${physics[@]}" -R 5 -s 7 -j 1 -o distributed.h5 ||
-    fail "mpirun -np $ranks run failed"
-  "$python" "$compare" single.h5 distributed.h5 "$ranks" || fail "the distributed file differs from the single run"
-  # The comparison must be able to fail: another seed gives other datasets.
-  "$sim" "${physics[@]}" -R 5 -s 8 -o other_seed.h5 || fail "single-process run (seed 8) failed"
-  if "$python" "$compare" other_seed.h5 distributed.h5 "$ranks" >other_seed.stderr; then
-    fail "compare_outputs.py accepted files from different seeds"
-  fi
-  grep -q "dataset /timeseries/temperature differs" other_seed.stderr ||
-    fail "compare_outputs.py rejected seed 8 without naming the temperature: $(cat other_seed.stderr)"
-  echo "ok: a different seed is caught"
+  check_identical 5
   ;;
 idle_rank)
-  "$sim" "${physics[@]}" -R 1 -o single.h5 || fail "single-process run failed"
-  "${mpiexec[@]}" "$ranks" "$sim" "${physics[@]}" -R 1 -j 1 -o distributed.h5 ||
-    fail "mpirun -np $ranks run with one realization failed"
-  "$python" "$compare" single.h5 distributed.h5 "$ranks" || fail "the distributed file differs from the single run"
+  check_idle_rank
   ;;
 failing_rank)
-  # Rank 1 cannot even start: a parameter out of range on its command line.
-  if "${mpiexec[@]}" 1 "$sim" "${physics[@]}" -R 4 -o setup.h5 : \
-     "${mpiexec[@]:1}" 1 "$sim" "${physics[@]}" -R 4 --samples-per-decade 0 -o setup.h5 2>setup.stderr; then
-    fail "the job succeeded although rank 1 had an invalid argument"
-  fi
-  cat setup.stderr
-  grep -q "rank 1 of 2 failed before the run" setup.stderr || fail "no line naming rank 1 (setup)"
-  grep -q "samples per decade must lie in" setup.stderr || fail "rank 1's own error is missing"
-  [ ! -e setup.h5 ] || fail "setup.h5 written by a failed job"
-  # Rank 1 runs but cannot package its block: no temporary directory.
-  if "${mpiexec[@]}" 1 "$sim" "${physics[@]}" -R 4 -o reduce.h5 : \
-     "${mpiexec[@]:1}" 1 env TMPDIR=/nonexistent/shockgas "$sim" "${physics[@]}" -R 4 -o reduce.h5 \
-     2>reduce.stderr; then
-    fail "the job succeeded although rank 1 could not send its block"
-  fi
-  cat reduce.stderr
-  grep -q "rank 1 of 2 could not send its realizations" reduce.stderr || fail "no line naming rank 1 (reduce)"
-  [ ! -e reduce.h5 ] || fail "reduce.h5 written by a failed job"
+  # Rank 1's parameter out of range; its message must reach the job's stderr.
+  check_failing_rank "samples per decade must lie in" --samples-per-decade 0
   ;;
 interrupted)
   # A run far too long to finish; the signal comes once every rank has had
@@ -162,26 +123,9 @@ finished_rank)
   run=(-N 20000 -r 0.9 -d 1e-2 --subthreshold elastic --engine hybrid -t 10000 --histogram-times 100,10000
        -R 3 -s 5 -j 1 -q)
   "$sim" "${run[@]}" -o reference.h5 || fail "the uninterrupted run failed"
-  "${mpiexec[@]}" "$ranks" "$sim" "${run[@]}" --checkpoint-interval 0.3 -o stopped.h5 2>stopped.stderr &
-  launcher=$!
   # Rank 1's last checkpoint, written when its block ends, has none in progress.
-  for _ in $(seq 1 600); do
-    grep -q "rank 1\]: checkpoint: 0 realizations in progress" stopped.stderr && break
-    sleep 0.1
-  done
-  grep -q "rank 1\]: checkpoint: 0 realizations in progress" stopped.stderr ||
-    { kill -INT "$launcher"; wait "$launcher"; fail "rank 1 wrote no checkpoint when its block ended: $(cat stopped.stderr)"; }
-  kill -INT "$launcher"
-  wait "$launcher" && fail "the job finished before the interrupt: the test did not test"
-  [ -e stopped.h5.checkpoint.rank1 ] || fail "rank 1 kept no checkpoint of its finished block: $(cat stopped.stderr)"
-  "${mpiexec[@]}" "$ranks" "$sim" "${run[@]}" --resume -o stopped.h5 2>resumed.stderr ||
-    fail "mpirun -np $ranks --resume failed: $(cat resumed.stderr)"
-  cat resumed.stderr
-  grep -q "rank 1\]: resuming from .*: 1 realizations done, 0 continue" resumed.stderr ||
-    fail "rank 1 did not take its finished realization from its checkpoint"
-  "$python" "$compare" reference.h5 stopped.h5 "$ranks" || fail "the resumed file differs from the uninterrupted run"
-  left=$(ls stopped.h5.checkpoint* 2>/dev/null)
-  [ -z "$left" ] || fail "checkpoints left behind: $left"
+  interrupt_once_rank1_finished "rank 1\]: checkpoint: 0 realizations in progress" "${run[@]}"
+  resume_equals_reference "rank 1\]: resuming from .*: 1 realizations done, 0 continue" "${run[@]}"
   ;;
 complete_output)
   "${mpiexec[@]}" "$ranks" "$sim" "${physics[@]}" -R 3 -j 1 -o done.h5 || fail "mpirun -np $ranks run failed"

@@ -11,6 +11,7 @@
 #include "shockgas/model/state.hpp"
 #include "shockgas/spheres/ensemble.hpp"
 #include "shockgas/spheres/engine.hpp"
+#include "shockgas/spheres/job.hpp"
 #include "shockgas/spheres/start.hpp"
 
 #include "calendar_queue.hpp"  // the engine's private header (sim/spheres/src)
@@ -33,6 +34,24 @@ SphereState two_particles(int d, double box, std::vector<double> x, std::vector<
 }
 
 // The closest pair's centre distance under the minimum image, over all pairs.
+// A small inelastic run (r = 0.9, delta = 1e-2, phi = 0.2) with histograms at
+// `first_sample` and t_max and a snapshot of 4^d field cells at `snapshot`:
+// every dataset kind, for the tests that compare runs bit for bit.
+SphereParameters inelastic_run(int d, std::int64_t particles, double t_max, int realizations, double first_sample,
+                               double snapshot) {
+    SphereParameters p;
+    p.dimension = d;
+    p.particles = particles;
+    p.packing_fraction = 0.2;
+    p.collision = {0.9, 1e-2, Subthreshold::elastic};
+    p.t_max = t_max;
+    p.realizations = realizations;
+    p.histogram_times = {first_sample, t_max};
+    p.snapshot_times = {snapshot};
+    p.field_cells = 4;
+    return p;
+}
+
 double closest_distance(const SphereState& s) {
     const int d = s.dimension;
     const auto n = static_cast<std::size_t>(s.particles());
@@ -275,6 +294,55 @@ TEST(SpheresOutput, RoundTrip) {
     EXPECT_EQ(back.spheres_sha256.size(), 64u);
 }
 
+// Parts (--first-realization k) joined by shockgas-merge's work equal one run
+// of all their realizations, bit for bit; parts that are not one run's, or
+// that leave a gap, are refused with the part named.
+TEST(SpheresMerge, PartsEqualOneRun) {
+    const SphereParameters p = inelastic_run(2, 300, 3.0, 5, 1.0, 3.0);
+    const SphereResult whole = run_spheres(p);
+    const std::string folder = ::testing::TempDir();
+    std::vector<std::string> names;
+    for (const auto& [first, count] : {std::pair{0, 2}, std::pair{2, 1}, std::pair{3, 2}}) {
+        SphereParameters part = p;
+        part.first_realization = first;
+        part.realizations = count;
+        names.push_back(folder + "spheres_part" + std::to_string(first) + ".h5");
+        write_spheres_output(names.back(), part, run_spheres(part));
+    }
+    const std::string merged_path = folder + "spheres_merged.h5";
+    EXPECT_EQ(merge_spheres_files(names, merged_path, "test"), 5);
+    const SphereOutput merged = read_spheres_output(merged_path);
+    EXPECT_EQ(merged.parameters.realizations, 5);
+    EXPECT_EQ(merged.parameters.first_realization, 0);
+    EXPECT_EQ(merged.result.temperature, whole.temperature);
+    EXPECT_EQ(merged.result.velocity_kurtosis, whole.velocity_kurtosis);
+    EXPECT_EQ(merged.result.end_time, whole.end_time);
+    for (std::size_t h = 0; h < 2; ++h) EXPECT_EQ(merged.result.histograms[h].counts, whole.histograms[h].counts);
+    EXPECT_EQ(merged.result.snapshots[0].positions, whole.snapshots[0].positions);
+    EXPECT_EQ(merged.result.snapshots[0].density, whole.snapshots[0].density);
+    EXPECT_EQ(merged.result.snapshots[0].velocity_field, whole.snapshots[0].velocity_field);
+    EXPECT_EQ(merged.result.counts.collisions(), whole.counts.collisions());
+
+    // A gap (realization 2 left out), parts out of order, and a part of another run.
+    const auto refusal = [&](const std::vector<std::string>& parts) {
+        try {
+            merge_spheres_files(parts, folder + "spheres_refused.h5", "test");
+        } catch (const InputError& error) {
+            return std::string(error.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_NE(refusal({names[0], names[2]}).find("starts at realization 3, the parts before it end at 1"),
+              std::string::npos);
+    EXPECT_NE(refusal({names[1], names[0]}).find("starts at realization 0"), std::string::npos);
+    SphereParameters other = p;
+    other.first_realization = 2;
+    other.realizations = 1;
+    other.collision.restitution = 0.8;
+    write_spheres_output(folder + "spheres_other.h5", other, run_spheres(other));
+    EXPECT_NE(refusal({names[0], folder + "spheres_other.h5"}).find("restitution 0.9 vs 0.8"), std::string::npos);
+}
+
 // An engine restored from save() continues bit for bit as the one it was
 // taken from, in 2D and 3D, inelastic with the threshold, mid-run (between
 // samples, with stale events and delayed states pending).
@@ -302,17 +370,8 @@ TEST(SpheresEngine, SavedEngineContinuesBitForBit) {
 // uninterrupted run's datasets bit for bit; a run without --resume refuses
 // the checkpoint, and a resume with other parameters names what differs.
 TEST(SpheresCheckpoint, StoppedAndResumedRunEqualsUninterrupted) {
-    SphereParameters p;
-    p.dimension = 3;
-    p.particles = 3000;
-    p.packing_fraction = 0.2;
-    p.collision = {0.9, 1e-2, Subthreshold::elastic};
-    p.t_max = 30.0;
-    p.realizations = 3;
+    SphereParameters p = inelastic_run(3, 3000, 30.0, 3, 1.0, 10.0);
     p.threads = 2;
-    p.histogram_times = {1.0, 30.0};
-    p.snapshot_times = {10.0};
-    p.field_cells = 4;
     const SphereResult whole = run_spheres(p);
 
     const std::string checkpoint = "spheres_resume.ckpt.h5";

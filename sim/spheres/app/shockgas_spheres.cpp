@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // shockgas-spheres: inelastic hard disks (--dimension 2) or spheres (3) in a
 // periodic box with the paper's threshold rule (docs/spheres.md). Binds the
-// command line to a shockgas::spheres::SphereParameters, runs the ensemble
-// (run_spheres) and writes the HDF5 output; the physics is in sim/spheres.
+// command line to a shockgas::spheres::SphereJob and runs it (run_spheres_job:
+// the ensemble over MPI ranks under `mpirun -np K`, or in this process); the
+// physics is in sim/spheres.
+#include <unistd.h>
+
 #include <cstdio>
 #include <string>
 
@@ -14,7 +17,9 @@
 #include "shockgas/cli/signals.hpp"
 #include "shockgas/io/h5.hpp"
 #include "shockgas/io/provenance.hpp"
+#include "shockgas/ranks/ranks.hpp"
 #include "shockgas/spheres/ensemble.hpp"
+#include "shockgas/spheres/job.hpp"
 #include "shockgas/spheres/start.hpp"
 
 namespace {
@@ -90,15 +95,17 @@ void add_options(CLI::App& app, shockgas::spheres::SphereParameters& p, shockgas
 }  // namespace
 
 int main(int argc, char** argv) {
+    // First of all: MPI_Init may take arguments of its own from argv.
+    shockgas::ranks::Session session(argc, argv);
     CLI::App app{"Inelastic hard disks (d = 2) or spheres (d = 3) in a periodic box, with the paper's "
                  "threshold rule on the normal relative velocity (docs/spheres.md)"};
-    shockgas::spheres::SphereParameters parameters;
-    shockgas::spheres::SphereRunOptions run;
-    std::string start = "insertion", output, export_start;
+    shockgas::spheres::SphereJob job;
+    std::string start = "insertion", export_start;
     double progress_interval = 60.0;
-    add_options(app, parameters, run, start, output, export_start, progress_interval);
+    add_options(app, job.parameters, job.run, start, job.output, export_start, progress_interval);
     if (const int status = shockgas::cli::parse(app, argc, argv, "shockgas-spheres"); status >= 0) return status;
     return shockgas::cli::run("shockgas-spheres", [&] {
+        auto& parameters = job.parameters;
         parameters.start = shockgas::spheres::start_method_from_string(start);
         shockgas::spheres::validate(parameters);
         if (!export_start.empty()) {
@@ -106,22 +113,25 @@ int main(int argc, char** argv) {
                 shockgas::spheres::make_start(parameters, parameters.first_realization), export_start);
             return 0;
         }
-        if (output.empty()) throw shockgas::InputError("--output is required");
-        shockgas::h5::check_writable(output);
-        if (run.checkpoint.empty()) run.checkpoint = output + ".checkpoint";
-        shockgas::h5::check_not_an_input(output, {run.checkpoint});
-        run.stop = &shockgas::cli::stop_flag();
-        run.note = [](const std::string& text) { fmt::print(stderr, "shockgas-spheres: {}\n", text); };
+        if (job.output.empty()) throw shockgas::InputError("--output is required");
+        if (session.is_root()) shockgas::h5::check_writable(job.output);
+        if (job.run.checkpoint.empty()) job.run.checkpoint = job.output + ".checkpoint";
+        shockgas::h5::check_not_an_input(job.output, {job.run.checkpoint});
+        job.run.stop = &shockgas::cli::stop_flag();
+        job.run.note = shockgas::cli::rank_note("shockgas-spheres", session.rank(), session.ranks(),
+                                                          isatty(STDERR_FILENO) != 0);
         shockgas::cli::install_stop_handlers();
-        const auto result = shockgas::spheres::run_spheres(
-            parameters, shockgas::cli::progress_printer("shockgas-spheres", progress_interval), run);
-        if (result.interrupted) {
-            fmt::print(stderr, "\nshockgas-spheres: interrupted; the checkpoint {} continues it with --resume\n",
-                       run.checkpoint);
+        const auto outcome = shockgas::spheres::run_spheres_job(
+            job, session, shockgas::cli::progress_printer("shockgas-spheres", progress_interval));
+        if (outcome.interrupted) {
+            if (session.is_root())
+                fmt::print(stderr, "\nshockgas-spheres: interrupted; the checkpoint {}{} continues it with --resume{}\n",
+                           job.run.checkpoint, session.ranks() > 1 ? ".rank<k>" : "",
+                           session.ranks() > 1 ? fmt::format(" on {} ranks", session.ranks()) : "");
             return 130;
         }
-        shockgas::spheres::write_spheres_output(output, parameters, result);
-        shockgas::spheres::remove_spheres_checkpoint(run.checkpoint);
+        if (!outcome.wrote_output) return 0;  // another rank than 0: rank 0 wrote the file
+        const auto& result = outcome.result;
         fmt::print("{}D, N = {}, phi = {}: {} collisions ({:.4g} per particle per realization) in {:.3g} CPU-s "
                    "({:.3g} of them making the starts); T(t_max) = {:.6g} in realization 0; {}\n",
                    parameters.dimension, parameters.particles, parameters.packing_fraction,
@@ -129,7 +139,7 @@ int main(int argc, char** argv) {
                    2.0 * static_cast<double>(result.counts.collisions()) /
                        (static_cast<double>(parameters.particles) * parameters.realizations),
                    result.cpu_seconds, result.start_seconds, result.temperature[result.time.size() - 1],
-                   output);
+                   job.output);
         return 0;
     });
 }

@@ -461,10 +461,12 @@ SphereResult run_spheres(const SphereParameters& p, const ProgressCallback& prog
     }
     for (auto& thread : threads) thread.join();
     if (failure) std::rethrow_exception(failure);
-    if (stopped) {
-        if (!options.checkpoint.empty()) write_book();
-        result.interrupted = true;
+    if (!options.checkpoint.empty() && (stopped || options.checkpoint_when_done)) {
+        write_book();
+        if (!stopped) note(fmt::format("checkpoint: every realization finished, kept in {} until the output is written",
+                                       options.checkpoint));
     }
+    result.interrupted = stopped;
 
     // The result, from the book, in realization order.
     const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -98,9 +98,17 @@ std::vector<std::string> parameter_differences(const SphereParameters& a, const 
     return out;
 }
 
-void write_spheres_output(const std::string& path, const SphereParameters& p, const SphereResult& result) {
+void write_spheres_output(const std::string& path, const SphereParameters& p, const SphereResult& result,
+                          const JoinRecord& joined) {
     h5::write_atomically(path, [&](h5::Group& root) {
         write_provenance(root, "shockgas-spheres");
+        // How the file was joined (same attribute names as shockgas-sim's files).
+        if (joined.mpi_ranks > 1) root.set_attribute("mpi_ranks", joined.mpi_ranks);
+        if (!joined.merged_by.empty()) {
+            root.set_attribute("merged_by", joined.merged_by);
+            root.set_attribute("merged_date", utc_timestamp());
+            root.set_attribute("merged_from", fmt::format("{}", fmt::join(joined.merged_from, "\n")));
+        }
         root.set_attribute("spheres_sha256", spheres_sha256());
         root.set_attribute("schema", "spheres");
         root.set_attribute("schema_version", spheres_schema_version);
@@ -151,6 +159,11 @@ void write_spheres_output(const std::string& path, const SphereParameters& p, co
             group.write("velocity_field", snapshot.velocity_field, {realizations, static_cast<hsize>(cells), d});
         }
     });
+}
+
+bool is_spheres_output(const std::string& path) {
+    const auto root = h5::File::open_read(path).root();
+    return root.has_attribute("schema") && root.attribute_string("schema") == "spheres";
 }
 
 SphereOutput read_spheres_output(const std::string& path) {

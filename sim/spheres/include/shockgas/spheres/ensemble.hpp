@@ -84,6 +84,10 @@ struct SphereRunOptions {
     std::string checkpoint;
     double checkpoint_interval_seconds = 600.0;
     bool resume = false;
+    // Also save the checkpoint when the run ends: a rank of an MPI job whose
+    // block finished while another rank was stopped keeps its realizations
+    // for --resume (run_spheres_job).
+    bool checkpoint_when_done = false;
     const std::atomic<bool>* stop = nullptr;  // raised by a signal handler: the run saves and returns
     std::function<void(const std::string&)> note;  // one-line notes (resumed, fell back to .previous)
 };
@@ -95,9 +99,19 @@ SphereResult run_spheres(const SphereParameters& parameters, const ProgressCallb
 // Removes both generations of a finished run's checkpoint.
 void remove_spheres_checkpoint(const std::string& checkpoint);
 
+// How an output was joined from blocks, recorded as root attributes with the
+// names shockgas-sim's files use: mpi_ranks (an MPI job of more than one
+// rank), and merged_by, merged_date, merged_from (shockgas-merge).
+struct JoinRecord {
+    std::int64_t mpi_ranks = 1;
+    std::string merged_by;                 // program and version; empty: not merged
+    std::vector<std::string> merged_from;  // each part, "NAME (realizations F to L)"
+};
+
 // Writes the result atomically with every parameter and the provenance as
 // root attributes (schema in docs/spheres.md), and reads it back.
-void write_spheres_output(const std::string& path, const SphereParameters& parameters, const SphereResult& result);
+void write_spheres_output(const std::string& path, const SphereParameters& parameters, const SphereResult& result,
+                          const JoinRecord& joined = {});
 struct SphereOutput {
     SphereParameters parameters;
     SphereResult result;
@@ -105,6 +119,22 @@ struct SphereOutput {
     std::string spheres_sha256;
 };
 SphereOutput read_spheres_output(const std::string& path);
+// Whether the file is an output of shockgas-spheres (its root attribute schema).
+bool is_spheres_output(const std::string& path);
+
+// Ensemble parts (--first-realization k, or MPI ranks' blocks), in
+// realization order, joined into the result one run of all their realizations
+// gives, bit for bit: rows concatenated, histograms and counts summed, the
+// particle snapshots of the first part (realization 0's). Refuses
+// (InputError, naming the part) parts of other parameters, of another build
+// of the engine, or that leave a gap or overlap in the realizations.
+// merged_from gets a line per part: "NAME (realizations F to L)".
+struct JoinedParts {
+    SphereParameters parameters;
+    SphereResult result;
+    std::vector<std::string> merged_from;
+};
+JoinedParts join_spheres_parts(const std::vector<SphereOutput>& parts, const std::vector<std::string>& names);
 
 // SHA-256 over what decides this simulation's numbers (sim/spheres with the
 // model, the I/O layer and the progress record it uses; compiler and flags),
