@@ -207,6 +207,18 @@ void add_cooling(CLI::App& app, AnalyzeRequest& r) {
     cooling->add_option("--picture", r.picture, "realization 0's disk centres at the last snapshot of the first 2D input");
 }
 
+void add_clusters(CLI::App& app, AnalyzeRequest& r) {
+    auto* clusters = app.add_subcommand(
+        "clusters", "disk and sphere gases: clusters of dense field cells, their masses and the largest");
+    clusters->add_option("inputs", r.inputs, "shockgas-spheres outputs")->required()->check(CLI::ExistingFile);
+    clusters->add_option("-o,--output", r.output, "results HDF5 file")->capture_default_str();
+    clusters->add_option("--threshold", r.threshold, "a cell is in a cluster at density >= this x the mean")
+        ->capture_default_str();
+    clusters->add_option("--data", r.data, "table: clusters, mean and largest mass against t, a block per input");
+    clusters->add_option("--distribution", r.distribution,
+                         "table: cluster masses in log bins, a block per input and snapshot");
+}
+
 void add_far_tail(CLI::App& app, AnalyzeRequest& r) {
     auto* far_tail = app.add_subcommand("far-tail", "tail exponent gamma of Phi from shockgas-tail output");
     far_tail->add_option("input", r.input, "shockgas-tail output")->required()->check(CLI::ExistingFile);
@@ -229,7 +241,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     AnalyzeRequest request;
     for (const auto add : {add_decay, add_crossover, add_scaling, add_shocks, add_collapse, add_compare, add_validity,
-                           add_far_tail, add_cooling})
+                           add_far_tail, add_cooling, add_clusters})
         add(app, request);
     if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
     const CLI::App& subcommand = *app.get_subcommands().front();

@@ -137,6 +137,14 @@ void check_and_run(AnalyzeRequest& request, const std::vector<std::string>& all_
                        {"--picture", request.picture, true}},
                       all_inputs);
         run_cooling(invocation, request.inputs, request.output, request.data, request.clustering, request.picture);
+    } else if (command == "clusters") {
+        require_positive("--threshold", request.threshold, " (a density relative to the mean)");
+        check_outputs({{"-o", request.output, false},
+                       {"--data", request.data, true},
+                       {"--distribution", request.distribution, true}},
+                      all_inputs);
+        run_clusters(invocation, request.inputs, request.output, request.threshold, request.data,
+                     request.distribution);
     } else {
         throw std::invalid_argument(fmt::format("shockgas-analyze has no subcommand '{}'", command));
     }
@@ -153,8 +161,8 @@ void run_analyze(AnalyzeRequest request) {
         // An input that is a run in progress (a checkpoint), whatever the
         // subcommand; then option values, then every output path, before
         // any work.
-        // (cooling reads shockgas-spheres outputs, whose reader refuses anything else itself.)
-        if (request.command != "cooling")
+        // (cooling and clusters read shockgas-spheres outputs, whose reader refuses anything else itself.)
+        if (request.command != "cooling" && request.command != "clusters")
             check_inputs(all_inputs, request.command == "far-tail" ? "a far-tail sampler file (made by shockgas-tail)"
                                                                    : "a shockgas-sim output");
         check_and_run(request, all_inputs);

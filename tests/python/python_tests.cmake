@@ -34,6 +34,24 @@ add_test(NAME python.schema COMMAND ${SHOCKGAS_PYTHON} ${CMAKE_CURRENT_SOURCE_DI
 set_tests_properties(python.schema PROPERTIES FIXTURES_REQUIRED python_run LABELS python TIMEOUT 60
                      SKIP_RETURN_CODE 77)
 
+# Clusters of a disk gas (shockgas-analyze clusters) recounted with scipy.ndimage.label and periodic
+# merging (python/clusters_check.py): 2D, N = 20000, r = 0.8, 3 realizations, 3 snapshots, threshold 1.5,
+# where clusters cross the box's faces (~4 s).
+add_test(NAME python.setup.spheres_run
+         COMMAND shockgas-spheres -D 2 -N 20000 --phi 0.1 -r 0.8 -d 1e-2 -t 300 --snapshot-times 30,100,300
+                 --field-cells 32 -R 3 -j 1 -o "${_py_work}/disks.h5"
+         WORKING_DIRECTORY "${_py_work}")
+add_test(NAME python.setup.clusters
+         COMMAND shockgas-analyze clusters "${_py_work}/disks.h5" --threshold 1.5 -o "${_py_work}/clusters.h5"
+         WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.setup.spheres_run PROPERTIES FIXTURES_SETUP python_spheres LABELS python TIMEOUT 120)
+set_tests_properties(python.setup.clusters PROPERTIES FIXTURES_SETUP python_clusters FIXTURES_REQUIRED python_spheres
+                     LABELS python TIMEOUT 60)
+add_test(NAME python.clusters_check COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/clusters_check.py
+                 "${_py_work}/clusters.h5" WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.clusters_check PROPERTIES FIXTURES_REQUIRED "python_spheres;python_clusters"
+                     LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+
 # shockgas-sim against an independent plain event-driven reference written from the physics
 # (python/reference_gas.py): ~70 small starts across r, delta, both sub-threshold mechanisms, masses,
 # the seam, simultaneous collisions and collapse, every engine, at every sample (docs/reference-check.md;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "shockgas/analysis/clusters.hpp"
 #include "shockgas/analysis/commands.hpp"
 #include "shockgas/analysis/cooling.hpp"
 #include "shockgas/analysis/results.hpp"
@@ -21,7 +22,7 @@
 namespace shockgas::analysis {
 
 struct AnalyzeRequest {
-    // The subcommand: decay, crossover, scaling, shocks, collapse, compare, validity, far-tail or cooling.
+    // The subcommand: decay, crossover, scaling, shocks, collapse, compare, validity, far-tail, cooling or clusters.
     std::string command;
     // The command line and the subcommand's options as run, for the results file.
     AnalysisInvocation invocation;
@@ -33,6 +34,9 @@ struct AnalyzeRequest {
     std::string data, scan, hazard, curves;
     // cooling (shockgas-spheres outputs): the clustering table and the 2D picture's positions.
     std::string clustering, picture;
+    // clusters (shockgas-spheres outputs): the density threshold (relative to the mean) and the mass table.
+    double threshold = 2.0;
+    std::string distribution;
     // decay: the window ends when given, and whether --scan-width was given.
     DecayOptions decay;
     double t_lo = 0.0, t_hi = 0.0;
