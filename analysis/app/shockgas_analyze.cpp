@@ -219,6 +219,21 @@ void add_clusters(CLI::App& app, AnalyzeRequest& r) {
                          "table: cluster masses in log bins, a block per input and snapshot");
 }
 
+void add_late_decay(CLI::App& app, AnalyzeRequest& r) {
+    auto* late = app.add_subcommand(
+        "late-decay", "disk and sphere gases: T ~ t^-theta after Haff's law, where the two meet, and Delta v / v");
+    late->add_option("inputs", r.inputs, "shockgas-spheres outputs")->required()->check(CLI::ExistingFile);
+    late->add_option("-o,--output", r.output, "results HDF5 file")->capture_default_str();
+    late->add_option("--window-start", r.late_decay.window_start, "fit from this x eps^(-4/(4-d)) / omega0")
+        ->capture_default_str();
+    late->add_option("--window-end", r.late_decay.window_end, "fit to this x N^(2/d) / omega0 (at most t_max)")
+        ->capture_default_str();
+    late->add_option("--data", r.data, "table: mean T, T t^theta and the kurtosis against t, a block per input");
+    late->add_option("--slopes", r.slopes, "table: local slopes d ln T / d ln t, a block per input");
+    late->add_option("--crossovers", r.crossovers, "table: tau_c against eps, a block per dimension");
+    late->add_option("--fluctuations", r.fluctuations, "table: Delta v / v at each snapshot, a block per input");
+}
+
 void add_far_tail(CLI::App& app, AnalyzeRequest& r) {
     auto* far_tail = app.add_subcommand("far-tail", "tail exponent gamma of Phi from shockgas-tail output");
     far_tail->add_option("input", r.input, "shockgas-tail output")->required()->check(CLI::ExistingFile);
@@ -241,7 +256,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     AnalyzeRequest request;
     for (const auto add : {add_decay, add_crossover, add_scaling, add_shocks, add_collapse, add_compare, add_validity,
-                           add_far_tail, add_cooling, add_clusters})
+                           add_far_tail, add_cooling, add_clusters, add_late_decay})
         add(app, request);
     if (const int status = cli::parse(app, argc, argv, "shockgas-analyze"); status >= 0) return status;
     const CLI::App& subcommand = *app.get_subcommands().front();

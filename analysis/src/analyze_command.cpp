@@ -145,6 +145,17 @@ void check_and_run(AnalyzeRequest& request, const std::vector<std::string>& all_
                       all_inputs);
         run_clusters(invocation, request.inputs, request.output, request.threshold, request.data,
                      request.distribution);
+    } else if (command == "late-decay") {
+        require_positive("--window-start", request.late_decay.window_start, " (a multiple of eps^(-4/(4-d)) / omega0)");
+        require_positive("--window-end", request.late_decay.window_end, " (a multiple of N^(2/d) / omega0)");
+        check_outputs({{"-o", request.output, false},
+                       {"--data", request.data, true},
+                       {"--slopes", request.slopes, true},
+                       {"--crossovers", request.crossovers, true},
+                       {"--fluctuations", request.fluctuations, true}},
+                      all_inputs);
+        run_late_decay(invocation, request.inputs, request.output, request.late_decay, request.data, request.slopes,
+                       request.crossovers, request.fluctuations);
     } else {
         throw std::invalid_argument(fmt::format("shockgas-analyze has no subcommand '{}'", command));
     }
@@ -161,8 +172,8 @@ void run_analyze(AnalyzeRequest request) {
         // An input that is a run in progress (a checkpoint), whatever the
         // subcommand; then option values, then every output path, before
         // any work.
-        // (cooling and clusters read shockgas-spheres outputs, whose reader refuses anything else itself.)
-        if (request.command != "cooling" && request.command != "clusters")
+        // (cooling, clusters and late-decay read shockgas-spheres outputs, whose reader refuses anything else itself.)
+        if (request.command != "cooling" && request.command != "clusters" && request.command != "late-decay")
             check_inputs(all_inputs, request.command == "far-tail" ? "a far-tail sampler file (made by shockgas-tail)"
                                                                    : "a shockgas-sim output");
         check_and_run(request, all_inputs);

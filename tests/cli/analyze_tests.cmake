@@ -200,7 +200,7 @@ endforeach()
 
 # 9b. A misspelt subcommand names the nearest one and all of them (CLI11 alone says "A subcommand is
 # required"), through the shared shockgas::cli::parse; -o and its value (added by the helper) are not it.
-set(_subcommands "the subcommands are decay, crossover, scaling, shocks, collapse, compare, validity, far-tail, cooling, clusters")
+set(_subcommands "the subcommands are decay, crossover, scaling, shocks, collapse, compare, validity, far-tail, cooling, clusters, late-decay")
 shockgas_analyze_error(subcommand_misspelt
                        "^shockgas-analyze: error: unknown subcommand 'scalng' \\(did you mean scaling\\?; ${_subcommands}\\)$"
                        scalng hist.h5)

@@ -13,6 +13,7 @@
 #include "shockgas/analysis/clusters.hpp"
 #include "shockgas/analysis/commands.hpp"
 #include "shockgas/analysis/cooling.hpp"
+#include "shockgas/analysis/late_decay.hpp"
 #include "shockgas/analysis/results.hpp"
 #include "shockgas/analysis/shocks.hpp"
 #include "shockgas/analysis/temperature.hpp"
@@ -22,7 +23,7 @@
 namespace shockgas::analysis {
 
 struct AnalyzeRequest {
-    // The subcommand: decay, crossover, scaling, shocks, collapse, compare, validity, far-tail, cooling or clusters.
+    // The subcommand: decay, crossover, scaling, shocks, collapse, compare, validity, far-tail, cooling, clusters or late-decay.
     std::string command;
     // The command line and the subcommand's options as run, for the results file.
     AnalysisInvocation invocation;
@@ -37,6 +38,9 @@ struct AnalyzeRequest {
     // clusters (shockgas-spheres outputs): the density threshold (relative to the mean) and the mass table.
     double threshold = 2.0;
     std::string distribution;
+    // late-decay (shockgas-spheres outputs): the fit window and the slope, crossover and Delta v / v tables.
+    LateDecayRule late_decay;
+    std::string slopes, crossovers, fluctuations;
     // decay: the window ends when given, and whether --scan-width was given.
     DecayOptions decay;
     double t_lo = 0.0, t_hi = 0.0;
