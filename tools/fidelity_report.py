@@ -214,6 +214,7 @@ def readme_rows():
                      f"raw {d['slope_times_t']:.2f} ± {d['slope_times_t_sigma']:.2f}", "1"))
     rows.extend(validity_rows())
     rows.extend(spheres_rows())
+    rows.extend(dimension_rows())
     return rows
 
 
@@ -239,6 +240,34 @@ def spheres_rows():
             f"{clustered['final_clustering_index']:.1f} ± {clustered['final_clustering_index_sigma']:.1f}")
     return [("Beyond the ring: disks and spheres cool by Haff's law, max \\|T/T_Haff − 1\\| for t ≤ t₀ "
              "(φ = 0.1, δ = 10⁻²)", cell, "Haff, t₀ from Enskog")]
+
+
+def dimension_rows():
+    """fig_2d and fig_3d: the late exponent theta of each run (n/a where the run leaves no window between
+    the predicted crossover and the finite-size time), and the crossover time's exponent against eps."""
+    rows = []
+    for d in (2, 3):
+        path = os.path.join(base, f"fig_{d}d", "late.h5")
+        if not os.path.exists(path):
+            continue
+        f = shockgas.read_results(path)
+        runs = [g.attrs for name, g in sorted(f.groups.items()) if name.startswith("late_decay")]
+        first = runs[0]
+        def theta(a):
+            if a["theta"] != a["theta"]:
+                return f"ε = {a['eps']:g}: n/a"
+            return f"ε = {a['eps']:g}: {a['theta']:.2f} ± {a['theta_sigma']:.2f} ± {a['theta_window_sigma']:.2f}"
+        cell = "; ".join(theta(a) for a in runs) + (f" (N = {power(first['particles'])}, φ = {first['packing_fraction']:g}, "
+                                                    f"δ = {power(first['velocity_threshold'])})")
+        burgers, aggregation = d / 2, 2 * d / (d + 2)
+        rows.append((f"Beyond the ring, {d}D: late decay T ~ t^(−θ), θ ± jackknife ± window", cell,
+                     f"Burgers d/2 = {burgers:g}; aggregation 2d/(d+2) = {aggregation:g}"))
+        crossover = f[f"crossover_d{d}"].attrs
+        if crossover["crossover_exponent"] == crossover["crossover_exponent"]:
+            rows.append((f"Beyond the ring, {d}D: crossover τ_c ~ ε^x (collision times)",
+                         f"x = {crossover['crossover_exponent']:.2f} ± {crossover['crossover_exponent_sigma']:.2f} "
+                         f"({crossover['crossover_points']} ε)", f"x = {crossover['predicted_exponent']:g}"))
+    return rows
 
 
 def validity_rows():

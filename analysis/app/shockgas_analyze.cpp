@@ -217,6 +217,8 @@ void add_clusters(CLI::App& app, AnalyzeRequest& r) {
     clusters->add_option("--data", r.data, "table: clusters, mean and largest mass against t, a block per input");
     clusters->add_option("--distribution", r.distribution,
                          "table: cluster masses in log bins, a block per input and snapshot");
+    clusters->add_option("--maps", r.picture,
+                         "table: realization 0's density field of the first 2D input at each snapshot (gnuplot image)");
 }
 
 void add_late_decay(CLI::App& app, AnalyzeRequest& r) {

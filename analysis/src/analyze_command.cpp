@@ -141,10 +141,11 @@ void check_and_run(AnalyzeRequest& request, const std::vector<std::string>& all_
         require_positive("--threshold", request.threshold, " (a density relative to the mean)");
         check_outputs({{"-o", request.output, false},
                        {"--data", request.data, true},
-                       {"--distribution", request.distribution, true}},
+                       {"--distribution", request.distribution, true},
+                       {"--maps", request.picture, true}},
                       all_inputs);
         run_clusters(invocation, request.inputs, request.output, request.threshold, request.data,
-                     request.distribution);
+                     request.distribution, request.picture);
     } else if (command == "late-decay") {
         require_positive("--window-start", request.late_decay.window_start, " (a multiple of eps^(-4/(4-d)) / omega0)");
         require_positive("--window-end", request.late_decay.window_end, " (a multiple of N^(2/d) / omega0)");

@@ -158,7 +158,7 @@ ClusterSummary summarize_clusters(const spheres::SphereOutput& run, double thres
 
 void run_clusters(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,
                   const std::string& output, double threshold, const std::string& data,
-                  const std::string& distribution) {
+                  const std::string& distribution, const std::string& maps) {
     std::vector<spheres::SphereOutput> runs;
     for (const auto& input : inputs) runs.push_back(spheres::read_spheres_output(input));
     ResultsFile results(output, invocation, inputs);
@@ -228,7 +228,33 @@ void run_clusters(const AnalysisInvocation& invocation, const std::vector<std::s
                        format_estimate(at.clustered_fraction, "{:.4f}"));
         }
     }
-    commit_outputs(&results, {table ? &*table : nullptr, histogram ? &*histogram : nullptr});
+    std::optional<DataFile> density_maps;
+    if (!maps.empty()) {
+        const auto first_2d = std::find_if(runs.begin(), runs.end(), [](const spheres::SphereOutput& run) {
+            return run.parameters.dimension == 2 && !run.result.snapshots.empty();
+        });
+        if (first_2d == runs.end()) throw InputError("--maps needs a 2D input with snapshots");
+        const auto& p = first_2d->parameters;
+        const double cell = spheres::box_length(2, p.particles, p.packing_fraction) / p.field_cells;
+        const auto side = static_cast<std::size_t>(p.field_cells);
+        density_maps.emplace(maps,
+                             fmt::format("density / mean of realization 0 on {}^2 cells of side {:.6g}, 2D r = {} "
+                                         "N = {}; a block per snapshot (times in the block comments)",
+                                         side, cell, p.collision.restitution, p.particles),
+                             inputs, std::vector<std::string>{"x", "y", "density"});
+        for (std::size_t s = 0; s < first_2d->result.snapshots.size(); ++s) {
+            const auto& snapshot = first_2d->result.snapshots[s];
+            if (s > 0) density_maps->blank_line();
+            density_maps->comment(fmt::format("t = {:.6g}", snapshot.time));
+            for (std::size_t iy = 0; iy < side; ++iy) {  // cell index ix + side iy: x fastest (realization 0's row)
+                for (std::size_t ix = 0; ix < side; ++ix)
+                    density_maps->row({(static_cast<double>(ix) + 0.5) * cell, (static_cast<double>(iy) + 0.5) * cell,
+                                       snapshot.density[ix + side * iy]});
+            }
+        }
+    }
+    commit_outputs(&results, {table ? &*table : nullptr, histogram ? &*histogram : nullptr,
+                              density_maps ? &*density_maps : nullptr});
 }
 
 }  // namespace shockgas::analysis

@@ -33,7 +33,8 @@ struct AnalyzeRequest {
     std::vector<std::string> inputs;
     std::string output = "analysis.h5";
     std::string data, scan, hazard, curves;
-    // cooling (shockgas-spheres outputs): the clustering table and the 2D picture's positions.
+    // cooling (shockgas-spheres outputs): the clustering table and the 2D picture's positions;
+    // clusters: picture is the density maps' table (--maps).
     std::string clustering, picture;
     // clusters (shockgas-spheres outputs): the density threshold (relative to the mean) and the mass table.
     double threshold = 2.0;

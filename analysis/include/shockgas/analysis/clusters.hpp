@@ -70,9 +70,11 @@ ClusterSummary summarize_clusters(const spheres::SphereOutput& run, double thres
 // shockgas-analyze clusters: per input the summary (results file, a section
 // per input and a subgroup per snapshot), the numbers against t (data, a block
 // per input) and the mass distribution (distribution, a block per input and
-// snapshot).
+// snapshot), and realization 0's density field of the first 2D input at each
+// snapshot (maps: "x y density" at the cells' centres, a block per snapshot,
+// for gnuplot's `with image`).
 void run_clusters(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,
                   const std::string& output, double threshold, const std::string& data,
-                  const std::string& distribution);
+                  const std::string& distribution, const std::string& maps = "");
 
 }  // namespace shockgas::analysis
