@@ -25,3 +25,7 @@ shockgas_step(
 shockgas_plot(fig_2d_clusters SCRIPT fig_2d_clusters.gp
               DATA "${_clusters_base}.dat" "${_clusters_base}.masses.dat" "${_clusters_base}.maps.dat"
                    "${_clusters_base}.fit.gp")
+# fig_2d's runs are its custom commands' outputs: fig_2d builds them first, or a parallel Makefile
+# build would start each run twice (once for each target), and the second would find the first's
+# checkpoint locked.
+add_dependencies(fig_2d_clusters fig_2d)
