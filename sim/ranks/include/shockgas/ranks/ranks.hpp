@@ -18,10 +18,10 @@
 // 0 receives from every rank before it decodes anything.
 //
 // shockgas-spheres uses this room. shockgas-sim's DistributedSession
-// (sim/run/src/distributed_mpi.cpp) predates it and does the same steps with
-// the ring's types; it moves onto this room with the ring's next stamp change,
-// since sim/run is part of the ring's stamp and editing it reruns every ring
-// result.
+// (sim/run/src/distributed_mpi.cpp) does the same steps with the ring's types
+// and is not built on this room: sim/run is part of the ring's stamp, so any
+// edit there reruns every ring result; the two are joined when that stamp
+// changes for a reason of its own.
 #pragma once
 
 #include <optional>
