@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "shockgas/analysis/cooling.hpp"
 #include "shockgas/io/h5.hpp"
 #include "shockgas/spheres/ensemble.hpp"
 
@@ -111,8 +112,7 @@ ClusterSummary summarize_clusters(const spheres::SphereOutput& run, double thres
         throw std::invalid_argument(fmt::format("the density threshold must be positive and finite, not {}", threshold));
     const auto& p = run.parameters;
     const int d = p.dimension;
-    std::size_t cells = 1;
-    for (int k = 0; k < d; ++k) cells *= static_cast<std::size_t>(p.field_cells);
+    const std::size_t cells = field_cell_count(p);
     const auto particles = static_cast<double>(p.particles);
     ClusterSummary summary;
     summary.threshold = threshold;

@@ -14,12 +14,6 @@ namespace shockgas::analysis {
 
 namespace {
 
-std::size_t field_cells(const spheres::SphereParameters& p) {
-    std::size_t cells = 1;
-    for (int k = 0; k < p.dimension; ++k) cells *= static_cast<std::size_t>(p.field_cells);
-    return cells;
-}
-
 // The realization's temperatures (NaN after a collapse) at sample k, or the
 // mean over all realizations but `left_out`.
 double mean_temperature(const spheres::SphereResult& r, std::size_t k, std::optional<std::size_t> left_out) {
@@ -34,6 +28,12 @@ double mean_temperature(const spheres::SphereResult& r, std::size_t k, std::opti
 }
 
 }  // namespace
+
+std::size_t field_cell_count(const spheres::SphereParameters& p) {
+    std::size_t cells = 1;
+    for (int k = 0; k < p.dimension; ++k) cells *= static_cast<std::size_t>(p.field_cells);
+    return cells;
+}
 
 double clustering_index(const std::vector<double>& density, std::size_t first_cell, std::size_t cells,
                         double mean_count) {
@@ -72,7 +72,7 @@ CoolingSummary summarize_cooling(const spheres::SphereOutput& run) {
     summary.fitted_haff_time = jackknife(static_cast<std::size_t>(r.realizations), fitted);
     if (!r.snapshots.empty()) {
         const auto& last = r.snapshots.back();
-        const std::size_t cells = field_cells(p);
+        const std::size_t cells = field_cell_count(p);
         const double mean_count = static_cast<double>(p.particles) / static_cast<double>(cells);
         std::vector<double> values;
         for (std::int64_t i = 0; i < r.realizations; ++i)
@@ -129,7 +129,7 @@ void run_cooling(const AnalysisInvocation& invocation, const std::vector<std::st
             clusters->comment(fmt::format("{}D r = {} phi = {} N = {}, {}^{} field cells", p.dimension,
                                           p.collision.restitution, p.packing_fraction, p.particles, p.field_cells,
                                           p.dimension));
-            const std::size_t cells = field_cells(p);
+            const std::size_t cells = field_cell_count(p);
             const double mean_count = static_cast<double>(p.particles) / static_cast<double>(cells);
             for (const auto& snapshot : r.snapshots) {
                 std::vector<double> values;

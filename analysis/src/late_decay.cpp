@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "shockgas/analysis/cooling.hpp"
 #include "shockgas/io/h5.hpp"
 #include "shockgas/spheres/ensemble.hpp"
 #include "shockgas/spheres/kinetic_theory.hpp"
@@ -198,8 +199,7 @@ LateDecaySummary summarize_late_decay(const spheres::SphereOutput& run, const La
         s.kurtosis.push_back(column_mean(r, r.velocity_kurtosis, k).value);
     }
     // Delta v / v at each snapshot, per realization (NaN where not reached).
-    std::size_t cells = 1;
-    for (int k = 0; k < d; ++k) cells *= static_cast<std::size_t>(p.field_cells);
+    const std::size_t cells = field_cell_count(p);
     std::vector<std::vector<double>> ratios;  // per snapshot, per realization
     for (const auto& snapshot : r.snapshots) {
         const auto at = std::find_if(r.time.begin(), r.time.end(), [&](double t) {

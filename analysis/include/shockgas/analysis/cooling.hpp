@@ -4,6 +4,7 @@
 // and the start of clustering from the coarse-grained density field.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -12,9 +13,14 @@
 
 namespace shockgas::spheres {
 struct SphereOutput;
+struct SphereParameters;
 }
 
 namespace shockgas::analysis {
+
+// The cells of a run's coarse-grained fields, field_cells^d: the length of one
+// realization's row of /snapshots/<k>/density (cooling, clusters, late-decay).
+std::size_t field_cell_count(const spheres::SphereParameters& parameters);
 
 // The clustering index of one realization's density field: the variance of
 // the particle count per cell over its mean, mean_count var(rho / rho_mean).
