@@ -7,15 +7,19 @@
 # each run's fitted -theta drawn over its fit window; (c) T tau^theta (flat in the window);
 # (d) the crossover tau_c against eps, fitted and predicted; (e) the velocity kurtosis (3:
 # Maxwell); (f) Delta v / v, thermal over coarse-grained flow speed (2D: t^(-1/4) reported by
-# Nie, Ben-Naim & Chen 2002).
+# Nie, Ben-Naim & Chen 2002); (g) the velocity distribution P(u), u = v_k / sqrt(T), of the
+# largest eps at each histogram time; (h) its tail exponent gamma (ln P = a - c |u|^gamma):
+# 2 for a Gaussian, 1 for an exponential tail (2D: exponential early, Gaussian late, Nie et al.).
 # late.T.dat: 1 t, 2 tau, 3 T, 4 sigma, 5 T t^theta, 6 kurtosis; late.slopes.dat: 1 t, 2 tau,
 # 3 slope, 4 smoothed; late.crossovers.dat: 1 eps, 2 tau_c, 3 sigma; late.dv.dat: 1 t, 2 tau,
-# 3 dv/v, 4 sigma; late.fit.gp: ld_late_decay<k>_* and ld_crossover_d<d>_* (shockgas-dump).
+# 3 dv/v, 4 sigma; late.tails.dat: 1 u, 2 P, 3 sigma (a block per input and histogram time);
+# late.tail_fits.dat: 1 t, 2 tau, 3 gamma, 4 sigma; late.fit.gp: ld_late_decay<k>_* and
+# ld_crossover_d<d>_* (shockgas-dump).
 load styledir.'/style.gp'
-# Six panels: taller than style.gp's page.
-if (format eq 'pdf') { set terminal pdfcairo size 6in,7in font 'Sans,9' } \
-else { if (format eq 'svg') { set terminal svg size 1000,1150 font 'Sans,12' enhanced } \
-       else { set terminal pngcairo size 1000,1150 font 'Sans,12' } }
+# Eight panels: taller than style.gp's page.
+if (format eq 'pdf') { set terminal pdfcairo size 6in,9.3in font 'Sans,9' } \
+else { if (format eq 'svg') { set terminal svg size 1000,1530 font 'Sans,12' enhanced } \
+       else { set terminal pngcairo size 1000,1530 font 'Sans,12' } }
 set output outbase.'.'.format
 load datadir.'/late.fit.gp'
 stats datadir.'/late.T.dat' using 2 nooutput
@@ -32,7 +36,7 @@ crossover = sprintf('ld_crossover_d%d_crossover_', dimension)
 pm(a, b) = (a == a) ? sprintf('%.2f ± %.2f', a, b) : 'n/a'
 
 phi = number(0, 'packing_fraction')
-set multiplot layout 3,2 title sprintf('%dD, φ = %g, δ = %g, N = %d  (%s)', dimension, phi, \
+set multiplot layout 4,2 title sprintf('%dD, φ = %g, δ = %g, N = %d  (%s)', dimension, phi, \
     number(0, 'velocity_threshold'), number(0, 'particles'), fidelity_note)
 set logscale x
 set xlabel 'τ = ω_0 t (initial collision times)'
@@ -117,4 +121,45 @@ plot for [k = 0:runs - 1] datadir.'/late.dv.dat' index k using 2:3:4 with yerror
          title sprintf('ε = %.3g: exponent %s', number(k, 'eps'), \
                        pm(number(k, 'dv_over_v_exponent'), number(k, 'dv_over_v_exponent_sigma'))), \
      [dv_tau / 1000:dv_tau] dv_end * (x / dv_tau) ** (-0.25) lt 8 title 'τ^{-1/4} (Nie et al. 2D)'
+
+# (g): the last input's histograms, which follow every earlier input's in late.tails.dat.
+last = runs - 1
+first_block = 0
+do for [k = 0:last - 1] { first_block = first_block + number(k, 'histograms') }
+histograms = number(last, 'histograms')
+set xrange [*:*]  # stats keeps to the x range
+tail_taus = ''  # tau of each histogram time, from late.tail_fits.dat's rows
+do for [j = 0:histograms - 1] {
+    stats datadir.'/late.tail_fits.dat' index last every ::j::j using 2 nooutput
+    tail_taus = tail_taus.sprintf(' %.3g', STATS_min)
+}
+set title sprintf('(g) velocity distribution, ε = %.3g, u = v_k / √T', number(last, 'eps')) font ',10'
+set xlabel 'u'
+unset logscale x
+set format x '%g'
+set xrange [-6:6]
+set logscale y
+set format y "10^{%L}"
+stats datadir.'/late.tails.dat' index first_block:first_block + histograms - 1 using ($2 > 0 ? $2 : 1/0) nooutput
+set yrange [STATS_min / 3:1]  # down to the emptiest filled bin
+set ylabel 'P(u)'
+set key bottom center font ',7'
+plot for [j = 0:histograms - 1] datadir.'/late.tails.dat' index first_block + j using 1:($2 > 0 ? $2 : 1/0) \
+         with lines lt j + 1 title 'τ = '.word(tail_taus, j + 1), \
+     exp(-x * x / 2) / sqrt(2 * pi) lt 8 dt 2 title 'Gaussian', \
+     exp(-sqrt(2) * abs(x)) / sqrt(2) lt 6 dt 3 title 'exponential'
+
+set title '(h) tail exponent γ of ln P = a - c|u|^γ (2: Gaussian, 1: exponential)' font ',10'
+set xlabel 'τ = ω_0 t (initial collision times)'
+set logscale x
+set format x "10^{%L}"
+set xrange [*:*]
+unset logscale y
+set format y '%g'
+set yrange [0:4]
+set ylabel 'γ'
+set key top left font ',7'
+plot for [k = 0:runs - 1] datadir.'/late.tail_fits.dat' index k using 2:3:4 with yerrorlines lt k + 1 \
+         title sprintf('ε = %.3g', number(k, 'eps')), \
+     2 lt 8 dt 2 title 'Gaussian', 1 lt 6 dt 3 title 'exponential'
 unset multiplot

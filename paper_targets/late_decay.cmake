@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # shockgas_late_decay_figure(<figure>): a figure of the paper's d-dimensional prediction
 # (fig_2d, fig_3d; docs/dimensions.md): its shockgas-spheres runs at several eps, one late-decay
-# analysis of all of them (theta, the crossover against eps, the kurtosis, Delta v / v), the
+# analysis of all of them (theta, the crossover against eps, the kurtosis, Delta v / v, the
+# velocity distribution's tails), the
 # fitted numbers for gnuplot, and the plot (figures/<figure>.gp, drawn by figures/late_decay.gp).
 include_guard(GLOBAL)
 function(shockgas_late_decay_figure figure)
@@ -13,10 +14,12 @@ function(shockgas_late_decay_figure figure)
   set(base "${${figure}_DIR}/late")
   shockgas_step(
     OUTPUT "${base}.h5" "${base}.T.dat" "${base}.slopes.dat" "${base}.crossovers.dat" "${base}.dv.dat"
+           "${base}.tails.dat" "${base}.tail_fits.dat"
     COMMAND shockgas-analyze late-decay ${inputs} -o "${base}.h5" --data "${base}.T.dat"
             --slopes "${base}.slopes.dat" --crossovers "${base}.crossovers.dat" --fluctuations "${base}.dv.dat"
+            --tails "${base}.tails.dat" --tail-fits "${base}.tail_fits.dat"
     DEPENDS ${inputs} shockgas-analyze
-    COMMENT "[${figure}] late decay: theta, crossover against eps, Delta v / v"
+    COMMENT "[${figure}] late decay: theta, crossover against eps, Delta v / v, velocity tails"
     VERBATIM)
   shockgas_step(
     OUTPUT "${base}.fit.gp"
@@ -25,7 +28,8 @@ function(shockgas_late_decay_figure figure)
     COMMENT "[${figure}] the fitted numbers for gnuplot"
     VERBATIM)
   shockgas_plot(${figure} SCRIPT ${figure}.gp
-                DATA "${base}.T.dat" "${base}.slopes.dat" "${base}.crossovers.dat" "${base}.dv.dat" "${base}.fit.gp"
+                DATA "${base}.T.dat" "${base}.slopes.dat" "${base}.crossovers.dat" "${base}.dv.dat"
+                     "${base}.tails.dat" "${base}.tail_fits.dat" "${base}.fit.gp"
                      "${PROJECT_SOURCE_DIR}/figures/late_decay.gp")
   # The runs' outputs, for figures that analyse them too (fig_2d_clusters).
   set(${figure}_RUNS "${${figure}_RUNS}" PARENT_SCOPE)

@@ -234,6 +234,10 @@ void add_late_decay(CLI::App& app, AnalyzeRequest& r) {
     late->add_option("--slopes", r.slopes, "table: local slopes d ln T / d ln t, a block per input");
     late->add_option("--crossovers", r.crossovers, "table: tau_c against eps, a block per dimension");
     late->add_option("--fluctuations", r.fluctuations, "table: Delta v / v at each snapshot, a block per input");
+    late->add_option("--tails", r.tails,
+                     "table: velocity distribution P(u) at each histogram time, a block per input and time");
+    late->add_option("--tail-fits", r.tail_fits,
+                     "table: tail exponent gamma of ln P = a - c |u|^gamma at each histogram time, a block per input");
 }
 
 void add_far_tail(CLI::App& app, AnalyzeRequest& r) {

@@ -153,10 +153,13 @@ void check_and_run(AnalyzeRequest& request, const std::vector<std::string>& all_
                        {"--data", request.data, true},
                        {"--slopes", request.slopes, true},
                        {"--crossovers", request.crossovers, true},
-                       {"--fluctuations", request.fluctuations, true}},
+                       {"--fluctuations", request.fluctuations, true},
+                       {"--tails", request.tails, true},
+                       {"--tail-fits", request.tail_fits, true}},
                       all_inputs);
-        run_late_decay(invocation, request.inputs, request.output, request.late_decay, request.data, request.slopes,
-                       request.crossovers, request.fluctuations);
+        run_late_decay(invocation, request.inputs, request.output, request.late_decay,
+                       {request.data, request.slopes, request.crossovers, request.fluctuations, request.tails,
+                        request.tail_fits});
     } else {
         throw std::invalid_argument(fmt::format("shockgas-analyze has no subcommand '{}'", command));
     }

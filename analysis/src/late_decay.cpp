@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "shockgas/analysis/cooling.hpp"
+#include "shockgas/analysis/velocity_distribution.hpp"
 #include "shockgas/io/h5.hpp"
 #include "shockgas/spheres/ensemble.hpp"
 #include "shockgas/spheres/kinetic_theory.hpp"
@@ -157,6 +158,38 @@ std::vector<LocalSlope> local_slopes(std::span<const double> time, std::span<con
     return slopes;
 }
 
+TailSample velocity_tail(const spheres::SphereOutput& run, std::size_t histogram) {
+    const auto& p = run.parameters;
+    const auto& h = run.result.histograms.at(histogram);
+    const auto bins = static_cast<std::size_t>(p.histogram_bins);
+    if (h.counts.size() != bins)
+        throw InputError(fmt::format("histogram at t = {} has {} counts for {} bins", h.time, h.counts.size(), bins));
+    std::vector<double> edges(bins + 1);
+    for (std::size_t b = 0; b <= bins; ++b)
+        edges[b] = p.histogram_range * (2.0 * static_cast<double>(b) / static_cast<double>(bins) - 1.0);
+    double total = h.outside;
+    for (double n : h.counts) total += n;
+    TailSample tail;
+    tail.time = h.time;
+    tail.outside_fraction = total > 0.0 ? h.outside / total : not_a_number;
+    for (std::size_t b = 0; b < bins; ++b) {
+        const double width = edges[b + 1] - edges[b];
+        tail.u.push_back(0.5 * (edges[b] + edges[b + 1]));
+        tail.density.push_back(h.counts[b] / (total * width));
+        tail.density_sigma.push_back(std::sqrt(h.counts[b]) / (total * width));  // Poisson
+    }
+    try {
+        const TailFit fit = fit_pooled_tail(edges, h.counts);
+        tail.gamma = fit.gamma;
+        tail.c = fit.c;
+        tail.u_lo = fit.z_lo, tail.u_hi = fit.z_hi;
+    } catch (const InsufficientData& error) {
+        tail.gamma = Estimate::missing(error.what());
+        tail.c = not_a_number;
+    }
+    return tail;
+}
+
 LateDecaySummary summarize_late_decay(const spheres::SphereOutput& run, const LateDecayRule& rule) {
     const auto& p = run.parameters;
     const auto& r = run.result;
@@ -243,6 +276,7 @@ LateDecaySummary summarize_late_decay(const spheres::SphereOutput& run, const La
     } catch (const InsufficientData& error) {  // also: a refit left with one realization at a snapshot
         s.dv_over_v_exponent = Estimate::missing(error.what());
     }
+    for (std::size_t h = 0; h < r.histograms.size(); ++h) s.tails.push_back(velocity_tail(run, h));
     return s;
 }
 
@@ -260,26 +294,34 @@ LinearFit fit_crossover_exponent(const std::vector<CrossoverPoint>& points) {
 }
 
 void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,
-                    const std::string& output, const LateDecayRule& rule, const std::string& data,
-                    const std::string& slopes, const std::string& crossovers, const std::string& fluctuations) {
+                    const std::string& output, const LateDecayRule& rule, const LateDecayTables& tables) {
     std::vector<spheres::SphereOutput> runs;
     for (const auto& input : inputs) runs.push_back(spheres::read_spheres_output(input));
     ResultsFile results(output, invocation, inputs);
-    std::optional<DataFile> table, slope_table, crossover_table, flow_table;
+    std::optional<DataFile> table, slope_table, crossover_table, flow_table, tail_table, tail_fit_table;
     const auto open = [&](std::optional<DataFile>& file, const std::string& path, const std::string& what,
                           std::vector<std::string> columns) {
         if (!path.empty()) file.emplace(path, what, inputs, std::move(columns));
     };
-    open(table, data, "late decay: mean T over realizations and T t^theta; a block per input",
+    open(table, tables.data, "late decay: mean T over realizations and T t^theta; a block per input",
          {"t", "tau", "T", "T_sigma", "T_t_theta", "kurtosis"});
-    open(slope_table, slopes,
+    open(slope_table, tables.slopes,
          "local slope d ln T / d ln t between successive samples at their geometric mid-time, and the chord slope "
          "over the samples within a 1/2-decade window centred on it; a block per input",
          {"t_mid", "tau_mid", "slope", "slope_smoothed"});
-    open(crossover_table, crossovers, "crossover times tau_c = omega0 t_c per input; a block per dimension and phi",
+    open(crossover_table, tables.crossovers, "crossover times tau_c = omega0 t_c per input; a block per dimension and phi",
          {"eps", "tau_c", "tau_c_sigma", "t_c", "restitution", "particles", "theta"});
-    open(flow_table, fluctuations, "Delta v / v = sqrt((d T - E_flow) / E_flow) at each snapshot; a block per input",
+    open(flow_table, tables.fluctuations,
+         "Delta v / v = sqrt((d T - E_flow) / E_flow) at each snapshot; a block per input",
          {"t", "tau", "dv_over_v", "dv_over_v_sigma"});
+    open(tail_table, tables.tails,
+         "velocity distribution P(u), u = (v_k - V_k) / sqrt(T) over realizations and components, with its Poisson "
+         "sigma; a block per input and histogram time",
+         {"u", "P", "P_sigma"});
+    open(tail_fit_table, tables.tail_fits,
+         "tail fit ln P = a - c |u|^gamma over |u| >= 1.5 rms at each histogram time (gamma 2: Gaussian, 1: "
+         "exponential; sigma the Delta chi2 = 1 width with Poisson weights); a block per input",
+         {"t", "tau", "gamma", "gamma_sigma", "c", "u_lo", "u_hi", "outside_fraction"});
     std::map<std::pair<int, double>, std::vector<std::size_t>> groups;  // (d, phi) -> inputs
     std::vector<LateDecaySummary> summaries;
     for (std::size_t f = 0; f < runs.size(); ++f) {
@@ -294,7 +336,8 @@ void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std:
         auto section = results.section(fmt::format("late_decay{}", f));
         for (const auto& [name, count] : {std::pair{"dimension", std::int64_t{d}}, {"particles", p.particles},
                                           {"field_cells", p.field_cells},
-                                          {"theta_points", static_cast<std::int64_t>(s.late.points)}})
+                                          {"theta_points", static_cast<std::int64_t>(s.late.points)},
+                                          {"histograms", static_cast<std::int64_t>(s.tails.size())}})
             section.set_attribute(name, count);
         // theta_burgers = d/2 (Ben-Naim et al. 1999); theta_aggregation = 2d/(d+2), ballistic aggregation's.
         for (const auto& [name, value] : std::initializer_list<std::pair<const char*, double>>{
@@ -312,6 +355,14 @@ void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std:
         set_estimate(section, "crossover_time", s.late.crossover_time);
         set_estimate(section, "crossover_collisions", s.crossover_collisions);
         set_estimate(section, "dv_over_v_exponent", s.dv_over_v_exponent);
+        if (!s.tails.empty()) {  // HDF5 has no empty attribute
+            std::vector<double> times, gammas, sigmas;
+            for (const TailSample& tail : s.tails)
+                times.push_back(tail.time), gammas.push_back(tail.gamma.value), sigmas.push_back(tail.gamma.sigma);
+            section.set_attribute("tail_times", times);
+            section.set_attribute("tail_gamma", gammas);
+            section.set_attribute("tail_gamma_sigma", sigmas);
+        }
         const double omega0 = s.collision_frequency;
         const auto block = [&](std::optional<DataFile>& file, const std::string& comment) {
             if (!file) return false;
@@ -331,6 +382,19 @@ void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std:
                   fmt::format("{}; field cells of side L/{} = {:.4g}", label, p.field_cells, s.field_cell_size)))
             for (const FlowSample& at : s.flow)
                 flow_table->row({at.time, omega0 * at.time, at.dv_over_v.value, at.dv_over_v.sigma});
+        if (block(tail_fit_table, label))
+            for (const TailSample& tail : s.tails)
+                tail_fit_table->row({tail.time, omega0 * tail.time, tail.gamma.value, tail.gamma.sigma, tail.c,
+                                     tail.u_lo, tail.u_hi, tail.outside_fraction});
+        if (tail_table)
+            for (std::size_t h = 0; h < s.tails.size(); ++h) {
+                const TailSample& tail = s.tails[h];
+                if (f > 0 || h > 0) tail_table->blank_line();
+                tail_table->comment(fmt::format("{}; t = {:.6g} (tau = {:.4g}): tail gamma = {}", label, tail.time,
+                                                omega0 * tail.time, format_estimate(tail.gamma, "{:.3f}")));
+                for (std::size_t b = 0; b < tail.u.size(); ++b)
+                    tail_table->row({tail.u[b], tail.density[b], tail.density_sigma[b]});
+            }
         // What an empty window leaves out shares theta's note: said once.
         const std::string fitted = std::isnan(s.late.theta.value) ? "" : fmt::format(
             " +- {} (window), chi2/dof {}; t_c = {} (tau_c = {})", format_measured(s.theta_window_sigma, "{:.4f}"),
@@ -378,7 +442,8 @@ void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std:
                                   static_cast<double>(runs[f].parameters.particles), summaries[f].late.theta.value});
     }
     commit_outputs(&results, {table ? &*table : nullptr, slope_table ? &*slope_table : nullptr,
-                              crossover_table ? &*crossover_table : nullptr, flow_table ? &*flow_table : nullptr});
+                              crossover_table ? &*crossover_table : nullptr, flow_table ? &*flow_table : nullptr,
+                              tail_table ? &*tail_table : nullptr, tail_fit_table ? &*tail_fit_table : nullptr});
 }
 
 }  // namespace shockgas::analysis

@@ -6,6 +6,8 @@
 #include <functional>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -285,6 +287,45 @@ ChiSquared tail_chi2(const TailData& data, const std::vector<double>& log_densit
     return {fit.chi2, fit};
 }
 
+// Eq. (6) on the tail points: gamma minimising chi2 over [gamma_min, gamma_max]
+// (grid then golden section), c and chi2/dof at it, and the Delta chi2 = 1
+// half-width from the curvature of chi2(gamma). A minimum at either end of
+// the range is not a measurement: gamma and its width are then missing, with
+// the bound named. `search` is the minimum found, for the caller's jackknife.
+constexpr double gamma_min = 0.5, gamma_max = 8.0;  // brackets Gaussian (2) and Eq. (6) (3) widely
+SearchMinimum best_gamma(const TailData& points, const std::vector<double>& log_phi) {
+    return minimise([&](double gamma) { return tail_chi2(points, log_phi, gamma).chi2; }, gamma_min, gamma_max, 150);
+}
+TailFit fit_tail_points(const TailData& data, const std::vector<double>& log_density, SearchMinimum& search,
+                        const std::string& remedy) {
+    if (data.u.size() < 4)
+        throw InsufficientData("only " + std::to_string(data.u.size()) +
+                               " tail bins have a relative error below the limit; the tail fit needs 4 or more " +
+                               remedy);
+    TailFit result;
+    search = best_gamma(data, log_density);
+    const double gamma = search.argmin;
+    const ChiSquared best = tail_chi2(data, log_density, gamma);
+    result.c = -best.fit.slope;
+    result.bins = data.u.size();
+    result.chi2_per_dof = best.chi2 / static_cast<double>(data.u.size() - 3);  // a, c and gamma fitted
+    result.z_lo = *std::min_element(data.u.begin(), data.u.end());
+    result.z_hi = *std::max_element(data.u.begin(), data.u.end());
+    if (search.at_bound) {
+        // Not a measurement: gamma and both its widths are n/a, with the bound.
+        result.gamma = Estimate::missing(search.bound_note());
+        result.gamma_fit_sigma = std::numeric_limits<double>::quiet_NaN();
+        result.gamma_fit_sigma_note = "gamma " + search.bound_note();
+        return result;
+    }
+    const double h = 1e-3 * gamma;
+    const double curvature = (tail_chi2(data, log_density, gamma + h).chi2 - 2.0 * best.chi2 +
+                              tail_chi2(data, log_density, gamma - h).chi2) / (h * h);
+    result.gamma_fit_sigma = curvature > 0.0 ? std::sqrt(2.0 / curvature) : std::numeric_limits<double>::quiet_NaN();
+    if (!(curvature > 0.0)) result.gamma_fit_sigma_note = "chi2(gamma) is not curved upwards at its minimum";
+    return result;
+}
+
 }  // namespace
 
 TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule) {
@@ -301,8 +342,6 @@ TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule) {
         second += pooled[b + 1] * centre * centre;
     }
     const double rms = std::sqrt(second / mass);
-    TailFit result;
-    for (double c : pooled) result.total_mass += c;
     // The folded count of bin b and its mirror in each realization, and its
     // mean with the standard error from their scatter, over the realizations
     // kept (every r % groups != left_out; all of them with none left out).
@@ -330,36 +369,12 @@ TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule) {
         // Pooled over realizations (R times the mean), the normalisation the jackknife uses too.
         log_density.push_back(std::log(mean.value * static_cast<double>(realizations) / width_b));
     }
-    if (data.u.size() < 4)
-        throw InsufficientData("only " + std::to_string(data.u.size()) +
-                               " tail bins have a relative error below the limit; the tail fit needs 4 or more "
-                               "(more realizations or particles)");
-    constexpr double gamma_min = 0.5, gamma_max = 8.0;  // brackets Gaussian (2) and Eq. (6) (3) widely
-    auto best_gamma = [&](const TailData& points, const std::vector<double>& log_phi) {
-        return minimise([&](double gamma) { return tail_chi2(points, log_phi, gamma).chi2; }, gamma_min, gamma_max,
-                        150);
-    };
-    const SearchMinimum search = best_gamma(data, log_density);
+    SearchMinimum search;
+    TailFit result = fit_tail_points(data, log_density, search,
+                                     "(more realizations or particles)");
+    for (double c : pooled) result.total_mass += c;
+    if (search.at_bound) return result;
     const double gamma = search.argmin;
-    const ChiSquared best = tail_chi2(data, log_density, gamma);
-    result.c = -best.fit.slope;
-    result.bins = data.u.size();
-    result.chi2_per_dof = best.chi2 / static_cast<double>(data.u.size() - 3);  // a, c and gamma fitted
-    result.z_lo = *std::min_element(data.u.begin(), data.u.end());
-    result.z_hi = *std::max_element(data.u.begin(), data.u.end());
-    if (search.at_bound) {
-        // Not a measurement: gamma and both its widths are n/a, with the bound.
-        result.gamma = Estimate::missing(search.bound_note());
-        result.gamma_fit_sigma = std::numeric_limits<double>::quiet_NaN();
-        result.gamma_fit_sigma_note = "gamma " + search.bound_note();
-        return result;
-    }
-    // Delta chi2 = 1 half-width from the curvature of chi2(gamma).
-    const double h = 1e-3 * gamma;
-    const double curvature = (tail_chi2(data, log_density, gamma + h).chi2 - 2.0 * best.chi2 +
-                              tail_chi2(data, log_density, gamma - h).chi2) / (h * h);
-    result.gamma_fit_sigma = curvature > 0.0 ? std::sqrt(2.0 / curvature) : std::numeric_limits<double>::quiet_NaN();
-    if (!(curvature > 0.0)) result.gamma_fit_sigma_note = "chi2(gamma) is not curved upwards at its minimum";
     // Group jackknife: each replica refits the same bins with its own density
     // and weights, both from the realizations it keeps, as the decay fit's
     // replicas do: with the full sample's weights in every replica sigma would
@@ -390,6 +405,42 @@ TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule) {
         }
         return best_gamma(replica, log_phi);
     });
+    return result;
+}
+
+TailFit fit_pooled_tail(const std::vector<double>& edges, const std::vector<double>& counts, const TailRule& rule) {
+    const std::size_t bins = counts.size();
+    if (edges.size() != bins + 1)
+        throw std::invalid_argument("fit_pooled_tail: " + std::to_string(edges.size()) + " edges for " +
+                                    std::to_string(bins) + " bins");
+    double mass = 0.0, second = 0.0;  // the rms over the bins, as fit_tail's
+    for (std::size_t b = 0; b < bins; ++b) {
+        const double centre = 0.5 * (edges[b] + edges[b + 1]);
+        mass += counts[b];
+        second += counts[b] * centre * centre;
+    }
+    if (!(mass > 0.0)) throw InsufficientData("an empty histogram has no tail");
+    const double rms = std::sqrt(second / mass);
+    TailData data;
+    std::vector<double> log_density;
+    for (std::size_t b = 0; b < bins / 2; ++b) {
+        const double centre = 0.5 * (edges[b] + edges[b + 1]);
+        const double u = std::abs(centre) / rms;
+        const double folded = counts[b] + counts[bins - 1 - b];  // bin b and its mirror
+        // Poisson: the standard error of ln n is 1 / sqrt(n).
+        if (u < rule.tail_start || !(folded > 0.0) || 1.0 / std::sqrt(folded) > rule.max_relative_error) continue;
+        data.u.push_back(u);
+        data.bin.push_back(b);
+        data.log_sigma.push_back(1.0 / std::sqrt(folded));
+        log_density.push_back(std::log(folded / (edges[b + 1] - edges[b])));
+    }
+    SearchMinimum search;
+    TailFit result = fit_tail_points(data, log_density, search, "(more particles or realizations)");
+    result.total_mass = mass;
+    if (!search.at_bound)
+        result.gamma = {search.argmin, result.gamma_fit_sigma,
+                        "Delta chi2 = 1 width with Poisson errors of the pooled counts: particles taken as "
+                        "independent, so it understates the error from correlated motion"};
     return result;
 }
 

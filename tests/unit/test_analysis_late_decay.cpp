@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -275,16 +276,32 @@ TEST(AnalysisLateDecay, CommandWritesResultsAndTables) {
         Law law = disks;
         law.restitution = r;
         law.crossover = 1.5 * std::pow((1.0 - r) / 2.0, -2.0) / omega0;
-        const auto run = synthetic_run(law, seed, snapshots);
+        auto run = synthetic_run(law, seed, snapshots);
+        // Histograms of u / sqrt(T) as shockgas-spheres writes them (120 bins on
+        // [-6, 6]), the expected counts of 10^7 samples: a Laplace distribution
+        // (exponential tails) at the first snapshot, a Gaussian at the last.
+        run.parameters.histogram_times = {snapshots.front(), snapshots.back()};
+        for (const bool exponential : {true, false}) {
+            shockgas::spheres::SphereHistogram histogram;
+            histogram.time = exponential ? snapshots.front() : snapshots.back();
+            for (int b = 0; b < 120; ++b) {
+                const double u = -6.0 + 0.1 * (b + 0.5);
+                const double density = exponential ? std::exp(-std::sqrt(2.0) * std::abs(u)) / std::sqrt(2.0)
+                                                   : std::exp(-u * u / 2.0) / std::sqrt(2.0 * std::numbers::pi);
+                histogram.counts.push_back(1e7 * 0.1 * density);
+            }
+            run.result.histograms.push_back(histogram);
+        }
         inputs.push_back((dir / ("r" + std::to_string(r) + ".h5")).string());
         shockgas::spheres::write_spheres_output(inputs.back(), run.parameters, run.result);
     }
     const std::string output = (dir / "late.h5").string(), data = (dir / "T.dat").string(),
                       slopes = (dir / "slopes.dat").string(), crossovers = (dir / "tc.dat").string(),
-                      fluctuations = (dir / "dv.dat").string();
+                      fluctuations = (dir / "dv.dat").string(), tails = (dir / "tails.dat").string(),
+                      tail_fits = (dir / "tail_fits.dat").string();
     shockgas::analysis::AnalysisInvocation invocation{"shockgas-analyze late-decay", "shockgas-analyze late-decay", {}};
-    shockgas::analysis::run_late_decay(invocation, inputs, output, LateDecayRule{}, data, slopes, crossovers,
-                                       fluctuations);
+    shockgas::analysis::run_late_decay(invocation, inputs, output, LateDecayRule{},
+                                       {data, slopes, crossovers, fluctuations, tails, tail_fits});
     const auto file = shockgas::h5::File::open_read(output);
     const auto root = file.root();
     EXPECT_EQ(root.attribute_string("input0_schema"), "spheres");  // provenance carried forward
@@ -298,6 +315,15 @@ TEST(AnalysisLateDecay, CommandWritesResultsAndTables) {
         // Delta v / v ~ t^(-1/4) was put into the fields.
         EXPECT_NEAR(section.attribute_double("dv_over_v_exponent"), -0.25,
                     k_sigma * section.attribute_double("dv_over_v_exponent_sigma")) << name;
+        // The tails: exponential (gamma = 1), then Gaussian (2). The counts are
+        // exact, so only the golden-section search's tolerance and the bins'
+        // midpoint densities move gamma.
+        constexpr double exact_counts_tolerance = 0.01;
+        const auto gamma = section.attribute_doubles("tail_gamma");
+        ASSERT_EQ(gamma.size(), 2u) << name;
+        EXPECT_NEAR(gamma[0], 1.0, exact_counts_tolerance) << name;
+        EXPECT_NEAR(gamma[1], 2.0, exact_counts_tolerance) << name;
+        EXPECT_EQ(section.attribute_integer("histograms"), 2) << name;
     }
     const auto crossover = root.open_group("crossover_d2");
     EXPECT_NEAR(crossover.attribute_double("crossover_exponent"), -2.0,
@@ -315,6 +341,8 @@ TEST(AnalysisLateDecay, CommandWritesResultsAndTables) {
     EXPECT_EQ(rows(slopes), 2 * (samples - 2));
     EXPECT_EQ(rows(crossovers), 2);
     EXPECT_EQ(rows(fluctuations), 2 * static_cast<int>(snapshots.size()));
+    EXPECT_EQ(rows(tails), 2 * 2 * 120);  // two inputs, two histograms of 120 bins
+    EXPECT_EQ(rows(tail_fits), 2 * 2);
     fs::remove_all(dir);
 }
 

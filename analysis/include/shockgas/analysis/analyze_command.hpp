@@ -41,7 +41,7 @@ struct AnalyzeRequest {
     std::string distribution;
     // late-decay (shockgas-spheres outputs): the fit window and the slope, crossover and Delta v / v tables.
     LateDecayRule late_decay;
-    std::string slopes, crossovers, fluctuations;
+    std::string slopes, crossovers, fluctuations, tails, tail_fits;
     // decay: the window ends when given, and whether --scan-width was given.
     DecayOptions decay;
     double t_lo = 0.0, t_hi = 0.0;

@@ -87,6 +87,23 @@ struct FlowSample {
     Estimate dv_over_v;  // mean over realizations, jackknife sigma
 };
 
+// The velocity distribution at one histogram time (shockgas-spheres'
+// --histogram-times): u_k / sqrt(T) over every realization and component, its
+// density and the tail fit of Eq. (6)'s form, ln P = a - c |u|^gamma over |u|
+// >= 1.5 rms (fit_pooled_tail): gamma = 2 is a Gaussian, 1 an exponential tail.
+// Nie, Ben-Naim & Chen (2002) report exponential tails early and a Gaussian
+// late in 2D. gamma is missing (with the reason) where too few tail bins are
+// filled or the fit ends at its search bound.
+struct TailSample {
+    double time = 0.0;
+    std::vector<double> u, density, density_sigma;  // bin centres; P(u) over all counts; Poisson sigma
+    double outside_fraction = 0.0;                  // beyond the histogram's range
+    Estimate gamma;
+    double c = 0.0;            // P ~ exp(-c |u|^gamma), u in units of its rms
+    double u_lo = 0.0, u_hi = 0.0;  // the fitted range
+};
+TailSample velocity_tail(const spheres::SphereOutput& run, std::size_t histogram);
+
 struct LateDecaySummary {
     double eps = 0.0;                  // (1 - r)/2
     double collision_frequency = 0.0;  // omega0 = Enskog's frequency at T = 1
@@ -102,6 +119,7 @@ struct LateDecaySummary {
     std::vector<double> temperature, temperature_sigma, kurtosis;  // per sample: mean over realizations
     std::vector<FlowSample> flow;      // per snapshot
     Estimate dv_over_v_exponent;       // of Delta v / v over the snapshots at t >= t_a
+    std::vector<TailSample> tails;     // per histogram time
 };
 LateDecaySummary summarize_late_decay(const spheres::SphereOutput& run, const LateDecayRule& rule);
 
@@ -119,9 +137,13 @@ LinearFit fit_crossover_exponent(const std::vector<CrossoverPoint>& points);
 // results file, and per dimension and packing fraction /crossover_d<d> (with
 // _phi<phi> when a dimension has several); the tables of T(t) (data), the
 // local slopes (slopes), tau_c per input (crossovers) and Delta v / v
-// (fluctuations), a block per input (per dimension for crossovers).
+// (fluctuations), a block per input (per dimension for crossovers); P(u) at
+// each histogram time (tails, a block per input and time) and its tail fits
+// (tail_fits, a block per input). An empty path writes no table.
+struct LateDecayTables {
+    std::string data, slopes, crossovers, fluctuations, tails, tail_fits;
+};
 void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std::string>& inputs,
-                    const std::string& output, const LateDecayRule& rule, const std::string& data,
-                    const std::string& slopes, const std::string& crossovers, const std::string& fluctuations);
+                    const std::string& output, const LateDecayRule& rule, const LateDecayTables& tables);
 
 }  // namespace shockgas::analysis

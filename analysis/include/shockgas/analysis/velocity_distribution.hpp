@@ -122,5 +122,12 @@ struct TailFit {
     double total_mass = 0.0;       // particles (mass) in the histogram, all realizations
 };
 TailFit fit_tail(const VelocityHistogram& histogram, const TailRule& rule = {});
+// The same fit on a histogram pooled over realizations (shockgas-spheres'
+// /histograms: counts per bin, edges bins + 1), each folded bin weighed by its
+// Poisson error 1/sqrt(n) in ln Phi: there is no realization scatter to weigh
+// by or to jackknife, so gamma's sigma is the Delta chi2 = 1 width (with a
+// note saying so). Throws InsufficientData as fit_tail does.
+TailFit fit_pooled_tail(const std::vector<double>& edges, const std::vector<double>& counts,
+                        const TailRule& rule = {});
 
 }  // namespace shockgas::analysis
