@@ -99,7 +99,7 @@ install(DIRECTORY "${PROJECT_SOURCE_DIR}/figures/"
         FILES_MATCHING PATTERN "*.gp")
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/python/exact_ballistic.py" "${PROJECT_SOURCE_DIR}/python/sticky_pav.py"
                  "${PROJECT_SOURCE_DIR}/python/refit_check.py" "${PROJECT_SOURCE_DIR}/python/reference_gas.py"
-                 "${PROJECT_SOURCE_DIR}/python/clusters_check.py"
+                 "${PROJECT_SOURCE_DIR}/python/clusters_check.py" "${PROJECT_SOURCE_DIR}/python/tails_check.py"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/python COMPONENT runtime)
 # shockgas-look finds figures/look.gp and style.gp in ../share/shockgas/figures.
 install(PROGRAMS "${PROJECT_SOURCE_DIR}/tools/shockgas-look" DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)

@@ -36,10 +36,11 @@ set_tests_properties(python.schema PROPERTIES FIXTURES_REQUIRED python_run LABEL
 
 # Clusters of a disk gas (shockgas-analyze clusters) recounted with scipy.ndimage.label and periodic
 # merging (python/clusters_check.py): 2D, N = 20000, r = 0.8, 3 realizations, 3 snapshots, threshold 1.5,
-# where clusters cross the box's faces (~4 s).
+# where clusters cross the box's faces (~4 s). Its velocity histograms' tail exponents
+# (shockgas-analyze late-decay) refitted with scipy (python/tails_check.py).
 add_test(NAME python.setup.spheres_run
          COMMAND shockgas-spheres -D 2 -N 20000 --phi 0.1 -r 0.8 -d 1e-2 -t 300 --snapshot-times 30,100,300
-                 --field-cells 32 -R 3 -j 1 -o "${_py_work}/disks.h5"
+                 --histogram-times 1,30,300 --field-cells 32 -R 3 -j 1 -o "${_py_work}/disks.h5"
          WORKING_DIRECTORY "${_py_work}")
 add_test(NAME python.setup.clusters
          COMMAND shockgas-analyze clusters "${_py_work}/disks.h5" --threshold 1.5 -o "${_py_work}/clusters.h5"
@@ -47,6 +48,15 @@ add_test(NAME python.setup.clusters
 set_tests_properties(python.setup.spheres_run PROPERTIES FIXTURES_SETUP python_spheres LABELS python TIMEOUT 120)
 set_tests_properties(python.setup.clusters PROPERTIES FIXTURES_SETUP python_clusters FIXTURES_REQUIRED python_spheres
                      LABELS python TIMEOUT 60)
+add_test(NAME python.setup.late_decay
+         COMMAND shockgas-analyze late-decay "${_py_work}/disks.h5" -o "${_py_work}/late.h5"
+         WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.setup.late_decay PROPERTIES FIXTURES_SETUP python_late_decay
+                     FIXTURES_REQUIRED python_spheres LABELS python TIMEOUT 60)
+add_test(NAME python.tails_check COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/tails_check.py
+                 "${_py_work}/late.h5" WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.tails_check PROPERTIES FIXTURES_REQUIRED "python_spheres;python_late_decay"
+                     LABELS python TIMEOUT 60 SKIP_RETURN_CODE 77)
 add_test(NAME python.clusters_check COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/clusters_check.py
                  "${_py_work}/clusters.h5" WORKING_DIRECTORY "${_py_work}")
 set_tests_properties(python.clusters_check PROPERTIES FIXTURES_REQUIRED "python_spheres;python_clusters"

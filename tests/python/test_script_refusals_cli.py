@@ -34,6 +34,7 @@ UNKNOWN = "--no-such-option"
 SCRIPTS = [
     ("python", "refit_check.py", ["decay.h5"]),
     ("python", "clusters_check.py", ["clusters.h5"]),
+    ("python", "tails_check.py", ["late.h5"]),
     ("python", "reference_gas.py", ["start.h5"]),
     ("python", "sticky_pav.py", []),
     ("python", "exact_ballistic.py", ["--out-dir", "theory"]),
