@@ -4,7 +4,8 @@
 # Burgers equation T ~ eps^-2 tau^-2 (Haff), then tau^(-d/2) for eps^(-4/(4-d)) << tau << N^(2/d),
 # tau = omega0 t in initial collision times; ballistic aggregation gives tau^(-2d/(d+2)).
 # (a) T(tau) with the three slopes; (b) the local slope d ln T / d ln tau (1/2-decade chords),
-# each run's fitted -theta drawn over its fit window; (c) T tau^theta (flat in the window);
+# each run's fitted -theta drawn over its fit window, and the plateau of the local exponent (the
+# least steep chord after the overshoot that follows Haff's law) as a dot; (c) T tau^theta (flat in the window);
 # (d) the crossover tau_c against eps, fitted and predicted; (e) the velocity kurtosis (3:
 # Maxwell); (f) Delta v / v, thermal over coarse-grained flow speed (2D: t^(-1/4) reported by
 # Nie, Ben-Naim & Chen 2002); (g) the velocity distribution P(u), u = v_k / sqrt(T), of the
@@ -27,10 +28,12 @@ runs = STATS_blocks
 burgers = dimension / 2.0
 aggregation = 2.0 * dimension / (dimension + 2.0)
 number(k, name) = value(sprintf('ld_late_decay%d_%s', k, name))
-run_title(k) = (number(k, 'theta') == number(k, 'theta')) \
+plateau_title(k) = (number(k, 'theta_plateau') == number(k, 'theta_plateau')) \
+    ? sprintf('; plateau %.2f ± %.2f', number(k, 'theta_plateau'), number(k, 'theta_plateau_sigma')) : ''
+run_title(k) = ((number(k, 'theta') == number(k, 'theta')) \
     ? sprintf('ε = %.3g: θ = %.3f ± %.3f ± %.3f', number(k, 'eps'), number(k, 'theta'), \
               number(k, 'theta_sigma'), number(k, 'theta_window_sigma')) \
-    : sprintf('ε = %.3g: θ n/a (window empty)', number(k, 'eps'))
+    : sprintf('ε = %.3g: θ n/a (window empty)', number(k, 'eps'))).plateau_title(k)
 crossover = sprintf('ld_crossover_d%d_crossover_', dimension)
 # "a ± b", or "n/a" for a number the analysis could not measure (stored as NaN)
 pm(a, b) = (a == a) ? sprintf('%.2f ± %.2f', a, b) : 'n/a'
@@ -56,7 +59,11 @@ plot for [k = 0:runs - 1] datadir.'/late.T.dat' index k using 2:3 with lines lt 
      [tau_end / 100:tau_end] guide(x, burgers) lt 8 dt 1 lw 1 title sprintf('τ^{-%g} (Burgers)', burgers), \
      [tau_end / 100:tau_end] guide(x, aggregation) lt 6 dt 3 lw 1.5 title sprintf('τ^{-%g} (aggregation)', aggregation)
 
-set title '(b) local slope and the fitted -θ over its window' font ',10'
+set title '(b) local slope; fitted -θ (bar), plateau (dot), τ_N (tick)' font ',10'
+do for [k = 0:runs - 1] {  # each run's finite-size time, a tick on the lower axis
+    set arrow from number(k, 't_finite_size') * number(k, 'collision_frequency'), graph 0 \
+        to number(k, 't_finite_size') * number(k, 'collision_frequency'), graph 0.08 nohead lt k + 1 lw 3
+}
 unset logscale y
 set format y '%g'
 set ylabel 'd ln T / d ln τ'
@@ -65,8 +72,11 @@ set key top right font ',7'
 plot for [k = 0:runs - 1] datadir.'/late.slopes.dat' index k using 2:4 with lines lt k + 1 lw 1 notitle, \
      for [k = 0:runs - 1] [number(k, 'window_start') * number(k, 'collision_frequency'):number(k, 'window_end') * number(k, 'collision_frequency')] \
          -number(k, 'theta') lt k + 1 lw 5 title run_title(k), \
+     for [k = 0:runs - 1] '+' using (number(k, 'plateau_time') * number(k, 'collision_frequency')):(-number(k, 'theta_plateau')) \
+         every ::0::0 with points lt k + 1 pt 7 ps 1.2 notitle, \
      -2 lt 8 notitle, -burgers lt 8 dt 1 lw 1 title 'Burgers -d/2', -aggregation lt 6 dt 3 lw 1.5 title 'aggregation -2d/(d+2)'
 
+unset arrow
 set title '(c) T τ^θ: flat where T ∝ τ^{-θ}' font ',10'
 set yrange [*:*]  # before the log scale: [-2.3:0] has no logarithm
 set logscale y

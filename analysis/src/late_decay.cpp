@@ -190,6 +190,51 @@ TailSample velocity_tail(const spheres::SphereOutput& run, std::size_t histogram
     return tail;
 }
 
+LocalPlateau local_plateau(const spheres::SphereOutput& run) {
+    const auto& p = run.parameters;
+    const auto& r = run.result;
+    const double t0 = spheres::haff_time(p.dimension, p.packing_fraction, p.collision.restitution);
+    std::string why;
+    const auto plateau_of = [&](std::size_t left_out) -> std::pair<double, double> {
+        std::vector<double> mean(r.time.size());
+        for (std::size_t k = 0; k < r.time.size(); ++k) {
+            std::vector<double> column;
+            for (std::int64_t i = 0; i < r.realizations; ++i) column.push_back(r.at(r.temperature, i, k));
+            mean[k] = mean_without(column, left_out).value;
+        }
+        const auto slopes = local_slopes(r.time, mean);
+        // The overshoot: the first local minimum of the smoothed slope after t0
+        // that a later slope exceeds by plateau_rise (a global minimum would find
+        // the finite-size steepening instead; one of the noise, a dip in Haff's law).
+        std::vector<double> highest_after(slopes.size() + 1, -std::numeric_limits<double>::infinity());
+        for (std::size_t j = slopes.size(); j-- > 0;)
+            highest_after[j] = std::max(highest_after[j + 1], slopes[j].smoothed);
+        for (std::size_t j = 0; j + 1 < slopes.size(); ++j) {
+            if (!(slopes[j].time > t0 && slopes[j + 1].smoothed > slopes[j].smoothed &&
+                  highest_after[j + 1] >= slopes[j].smoothed + plateau_rise))
+                continue;
+            std::size_t top = j + 1;
+            for (std::size_t i = top; i < slopes.size(); ++i)
+                if (slopes[i].smoothed > slopes[top].smoothed) top = i;
+            return {-slopes[top].smoothed, slopes[top].time};
+        }
+        why = fmt::format("the local slope does not rise by {} after t0 = {:.4g}", plateau_rise, t0);
+        return {not_a_number, not_a_number};
+    };
+    LocalPlateau plateau;
+    const auto [theta, time] = plateau_of(keep_all);
+    if (std::isnan(theta)) {
+        plateau.theta = Estimate::missing(why);
+        plateau.time = not_a_number;
+        return plateau;
+    }
+    plateau.time = time;
+    plateau.theta = jackknife(static_cast<std::size_t>(r.realizations), [&](std::optional<std::size_t> left_out) {
+        return left_out ? plateau_of(*left_out).first : theta;
+    });
+    return plateau;
+}
+
 LateDecaySummary summarize_late_decay(const spheres::SphereOutput& run, const LateDecayRule& rule) {
     const auto& p = run.parameters;
     const auto& r = run.result;
@@ -223,6 +268,7 @@ LateDecaySummary summarize_late_decay(const spheres::SphereOutput& run, const La
                                               : Measured::missing("no shifted window holds enough samples");
     // From 3 t0, just after Haff's regime starts: how far the exponent drifts.
     s.theta_free = fit_late_decay(run, 3.0 * s.haff_time, s.window_end).theta;
+    s.plateau = local_plateau(run);
     const Estimate& t_c = s.late.crossover_time;
     s.crossover_collisions = {s.collision_frequency * t_c.value, s.collision_frequency * t_c.sigma, t_c.note};
     for (std::size_t k = 0; k < r.time.size(); ++k) {
@@ -346,12 +392,13 @@ void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std:
                  {"collision_frequency", s.collision_frequency}, {"haff_time", s.haff_time},
                  {"t_pred", s.predicted_crossover}, {"t_finite_size", s.finite_size_time},
                  {"window_start", s.window_start}, {"window_end", s.window_end}, {"theta_burgers", d / 2.0},
-                 {"theta_aggregation", 2.0 * d / (d + 2.0)}})
+                 {"theta_aggregation", 2.0 * d / (d + 2.0)}, {"plateau_time", s.plateau.time}})
             section.set_attribute(name, value);
         set_estimate(section, "theta", s.late.theta);
         set_measured(section, "theta_window_sigma", s.theta_window_sigma);
         set_measured(section, "theta_chi2_per_dof", s.late.chi2_per_dof);
         set_estimate(section, "theta_free", s.theta_free);
+        set_estimate(section, "theta_plateau", s.plateau.theta);
         set_estimate(section, "crossover_time", s.late.crossover_time);
         set_estimate(section, "crossover_collisions", s.crossover_collisions);
         set_estimate(section, "dv_over_v_exponent", s.dv_over_v_exponent);
@@ -400,9 +447,10 @@ void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std:
             " +- {} (window), chi2/dof {}; t_c = {} (tau_c = {})", format_measured(s.theta_window_sigma, "{:.4f}"),
             format_measured(s.late.chi2_per_dof, "{:.3g}"), format_estimate(s.late.crossover_time, "{:.4g}", "{:.2g}"),
             format_estimate(s.crossover_collisions, "{:.4g}", "{:.2g}"));
-        fmt::print("{}{}; t_a = {:.4g}, t_b = {:.4g}; from 3 t0: theta = {}; Delta v / v ~ t^{} "
-                   "(cells of side {:.4g})\n",
+        fmt::print("{}{}; t_a = {:.4g}, t_b = {:.4g}; from 3 t0: theta = {}; plateau of the local exponent {} at "
+                   "t = {:.4g} ({:.3g} t_N); Delta v / v ~ t^{} (cells of side {:.4g})\n",
                    label, fitted, s.window_start, s.window_end, format_estimate(s.theta_free, "{:.4f}"),
+                   format_estimate(s.plateau.theta, "{:.4f}"), s.plateau.time, s.plateau.time / s.finite_size_time,
                    format_estimate(s.dv_over_v_exponent, "{:.3f}"), s.field_cell_size);
     }
     // tau_c against eps per dimension (and packing fraction: tau_c's prefactor depends on it).

@@ -40,6 +40,13 @@ constexpr double crossover_exponent_low = -3.0, crossover_exponent_high = -1.0;
 // about sqrt(96 / n) = 0.013 for n = 6e5 velocity components; 3.1 is 7 of them
 // above Maxwell's 3 and below the smallest peak.
 constexpr double crossover_kurtosis = 3.1;
+// The plateau of the local exponent (local_plateau): in 2D 0.97, 1.00, 0.99 with
+// jackknife sigma 0.09, 0.04, 0.04 (eps = 0.1, 0.15, 0.2), on the 1 of both
+// theories within 3 sigma. In 3D 1.18, 1.19, 1.25 +- 0.02 at N = 5e4, at 0.7-1.8
+// t_N: below Burgers' 3/2 by more than 5 sigma (what it means at this N:
+// docs/dimensions.md).
+constexpr double plateau_sigmas = 3.0;
+constexpr double below_burgers_sigmas = 5.0;
 // In Haff's regime (t = 10, tau = 18) the 3D velocity distribution has
 // overpopulated tails, as the homogeneous cooling state's (van Noije & Ernst,
 // Granular Matter 1, 57 (1998)): the tail fit's gamma is 1.71, 1.60, 1.45
@@ -62,6 +69,8 @@ TEST(DimensionsFigure, TwoDimensionalLateDecayIsOneOverT) {
         ASSERT_FALSE(std::isnan(summary.late.theta.value)) << name << ": " << summary.late.theta.note;
         EXPECT_NEAR(summary.late.theta.value, 1.0, theta_2d_tolerance) << name;
         EXPECT_LT(summary.late.theta.value, 2.0 - slower_than_haff_sigmas * combined_sigma(summary)) << name;
+        ASSERT_FALSE(std::isnan(summary.plateau.theta.value)) << name << ": " << summary.plateau.theta.note;
+        EXPECT_NEAR(summary.plateau.theta.value, 1.0, plateau_sigmas * summary.plateau.theta.sigma) << name;
         points.push_back({summary.eps, summary.crossover_collisions});
     }
     const LinearFit crossover = fit_crossover_exponent(points);
@@ -73,6 +82,8 @@ TEST(DimensionsFigure, ThreeDimensionalGasIsSlowerThanHaffAndLeavesMaxwell) {
     for (const char* name : {"e0.25", "e0.3", "e0.4"}) {
         const auto summary = summarize_late_decay(run("fig_3d", name), LateDecayRule{});
         EXPECT_GT(*std::max_element(summary.kurtosis.begin(), summary.kurtosis.end()), crossover_kurtosis) << name;
+        ASSERT_FALSE(std::isnan(summary.plateau.theta.value)) << name << ": " << summary.plateau.theta.note;
+        EXPECT_LT(summary.plateau.theta.value, 1.5 - below_burgers_sigmas * summary.plateau.theta.sigma) << name;
         if (std::string(name) != "e0.4") {
             // N = 5e4 leaves no decade between 3 t_pred and 0.3 t_N at these eps: said, not fitted.
             EXPECT_TRUE(std::isnan(summary.late.theta.value)) << name;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -158,6 +159,33 @@ TEST(AnalysisLateDecay, RecoversThetaAndCrossover) {
         EXPECT_LT(s.theta_window_sigma.value, k_sigma * 3.0 * sigma);  // the law holds over every window: noise only
         EXPECT_TRUE(s.late.chi2_per_dof.known());
     }
+}
+
+// The plateau of the local exponent on the law: Haff's slope falls towards -2,
+// the kink turns it to -theta, and the largest smoothed slope after that is
+// -theta up to the noise. A half-decade chord of the mean of 16 realizations
+// has sigma sqrt(2) 0.05 / 4 / ln(10^0.5) = 0.015; the largest of the ~60
+// chords after the kink lies about 2.5 of them above the law: 0.06 (4 chord
+// sigmas) bounds the miss. It must lie after the kink, which is before t_c.
+constexpr double plateau_tolerance = 0.06;
+TEST(AnalysisLateDecay, PlateauOfTheLocalExponentIsTheta) {
+    for (const Law& law : {disks, spheres3d}) {
+        const auto run = synthetic_run(law, 20240702);
+        const auto plateau = shockgas::analysis::local_plateau(run);
+        ASSERT_FALSE(std::isnan(plateau.theta.value)) << plateau.theta.note;
+        std::printf("%dD: theta_plateau %.4f +- %.4f at t = %.4g (theta %.2f, t_c %.4g)\n", law.dimension,
+                    plateau.theta.value, plateau.theta.sigma, plateau.time, law.theta, law.crossover);
+        EXPECT_NEAR(plateau.theta.value, law.theta, plateau_tolerance) << law.dimension << "D";
+        EXPECT_GT(plateau.theta.sigma, 0.0);
+        EXPECT_GT(plateau.time, law.crossover / 2.0) << law.dimension << "D";
+    }
+    // Haff's law alone never turns: no plateau, said.
+    Law haff_only = disks;
+    haff_only.theta = 1.99;
+    haff_only.crossover = 1e12;
+    const auto none = shockgas::analysis::local_plateau(synthetic_run(haff_only, 3));
+    EXPECT_TRUE(std::isnan(none.theta.value));
+    EXPECT_NE(none.theta.note.find("does not rise"), std::string::npos) << none.theta.note;
 }
 
 TEST(AnalysisLateDecay, JackknifeSigmaMatchesTheScatterOverSeeds) {

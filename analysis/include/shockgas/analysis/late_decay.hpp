@@ -82,6 +82,26 @@ struct LocalSlope {
 };
 std::vector<LocalSlope> local_slopes(std::span<const double> time, std::span<const double> temperature);
 
+// The plateau of the local exponent: after Haff's law the smoothed local slope
+// of T-bar falls to a minimum (the overshoot: its first local minimum at t > t0
+// that it later rises from by plateau_rise or more) and then rises to its
+// largest value before finite size steepens it again.
+// theta is minus that largest slope, searched from the overshoot to the last
+// sample, and time where it lies; the jackknife recomputes both from each
+// delete-one mean of T. Where the fit window [t_a, t_b] is short or empty this
+// is the number that tells 3/2 from 6/5 at a given N; it is not a fit, and a
+// maximum of a noisy curve lies above the curve by about its noise. Missing
+// when the slope never rises so after t0.
+// plateau_rise: the rise after the overshoot is 0.4-0.5 in every run measured
+// (-1.6 to -1.2 in 3D, -1.5 to -1.0 in 2D); the half-decade chords of the
+// quick tier's means scatter by 0.02-0.04, so 0.1 is above their noise.
+inline constexpr double plateau_rise = 0.1;
+struct LocalPlateau {
+    Estimate theta;
+    double time = 0.0;
+};
+LocalPlateau local_plateau(const spheres::SphereOutput& run);
+
 struct FlowSample {
     double time = 0.0;
     Estimate dv_over_v;  // mean over realizations, jackknife sigma
@@ -115,6 +135,7 @@ struct LateDecaySummary {
     LateDecayFit late;                     // over [t_a, t_b]
     Measured theta_window_sigma;       // max |Delta theta| over the shifted windows
     Estimate theta_free;               // the same fit from 3 t0: the drift of the exponent
+    LocalPlateau plateau;              // the least steep local slope after the overshoot
     Estimate crossover_collisions;     // tau_c = omega0 t_c
     std::vector<double> temperature, temperature_sigma, kurtosis;  // per sample: mean over realizations
     std::vector<FlowSample> flow;      // per snapshot
