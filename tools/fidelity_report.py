@@ -244,7 +244,8 @@ def spheres_rows():
 
 def dimension_rows():
     """fig_2d and fig_3d: the late exponent theta of each run (n/a where the run leaves no window between
-    the predicted crossover and the finite-size time), and the crossover time's exponent against eps."""
+    the predicted crossover and the finite-size time) and the plateau of its local exponent, and the
+    crossover time's exponent against eps."""
     rows = []
     for d in (2, 3):
         path = os.path.join(base, f"fig_{d}d", "late.h5")
@@ -254,13 +255,16 @@ def dimension_rows():
         runs = [g.attrs for name, g in sorted(f.groups.items()) if name.startswith("late_decay")]
         first = runs[0]
         def theta(a):
-            if a["theta"] != a["theta"]:
-                return f"ε = {a['eps']:g}: n/a"
-            return f"ε = {a['eps']:g}: {a['theta']:.2f} ± {a['theta_sigma']:.2f} ± {a['theta_window_sigma']:.2f}"
+            fitted = "n/a" if a["theta"] != a["theta"] else \
+                f"{a['theta']:.2f} ± {a['theta_sigma']:.2f} ± {a['theta_window_sigma']:.2f}"
+            plateau = "n/a" if a["theta_plateau"] != a["theta_plateau"] else \
+                f"{a['theta_plateau']:.2f} ± {a['theta_plateau_sigma']:.2f}"
+            return f"ε = {a['eps']:g}: {fitted}, plateau {plateau}"
         cell = "; ".join(theta(a) for a in runs) + (f" (N = {power(first['particles'])}, φ = {first['packing_fraction']:g}, "
                                                     f"δ = {power(first['velocity_threshold'])})")
         burgers, aggregation = d / 2, 2 * d / (d + 2)
-        rows.append((f"Beyond the ring, {d}D: late decay T ~ t^(−θ), θ ± jackknife ± window", cell,
+        rows.append((f"Beyond the ring, {d}D: late decay T ~ t^(−θ), θ ± jackknife ± window; plateau of the local "
+                     "exponent ± jackknife", cell,
                      f"Burgers d/2 = {burgers:g}; aggregation 2d/(d+2) = {aggregation:g}"))
         crossover = f[f"crossover_d{d}"].attrs
         if crossover["crossover_exponent"] == crossover["crossover_exponent"]:
