@@ -37,7 +37,7 @@ import numpy as np  # noqa: E402
 from scipy import ndimage  # noqa: E402
 # refit_check's way of finding the analysed run from the recorded provenance, and the shockgas module
 # (both beside this script; refit_check refuses a missing module in one line, exit 2, before we import it).
-from refit_check import InputError, find_run  # noqa: E402
+from refit_check import InputError, agree, analysed_runs  # noqa: E402
 import shockgas  # noqa: E402
 from shockgas.cli import ArgumentParser, fail  # noqa: E402
 
@@ -109,12 +109,6 @@ def recount(run, threshold, edges_of):
     return out
 
 
-def agree(c, p, tolerance):
-    if c != c or p != p:
-        return (c != c) and (p != p)
-    return abs(c - p) <= tolerance * max(abs(c), abs(p)) or c == p
-
-
 def main(argv=None):
     ap = ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("results")
@@ -124,17 +118,8 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if not (args.tolerance >= 0 and np.isfinite(args.tolerance)):
         raise InputError(f"--tolerance {args.tolerance!r}: a finite relative tolerance >= 0")
-    results = shockgas.read_results(args.results)
-    inputs = results.inputs()
-    if "clusters0" not in results.sections:
-        raise InputError(f"{args.results}: no /clusters0 section: not a shockgas-analyze clusters results file "
-                         f"({results.attrs.get('program')})")
-    if args.run and len(inputs) != 1:
-        raise InputError(f"--run names one run; {args.results} has {len(inputs)} inputs")
     ok, compared = True, 0
-    for k, recorded in enumerate(inputs):
-        section = results.sections[f"clusters{k}"]
-        run_path, run = find_run(args.results, recorded, args.run)
+    for section, run_path, run in analysed_runs(args.results, "clusters", "clusters", args.run):
         snapshots = list(section.groups["snapshots"].groups.values())
         by_time = {float(s.attrs["time"]): s for s in snapshots}
         ours = recount(run, float(section.attrs["threshold"]), lambda t: by_time[t].data["bin_edges"])

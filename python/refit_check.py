@@ -178,6 +178,29 @@ def find_run(results_path, recorded, given):
                      f"(looked for {' and '.join(candidates)}); name it with --run RUN.h5")
 
 
+def analysed_runs(results_path, prefix, command, given=None):
+    """(section, run path, run) for each input k of a shockgas-analyze results file with a section /<prefix><k>
+    per input (clusters, late-decay), each run found and checked by find_run; refuses a file without
+    /<prefix>0, and --run (given) when there is more than one input."""
+    results = shockgas.read_results(results_path)
+    inputs = results.inputs()
+    if f"{prefix}0" not in results.sections:
+        raise InputError(f"{results_path}: no /{prefix}0 section: not a shockgas-analyze {command} results file "
+                         f"({results.attrs.get('program')})")
+    if given and len(inputs) != 1:
+        raise InputError(f"--run names one run; {results_path} has {len(inputs)} inputs")
+    return [(results.sections[f"{prefix}{k}"], *find_run(results_path, recorded, given))
+            for k, recorded in enumerate(inputs)]
+
+
+def agree(cpp, py, tolerance, relative=True):
+    """Whether the C++ and the Python number agree within tolerance, relative to the larger or absolute;
+    a missing number (NaN) agrees only with a missing one."""
+    if cpp != cpp or py != py:
+        return (cpp != cpp) and (py != py)
+    return cpp == py or abs(cpp - py) <= (tolerance * max(abs(cpp), abs(py)) if relative else tolerance)
+
+
 def fmt(value):
     return "n/a" if value != value else "%.12g" % value
 

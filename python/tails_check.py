@@ -35,7 +35,7 @@ if MISSING:  # pragma: no cover - depends on the machine
 import numpy as np  # noqa: E402
 from scipy import optimize  # noqa: E402
 # refit_check's way of finding the analysed run from the recorded provenance, and the shockgas module.
-from refit_check import InputError, find_run  # noqa: E402
+from refit_check import InputError, agree, analysed_runs  # noqa: E402
 import shockgas  # noqa: E402
 from shockgas.cli import ArgumentParser, fail  # noqa: E402
 
@@ -79,12 +79,6 @@ def refit(counts, range_):
     return gamma, float(np.sqrt(2.0 / curvature)) if curvature > 0 else float("nan")
 
 
-def agree(c, p, tolerance, relative):
-    if c != c or p != p:
-        return (c != c) and (p != p)
-    return abs(c - p) <= (tolerance * max(abs(c), abs(p)) if relative else tolerance)
-
-
 def main(argv=None):
     ap = ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("results")
@@ -94,17 +88,8 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if not (args.tolerance >= 0 and np.isfinite(args.tolerance)):
         raise InputError(f"--tolerance {args.tolerance!r}: a finite absolute tolerance >= 0")
-    results = shockgas.read_results(args.results)
-    inputs = results.inputs()
-    if "late_decay0" not in results.sections:
-        raise InputError(f"{args.results}: no /late_decay0 section: not a shockgas-analyze late-decay results file "
-                         f"({results.attrs.get('program')})")
-    if args.run and len(inputs) != 1:
-        raise InputError(f"--run names one run; {args.results} has {len(inputs)} inputs")
     ok, compared = True, 0
-    for k, recorded in enumerate(inputs):
-        section = results.sections[f"late_decay{k}"]
-        run_path, run = find_run(args.results, recorded, args.run)
+    for section, run_path, run in analysed_runs(args.results, "late_decay", "late-decay", args.run):
         histograms = run.histograms
         if "tail_times" not in section.attrs:
             print(f"{run_path}: no histograms, nothing to compare")
