@@ -204,8 +204,9 @@ LocalPlateau local_plateau(const spheres::SphereOutput& run) {
         }
         const auto slopes = local_slopes(r.time, mean);
         // The overshoot: the first local minimum of the smoothed slope after t0
-        // that a later slope exceeds by plateau_rise (a global minimum would find
-        // the finite-size steepening instead; one of the noise, a dip in Haff's law).
+        // that a later slope exceeds by plateau_rise. The global minimum can be the
+        // finite-size steepening, and a local minimum without that rise can be
+        // noise in Haff's law.
         std::vector<double> highest_after(slopes.size() + 1, -std::numeric_limits<double>::infinity());
         for (std::size_t j = slopes.size(); j-- > 0;)
             highest_after[j] = std::max(highest_after[j + 1], slopes[j].smoothed);
@@ -355,7 +356,8 @@ void run_late_decay(const AnalysisInvocation& invocation, const std::vector<std:
          "local slope d ln T / d ln t between successive samples at their geometric mid-time, and the chord slope "
          "over the samples within a 1/2-decade window centred on it; a block per input",
          {"t_mid", "tau_mid", "slope", "slope_smoothed"});
-    open(crossover_table, tables.crossovers, "crossover times tau_c = omega0 t_c per input; a block per dimension and phi",
+    open(crossover_table, tables.crossovers,
+         "crossover times tau_c = omega0 t_c per input; a block per dimension and phi",
          {"eps", "tau_c", "tau_c_sigma", "t_c", "restitution", "particles", "theta"});
     open(flow_table, tables.fluctuations,
          "Delta v / v = sqrt((d T - E_flow) / E_flow) at each snapshot; a block per input",
