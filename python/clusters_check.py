@@ -37,9 +37,9 @@ import numpy as np  # noqa: E402
 from scipy import ndimage  # noqa: E402
 # refit_check's way of finding the analysed run from the recorded provenance, and the shockgas module
 # (both beside this script; refit_check refuses a missing module in one line, exit 2, before we import it).
-from refit_check import InputError, agree, analysed_runs  # noqa: E402
+from refit_check import SPHERES_RUN_HELP, InputError, agree, analysed_runs, check_arguments  # noqa: E402
 import shockgas  # noqa: E402
-from shockgas.cli import ArgumentParser, fail  # noqa: E402
+from shockgas.cli import fail  # noqa: E402
 
 
 def periodic_clusters(dense, density, mean_count):
@@ -110,14 +110,8 @@ def recount(run, threshold, edges_of):
 
 
 def main(argv=None):
-    ap = ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("results")
-    ap.add_argument("--run", help="shockgas-spheres output (one input only; default: the recorded input_path)")
-    ap.add_argument("--tolerance", type=float, default=1e-9,
-                    help="relative agreement required (the two add a cluster's cells in other orders)")
-    args = ap.parse_args(argv)
-    if not (args.tolerance >= 0 and np.isfinite(args.tolerance)):
-        raise InputError(f"--tolerance {args.tolerance!r}: a finite relative tolerance >= 0")
+    args = check_arguments(__doc__.split("\n")[0], SPHERES_RUN_HELP, 1e-9,
+                           "relative agreement required (the two add a cluster's cells in other orders)", argv)
     ok, compared = True, 0
     for section, run_path, run in analysed_runs(args.results, "clusters", "clusters", args.run):
         snapshots = list(section.groups["snapshots"].groups.values())

@@ -201,18 +201,30 @@ def agree(cpp, py, tolerance, relative=True):
     return cpp == py or abs(cpp - py) <= (tolerance * max(abs(cpp), abs(py)) if relative else tolerance)
 
 
+# --run's help in the checks of shockgas-spheres analyses (clusters_check.py, tails_check.py).
+SPHERES_RUN_HELP = "shockgas-spheres output (one input only; default: the recorded input_path)"
+
+
+def check_arguments(description, run_help, tolerance, tolerance_help, argv=None, kind="relative"):
+    """The arguments of every check script: the results file, --run and --tolerance, refused (InputError)
+    unless finite and >= 0."""
+    ap = ArgumentParser(description=description)
+    ap.add_argument("results")
+    ap.add_argument("--run", help=run_help)
+    ap.add_argument("--tolerance", type=float, default=tolerance, help=tolerance_help)
+    args = ap.parse_args(argv)
+    if not (args.tolerance >= 0 and np.isfinite(args.tolerance)):
+        raise InputError(f"--tolerance {args.tolerance!r}: a finite {kind} tolerance >= 0")
+    return args
+
+
 def fmt(value):
     return "n/a" if value != value else "%.12g" % value
 
 
 def main(argv=None):
-    ap = ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("results")
-    ap.add_argument("--run", help="simulation output (default: the results file's input_path)")
-    ap.add_argument("--tolerance", type=float, default=1e-6, help="relative agreement required")
-    args = ap.parse_args(argv)
-    if not (args.tolerance >= 0 and np.isfinite(args.tolerance)):
-        raise InputError(f"--tolerance {args.tolerance!r}: a finite relative tolerance >= 0")
+    args = check_arguments(__doc__.split("\n")[0], "simulation output (default: the results file's input_path)",
+                           1e-6, "relative agreement required", argv)
     results = shockgas.read_results(args.results)
     if "decay" not in results.sections:
         raise InputError(f"{args.results}: no /decay section: not a shockgas-analyze decay results file "

@@ -35,9 +35,9 @@ if MISSING:  # pragma: no cover - depends on the machine
 import numpy as np  # noqa: E402
 from scipy import optimize  # noqa: E402
 # refit_check's way of finding the analysed run from the recorded provenance, and the shockgas module.
-from refit_check import InputError, agree, analysed_runs  # noqa: E402
+from refit_check import SPHERES_RUN_HELP, InputError, agree, analysed_runs, check_arguments  # noqa: E402
 import shockgas  # noqa: E402
-from shockgas.cli import ArgumentParser, fail  # noqa: E402
+from shockgas.cli import fail  # noqa: E402
 
 TAIL_START = 1.5           # in units of the rms of u
 MAX_RELATIVE_ERROR = 0.3   # of the folded count
@@ -80,14 +80,9 @@ def refit(counts, range_):
 
 
 def main(argv=None):
-    ap = ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("results")
-    ap.add_argument("--run", help="shockgas-spheres output (one input only; default: the recorded input_path)")
-    ap.add_argument("--tolerance", type=float, default=1e-4,
-                    help="absolute agreement required of gamma (the two minimisers stop at different points)")
-    args = ap.parse_args(argv)
-    if not (args.tolerance >= 0 and np.isfinite(args.tolerance)):
-        raise InputError(f"--tolerance {args.tolerance!r}: a finite absolute tolerance >= 0")
+    args = check_arguments(__doc__.split("\n")[0], SPHERES_RUN_HELP, 1e-4,
+                           "absolute agreement required of gamma (the two minimisers stop at different points)",
+                           argv, kind="absolute")
     ok, compared = True, 0
     for section, run_path, run in analysed_runs(args.results, "late_decay", "late-decay", args.run):
         histograms = run.histograms
