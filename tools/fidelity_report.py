@@ -448,8 +448,13 @@ def progress_report():
             prefix = os.path.join(folder, glob.escape(name))
             for checkpoint in sorted(glob.glob(prefix + ".running.h5.checkpoint") +
                                      glob.glob(prefix + ".part*.running.h5.checkpoint")):
-                c = shockgas.read_checkpoint(checkpoint)
-                status, samples = list(c.realization_status), list(c.samples_done)
+                c = shockgas.read(checkpoint, expect=("checkpoint", "spheres_checkpoint"))
+                if isinstance(c, shockgas.SpheresCheckpoint):  # only the realizations begun are recorded
+                    status = [0 if finished else 4 for _, finished in c.progress.values()]
+                    status += [4] * (realizations - len(status))
+                    samples = [n for n, _ in c.progress.values()] + [0] * (realizations - len(c.progress))
+                else:
+                    status, samples = list(c.realization_status), list(c.samples_done)
                 done_here = sum(1 for s in status if s in (0, 1))
                 reached = [c.time[n - 1] for s, n in zip(status, samples) if s == 4 and n > 0]
                 cpu += c.attrs["cpu_seconds"]

@@ -24,15 +24,16 @@ docs/python.md. It needs numpy and h5py (Debian: python3-numpy, python3-h5py).
 """
 from . import cli
 from ._h5 import DamagedFile, Group, NoSuchFile, decode, open_file, walk
-from .files import (FILE_KINDS, Checkpoint, Drift, File, Results, Run, Tail, attributes, file_kind, kind_of, read,
-                    read_checkpoint, read_drift, read_initial_condition, read_results, read_run, read_tail,
-                    write_initial_condition)
+from .files import (FILE_KINDS, Checkpoint, Drift, File, Results, Run, SpheresCheckpoint, Tail, attributes, file_kind,
+                    kind_of, read, read_checkpoint, read_drift, read_initial_condition, read_results, read_run,
+                    read_spheres_checkpoint, read_tail, sample_grid, write_initial_condition)
 from .schema import SCHEMA_VERSIONS, SchemaError, UnsupportedSchemaVersion, check_schema_version
 
 __all__ = [
-    "read", "read_run", "read_checkpoint", "read_results", "read_drift", "read_tail", "attributes", "kind_of",
+    "read", "read_run", "read_checkpoint", "read_spheres_checkpoint", "read_results", "read_drift", "read_tail",
+    "attributes", "kind_of", "sample_grid",
     "write_initial_condition", "read_initial_condition", "walk", "open_file", "decode", "DamagedFile", "NoSuchFile",
-    "Run", "Checkpoint", "Results", "Drift", "Tail", "File", "Group",
+    "Run", "Checkpoint", "SpheresCheckpoint", "Results", "Drift", "Tail", "File", "Group",
     "SCHEMA_VERSIONS", "SchemaError", "UnsupportedSchemaVersion", "check_schema_version", "FILE_KINDS", "file_kind",
     "cli",
 ]

@@ -3,6 +3,7 @@
 
     run         shockgas-sim and shockgas-merge output          read_run        -> Run
     checkpoint  a run in progress (OUT.h5.checkpoint)            read_checkpoint -> Checkpoint (a Run)
+    spheres_checkpoint  a shockgas-spheres run in progress       read_spheres_checkpoint -> SpheresCheckpoint
     results     shockgas-analyze <subcommand> output             read_results    -> Results
     drift       shockgas-drift record                            read_drift      -> Drift
     tail        shockgas-tail far-tail estimate of Phi           read_tail       -> Tail
@@ -190,6 +191,55 @@ def _checkpoint(path, handle, attrs, version):
 def read_checkpoint(path):
     """A shockgas-sim checkpoint as a Checkpoint."""
     return read(path, expect="checkpoint")
+
+
+class SpheresCheckpoint(File):
+    """A shockgas-spheres run in progress (OUT.h5.checkpoint): attrs (parameters, cpu_seconds,
+    provenance) and, per realization begun, its progress; the realizations' arrays are not read
+    (they can take gigabytes), only their attributes:
+
+        checkpoint.progress        {realization: (samples_done, finished)}
+        checkpoint.time            the run's sample times (sample_grid, below)
+    """
+
+    def __init__(self, path, version, attrs, progress):
+        super().__init__(Group(attrs, {}, {}, "/"), path, version)
+        self.progress = progress
+
+    @property
+    def time(self):
+        return sample_grid(self.attrs)
+
+
+def sample_grid(attrs):
+    """The sample times of a shockgas-spheres run from its attributes, as the program computes them
+    (sim/spheres/src/parameters.cpp, sample_grid): t = 0, then t = 10^(-2 + k/K) up to t_max, then
+    t_max, with every listed sample, snapshot and histogram time up to t_max, sorted, without repeats."""
+    t_max, per_decade = float(attrs["t_max"]), int(attrs["samples_per_decade"])
+    last = np.log10(t_max)
+    grid = {0.0, t_max}
+    k = 0
+    while -2.0 + k / per_decade <= last + 1e-12:
+        grid.add(10.0 ** (-2.0 + k / per_decade))
+        k += 1
+    for name in ("sample_times", "snapshot_times", "histogram_times"):
+        grid.update(float(t) for t in np.atleast_1d(attrs.get(name, [])) if t <= t_max)
+    return np.array(sorted(grid))
+
+
+@file_kind("spheres_checkpoint", lambda attrs, names: attrs.get("schema") == "spheres-checkpoint",
+           "read_spheres_checkpoint")
+def _spheres_checkpoint(path, handle, attrs, version):
+    progress = {}
+    for name, group in handle.get("realizations", {}).items():
+        done = decode_attributes(group)
+        progress[int(name)] = (int(done["samples_done"]), bool(done["finished"]))
+    return SpheresCheckpoint(path, version, attrs, progress)
+
+
+def read_spheres_checkpoint(path):
+    """A shockgas-spheres checkpoint as SpheresCheckpoint."""
+    return read(path, expect="spheres_checkpoint")
 
 
 # ---------------------------------------------------------------------------------- analysis results

@@ -381,7 +381,8 @@ if(SHOCKGAS_PYTHON)
   # Where a paper build in progress stands (tools/fidelity_report.py --progress): a running part's spent CPU
   # taken off its remaining estimate, a checkpoint of another version set aside, fig_tail's sampler.
   add_test(NAME cli.progress_report
-           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress_report_test.sh ${_sim} ${SHOCKGAS_PYTHON}
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress_report_test.sh ${_sim} $<TARGET_FILE:shockgas-spheres>
+                   ${SHOCKGAS_PYTHON}
                    ${PROJECT_SOURCE_DIR}/tools/fidelity_report.py "${_cli_dir}/progress_report")
   set_tests_properties(cli.progress_report PROPERTIES LABELS cli TIMEOUT 120 ENVIRONMENT "${SHOCKGAS_TEST_PYTHONPATH}")
   # A provisional Fig. 4 from the finished parts of a paper build (tools/provisional-fig4); with r = 0.5

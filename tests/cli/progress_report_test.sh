@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# progress_report_test.sh SIM PYTHON REPORT WORK_DIR: tools/fidelity_report.py --progress on a paper
+# progress_report_test.sh SIM SPHERES PYTHON REPORT WORK_DIR: tools/fidelity_report.py --progress on a paper
 # build in progress, made up of Fig. 4's run names: a finished part of r0.5 (2 realizations), a
 # running part of r0.5 caught in its checkpoint, nothing yet of r0.9. The report must count the
 # finished part, read the checkpoint's CPU time and progress, and extrapolate the rest of r0.5
@@ -7,9 +7,11 @@
 # one at that time less what its checkpoint has spent); list a checkpoint moved aside by a run of another
 # code version, and apart from it one moved aside as another run's (--set-aside-other-runs: parameters
 # edited), with its size on disk; and report fig_tail (no parameter file): its sampler running, from paper-tier.log, then done.
+# A shockgas-spheres checkpoint (fig_2d's e0.1, of another layout) is read too: its realizations begun,
+# the time the furthest reached, its CPU seconds.
 # SPDX-License-Identifier: GPL-3.0-or-later
 set -u
-sim=$1 python=$2 report=$3 work=$4
+sim=$1 spheres=$2 python=$3 report=$4 work=$5
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/checkpoint_helpers.sh"
 fail() { echo "FAIL: $*"; exit 1; }
@@ -44,7 +46,24 @@ printf '%s\n' "[ 50%] [fig_tail] far-tail sampler" "shockgas-tail: progress: 10.
   "[ 51%] [fig4] something else" "shockgas-tail: progress: 20.0% of the steps  elapsed 120 s  ETA 480 s" \
   >"$work/paper-tier.log"
 "$python" "$report" "$work" paper --progress >report.md || fail "the report failed: $(cat report.md)"
+# fig_2d's e0.1 (shockgas-spheres, 4 realizations on 2 threads) caught in its checkpoint, its CPU time set
+# to 300 s, its two realizations begun stopped after 40 samples of the spheres' grid (0, then 10^(-2 + k/10): the 40th is t = 10^1.8).
+mkdir -p "$work/paper_targets/paper/fig_2d" && cd "$work/paper_targets/paper/fig_2d" || exit 1
+"$spheres" -D 2 -N 20000 -r 0.8 -R 4 -j 2 -t 1e4 --checkpoint-interval 0 -o e0.1.running.h5 2>spheres.stderr &
+spheres_pid=$!
+for _ in $(seq 1 600); do [ -e e0.1.running.h5.checkpoint ] && break; sleep 0.02; done
+kill -KILL "$spheres_pid" 2>/dev/null; wait "$spheres_pid" 2>/dev/null
+[ -e e0.1.running.h5.checkpoint ] || fail "no shockgas-spheres checkpoint: $(cat spheres.stderr)"
+"$python" -c 'import h5py
+with h5py.File("e0.1.running.h5.checkpoint", "r+") as f:
+    f.attrs["cpu_seconds"] = 300.0
+    for group in f["realizations"].values():
+        group.attrs["samples_done"], group.attrs["finished"] = 40, 0' || fail "could not edit the spheres checkpoint"
+cd "$work/paper_targets/paper/fig4" || exit 1
+"$python" "$report" "$work" paper --progress >report.md || fail "the report failed: $(cat report.md)"
 cat report.md
+grep -qF '| fig_2d | e0.1 | 0/1 | 0/4 | 300 | e0.1: 0/4 done, one at t = 63.1 | — |' report.md ||
+  fail "fig_2d's running e0.1 (shockgas-spheres): $(grep 'fig_2d | e0.1' report.md)"
 line=$(grep '^| fig4 | r0.5 |' report.md) || fail "no line for fig4's r0.5"
 case "$line" in
   "| fig4 | r0.5 | 1/20 | 2/200 | 1400 | part10: 0/3 done, one at t = "*" | 18600 |") ;;
@@ -62,7 +81,7 @@ grep -q "parameters were edited since .*--set-aside-other-runs.*No build continu
   fail "the checkpoint of another run is not explained as one"
 grep -q "version other-run" report.md && fail "the checkpoint of another run is listed as another code version's"
 [ "$(grep -c 'from-other-run' report.md)" = 1 ] || fail "the other run's checkpoint is not one entry"
-grep -q '^| \*\*all\*\* | | | | \*\*1400\*\* | | \*\*18600\*\*' report.md || fail "the totals: $(grep '^| \*\*all' report.md)"
+grep -q '^| \*\*all\*\* | | | | \*\*1700\*\* | | \*\*18600\*\*' report.md || fail "the totals: $(grep '^| \*\*all' report.md)"
 # Once the sampler has written tail.h5, its row is done with that file's CPU seconds.
 mkdir -p "$work/paper_targets/paper/fig_tail" &&
   "$python" -c 'import sys, h5py; import shockgas.schema
