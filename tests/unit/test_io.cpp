@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The HDF5 layer, init files and the output schema.
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include <fmt/format.h>
@@ -48,6 +50,26 @@ TEST(H5, AttributesAndDatasetsRoundTrip) {
     EXPECT_EQ(dims, (std::vector<hsize_t>{2, 3}));
     EXPECT_EQ(root.open_group("g").read_integers("ids"), (std::vector<std::int64_t>{7, 8}));
     EXPECT_THROW(root.read_doubles("absent"), shockgas::h5::Error);
+}
+
+// A committed file is closed, so its bytes are whole, even while the writer still holds its groups (the
+// usual `auto root = file.root(); ...; file.commit();`): byte 11 of the superblock (version 3, the 1.10
+// format) is the file consistency flags (HDF5 File Format Specification, section II.A), bit 0 "open for
+// write". A file renamed to its target with that bit set is unreadable if the process dies before it
+// releases the groups.
+TEST(H5, CommittedFileIsClosedWhileItsGroupsAreStillHeld) {
+    const auto path = temp_path("held.h5");
+    shockgas::h5::AtomicFile file(path);
+    auto root = file.root();
+    auto group = root.create_group("g");
+    group.write("values", std::vector<double>{1, 2, 3});
+    file.commit();
+    std::ifstream bytes(path, std::ios::binary);
+    std::array<char, 12> superblock{};
+    ASSERT_TRUE(bytes.read(superblock.data(), superblock.size()));
+    EXPECT_EQ(std::string(superblock.data() + 1, 3), "HDF");
+    EXPECT_EQ(static_cast<int>(superblock[8]), 3) << "superblock version";
+    EXPECT_EQ(static_cast<int>(superblock[11]), 0) << "file consistency flags: the file is still open for write";
 }
 
 TEST(H5, UncommittedAtomicFileLeavesNothing) {

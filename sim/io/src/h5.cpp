@@ -412,6 +412,12 @@ File File::create(const std::string& path, const std::string& display) {
     // indices carry checksums, which HDF5 verifies when it reads them.
     Handle access(check(H5Pcreate(H5P_FILE_ACCESS), "cannot create HDF5 property list"), H5Pclose);
     check_status(H5Pset_libver_bounds(access.id(), H5F_LIBVER_V110, H5F_LIBVER_V110), "cannot select file format");
+    // Closing the file closes every group and dataset still open in it. By default HDF5 defers the
+    // close until the last of them is closed, and AtomicFile::commit renames the file right after
+    // its close: a group still held by the writer (write_atomically's root) would leave a file
+    // marked "open for write" under the target's name until the group went, unreadable after a
+    // SIGKILL in between (a checkpoint then falls back to its older generation).
+    check_status(H5Pset_fclose_degree(access.id(), H5F_CLOSE_STRONG), "cannot set the file close degree");
     const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, plist.id(), access.id());
     if (id < 0) fail(fmt::format("cannot create HDF5 file '{}'", display.empty() ? path : display));
     return File(Handle(id, H5Fclose), path, display.empty() ? path : display);
