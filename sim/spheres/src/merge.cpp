@@ -20,13 +20,13 @@ void append(std::vector<double>& joined, const std::vector<double>& part) {
 }
 
 // The parts must be one run's: the same parameters but for which
-// realizations, and the same engine.
+// realizations, and the same engine. (The thread count is not among the
+// parameters compared: no output records it, since no result depends on it.)
 void check_joinable(const SphereOutput& first, const SphereOutput& part, const std::string& name,
                     std::int64_t expected_first_realization) {
     SphereParameters same = part.parameters;
     same.realizations = first.parameters.realizations;
     same.first_realization = first.parameters.first_realization;
-    same.threads = first.parameters.threads;
     if (const auto differences = parameter_differences(first.parameters, same); !differences.empty())
         throw InputError(fmt::format("'{}' is a part of another run: {} (against the first part)", name,
                                      fmt::join(differences, ", ")));
