@@ -31,7 +31,7 @@ function(shockgas_late_decay_figure figure)
                 DATA "${base}.T.dat" "${base}.slopes.dat" "${base}.crossovers.dat" "${base}.dv.dat"
                      "${base}.tails.dat" "${base}.tail_fits.dat" "${base}.fit.gp"
                      "${PROJECT_SOURCE_DIR}/figures/late_decay.gp")
-  # The runs' outputs, for figures that analyse them too (fig_2d_clusters).
+  # The runs' outputs, for figures that analyse them too (fig_2d_clusters, fig_3d_clusters).
   set(${figure}_RUNS "${${figure}_RUNS}" PARENT_SCOPE)
   foreach(run IN LISTS ${figure}_RUNS)
     set(${figure}_${run}_H5 "${${figure}_${run}_H5}" PARENT_SCOPE)

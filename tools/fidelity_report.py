@@ -277,23 +277,28 @@ def dimension_rows():
 
 
 def cluster_rows():
-    """fig_2d_clusters: the largest cluster at the last snapshot of each run against N_c's scale eps^-2."""
-    path = os.path.join(base, "fig_2d_clusters", "clusters.h5")
-    if not os.path.exists(path):
-        return []
-    f = shockgas.read_results(path)
-    cells, scales, fractions = [], [], []
-    for name, g in sorted(f.groups.items()):
-        if not name.startswith("clusters"):
+    """fig_2d_clusters, fig_3d_clusters: the largest cluster at the last snapshot of each run against N_c's
+    scale eps^(-2d/(4-d)) (eps^-2 in 2D, eps^-6 in 3D)."""
+    rows = []
+    for d in (2, 3):
+        path = os.path.join(base, f"fig_{d}d_clusters", "clusters.h5")
+        if not os.path.exists(path):
             continue
-        last = list(g["snapshots"].groups.values())[-1].attrs
-        eps = (1 - g.attrs["restitution"]) / 2
-        cells.append(f"ε = {eps:g}: {last['largest_mass']:.0f} ± {last['largest_mass_sigma']:.0f}")
-        scales.append(f"{g.attrs['critical_size_scale']:.0f}")
-        fractions.append(100 * last["clustered_fraction"])
-    return [("Beyond the ring, 2D: largest cluster at the end (particles, cells at twice the mean density)",
-             "; ".join(cells) + f" (t = {power(last['time'])}; {min(fractions):.0f}–{max(fractions):.0f} % of the "
-             "particles in clusters)", "N_c ~ ε⁻² = " + ", ".join(scales))]
+        f = shockgas.read_results(path)
+        cells, scales, fractions = [], [], []
+        for name, g in sorted(f.groups.items()):
+            if not name.startswith("clusters"):
+                continue
+            last = list(g["snapshots"].groups.values())[-1].attrs
+            eps = (1 - g.attrs["restitution"]) / 2
+            cells.append(f"ε = {eps:g}: {last['largest_mass']:.0f} ± {last['largest_mass_sigma']:.0f}")
+            scales.append(f"{g.attrs['critical_size_scale']:.0f}")
+            fractions.append(100 * last["clustered_fraction"])
+        exponent = "⁻²" if d == 2 else "⁻⁶"
+        rows.append((f"Beyond the ring, {d}D: largest cluster at the end (particles, cells at twice the mean density)",
+                     "; ".join(cells) + f" (t = {power(last['time'])}; {min(fractions):.0f}–{max(fractions):.0f} % of "
+                     "the particles in clusters)", f"N_c ~ ε{exponent} = " + ", ".join(scales)))
+    return rows
 
 
 def validity_rows():

@@ -27,7 +27,8 @@ constexpr double k_sigma = 3.0;
 
 TEST(Figures, EveryFigureHasPngAndPdf) {
     for (const char* name : {"fig1", "fig2", "fig3", "fig4", "fig4_sticky", "fig5", "fig_collapse", "fig_crossovers", "fig_haff",
-                             "fig_tradeoff", "fig_tail", "fig_validity"})
+                             "fig_tradeoff", "fig_tail", "fig_validity", "fig_spheres", "fig_2d", "fig_2d_clusters", "fig_3d",
+                             "fig_3d_clusters"})
         for (const char* extension : {".png", ".pdf"}) {
             const fs::path path = fs::path(figure_dir) / (std::string(name) + extension);
             ASSERT_TRUE(fs::exists(path)) << path;

@@ -61,6 +61,22 @@ add_test(NAME python.clusters_check COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_
                  "${_py_work}/clusters.h5" WORKING_DIRECTORY "${_py_work}")
 set_tests_properties(python.clusters_check PROPERTIES FIXTURES_REQUIRED "python_spheres;python_clusters"
                      LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
+# The same recount in 3D (clusters joined through the faces of a periodic cube): N = 8000 spheres, r = 0.6,
+# 2 realizations, 12^3 field cells, 3 snapshots, threshold 1.5 (~3 s).
+add_test(NAME python.setup.spheres_run_3d
+         COMMAND shockgas-spheres -D 3 -N 8000 --phi 0.1 -r 0.6 -d 1e-2 -t 300 --snapshot-times 10,100,300
+                 --field-cells 12 -R 2 -j 1 -o "${_py_work}/spheres.h5"
+         WORKING_DIRECTORY "${_py_work}")
+add_test(NAME python.setup.clusters_3d
+         COMMAND shockgas-analyze clusters "${_py_work}/spheres.h5" --threshold 1.5 -o "${_py_work}/clusters_3d.h5"
+         WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.setup.spheres_run_3d PROPERTIES FIXTURES_SETUP python_spheres_3d LABELS python TIMEOUT 120)
+set_tests_properties(python.setup.clusters_3d PROPERTIES FIXTURES_SETUP python_clusters_3d
+                     FIXTURES_REQUIRED python_spheres_3d LABELS python TIMEOUT 60)
+add_test(NAME python.clusters_check_3d COMMAND ${SHOCKGAS_PYTHON} ${PROJECT_SOURCE_DIR}/python/clusters_check.py
+                 "${_py_work}/clusters_3d.h5" WORKING_DIRECTORY "${_py_work}")
+set_tests_properties(python.clusters_check_3d PROPERTIES FIXTURES_REQUIRED "python_spheres_3d;python_clusters_3d"
+                     LABELS python TIMEOUT 120 SKIP_RETURN_CODE 77)
 
 # shockgas-sim against an independent plain event-driven reference written from the physics
 # (python/reference_gas.py): ~70 small starts across r, delta, both sub-threshold mechanisms, masses,
