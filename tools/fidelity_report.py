@@ -152,9 +152,13 @@ def window(decay):
 
 
 def power(x):
-    """10⁵ for 1e5, 2·10⁴ for 2e4 (the README's way of writing sizes and times); 1643 as it is."""
+    """10⁵ for 1e5, 2·10⁴ for 2e4, 1.2·10⁴ for 1.2e4 (the README's way of writing sizes and times); 1643 as
+    it is."""
     superscript = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
-    mantissa, exponent = f"{float(x):.0e}".split("e")
+    for digits in (0, 1):
+        mantissa, exponent = f"{float(x):.{digits}e}".split("e")
+        if float(f"{mantissa}e{exponent}") == float(x):
+            break
     if float(f"{mantissa}e{exponent}") != float(x) or abs(int(exponent)) < 3:
         return f"{float(x):.4g}"
     tail = "10" + str(int(exponent)).translate(superscript)
@@ -271,34 +275,30 @@ def dimension_rows():
             rows.append((f"Beyond the ring, {d}D: crossover τ_c ~ ε^x (collision times)",
                          f"x = {crossover['crossover_exponent']:.2f} ± {crossover['crossover_exponent_sigma']:.2f} "
                          f"({crossover['crossover_points']} ε)", f"x = {crossover['predicted_exponent']:g}"))
-        if d == 2:
-            rows.extend(cluster_rows())
+        rows.extend(cluster_rows(d))
     return rows
 
 
-def cluster_rows():
-    """fig_2d_clusters, fig_3d_clusters: the largest cluster at the last snapshot of each run against N_c's
-    scale eps^(-2d/(4-d)) (eps^-2 in 2D, eps^-6 in 3D)."""
-    rows = []
-    for d in (2, 3):
-        path = os.path.join(base, f"fig_{d}d_clusters", "clusters.h5")
-        if not os.path.exists(path):
+def cluster_rows(d):
+    """fig_2d_clusters or fig_3d_clusters (d = 2, 3): the largest cluster at the last snapshot of each run
+    against N_c's scale eps^(-2d/(4-d)) (eps^-2 in 2D, eps^-6 in 3D)."""
+    path = os.path.join(base, f"fig_{d}d_clusters", "clusters.h5")
+    if not os.path.exists(path):
+        return []
+    f = shockgas.read_results(path)
+    cells, scales, fractions = [], [], []
+    for name, g in sorted(f.groups.items()):
+        if not name.startswith("clusters"):
             continue
-        f = shockgas.read_results(path)
-        cells, scales, fractions = [], [], []
-        for name, g in sorted(f.groups.items()):
-            if not name.startswith("clusters"):
-                continue
-            last = list(g["snapshots"].groups.values())[-1].attrs
-            eps = (1 - g.attrs["restitution"]) / 2
-            cells.append(f"ε = {eps:g}: {last['largest_mass']:.0f} ± {last['largest_mass_sigma']:.0f}")
-            scales.append(f"{g.attrs['critical_size_scale']:.0f}")
-            fractions.append(100 * last["clustered_fraction"])
-        exponent = "⁻²" if d == 2 else "⁻⁶"
-        rows.append((f"Beyond the ring, {d}D: largest cluster at the end (particles, cells at twice the mean density)",
-                     "; ".join(cells) + f" (t = {power(last['time'])}; {min(fractions):.0f}–{max(fractions):.0f} % of "
-                     "the particles in clusters)", f"N_c ~ ε{exponent} = " + ", ".join(scales)))
-    return rows
+        last = list(g["snapshots"].groups.values())[-1].attrs
+        eps = (1 - g.attrs["restitution"]) / 2
+        cells.append(f"ε = {eps:g}: {last['largest_mass']:.0f} ± {last['largest_mass_sigma']:.0f}")
+        scales.append(f"{g.attrs['critical_size_scale']:.0f}")
+        fractions.append(100 * last["clustered_fraction"])
+    exponent = "⁻²" if d == 2 else "⁻⁶"
+    return [(f"Beyond the ring, {d}D: largest cluster at the end (particles, cells at twice the mean density)",
+             "; ".join(cells) + f" (t = {power(last['time'])}; {min(fractions):.0f}–{max(fractions):.0f} % of the "
+             "particles in clusters)", f"N_c ~ ε{exponent} = " + ", ".join(scales))]
 
 
 def validity_rows():
