@@ -89,6 +89,7 @@ configure_file("${PROJECT_SOURCE_DIR}/cmake/installed-pipeline/CMakeLists.txt.in
 install(FILES "${PROJECT_BINARY_DIR}/installed-pipeline/CMakeLists.txt"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR} COMPONENT runtime)
 install(FILES "${PROJECT_SOURCE_DIR}/cmake/ShockgasPython.cmake" "${PROJECT_SOURCE_DIR}/cmake/ShortestNumber.cmake"
+              "${PROJECT_SOURCE_DIR}/cmake/RunSimulation.cmake"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/cmake COMPONENT runtime)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/paper_targets/"
         DESTINATION ${SHOCKGAS_INSTALL_DATADIR}/paper_targets COMPONENT runtime

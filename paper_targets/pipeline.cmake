@@ -66,8 +66,10 @@ include(${PROJECT_SOURCE_DIR}/cmake/ShortestNumber.cmake)  # _shockgas_shortest_
 # the rule's OUTPUT, make would take it as up to date and the next build would
 # feed a partial run to the analysis (seen: a killed paper build, then
 # "no /snapshots" from shockgas-analyze). So the run writes the staged name and
-# the rule renames it only after shockgas-sim exits 0; the next build reruns it
-# and --resume continues from the staged name's checkpoint.
+# the rule (cmake/RunSimulation.cmake) renames it only after shockgas-sim exits 0;
+# the next build reruns it and --resume continues from the staged name's checkpoint.
+# The rule also records what the run was made from (<name>.h5.made) and keeps a run
+# whose record matches when only file times make it look stale.
 function(_shockgas_run_to output result)
   string(REGEX REPLACE "\\.h5$" ".running.h5" staged "${output}")
   set(${result} "${staged}" PARENT_SCOPE)
@@ -157,8 +159,8 @@ function(shockgas_figure_runs figure)
       _shockgas_manifest_line("${h5}" "${staged}" "${run_arguments}")
       add_custom_command(
         OUTPUT "${h5}"
-        COMMAND ${program} ${run_arguments}
-        COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${h5}"
+        COMMAND ${CMAKE_COMMAND} -DOUTPUT=${h5} -DSTAGED=${staged} "-DINPUTS=${out_dir}/${name}.args|${stamp}"
+                -P ${PROJECT_SOURCE_DIR}/cmake/RunSimulation.cmake -- $<TARGET_FILE:${program}> ${run_arguments}
         DEPENDS "${out_dir}/${name}.args" ${stamp}
         COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}: ${args_text}"
         VERBATIM)
@@ -181,8 +183,9 @@ function(shockgas_figure_runs figure)
         _shockgas_manifest_line("${part}" "${staged}" "${run_arguments}")
         add_custom_command(
           OUTPUT "${part}"
-          COMMAND shockgas-sim ${run_arguments}
-          COMMAND ${CMAKE_COMMAND} -E rename "${staged}" "${part}"
+          COMMAND ${CMAKE_COMMAND} -DOUTPUT=${part} -DSTAGED=${staged}
+                  "-DINPUTS=${out_dir}/${name}.args|${SHOCKGAS_SIM_STAMP}"
+                  -P ${PROJECT_SOURCE_DIR}/cmake/RunSimulation.cmake -- $<TARGET_FILE:shockgas-sim> ${run_arguments}
           DEPENDS "${out_dir}/${name}.args" ${SHOCKGAS_SIM_STAMP}
           COMMENT "[${figure}/${SHOCKGAS_FIDELITY}] simulating ${name}, realizations ${first}..+${count}"
           VERBATIM)

@@ -36,16 +36,23 @@ out=$("$tool" commands --build "$build" fig_tail 2>&1)
 "$python" - "$work/fig4.commands" "$build/paper_targets/CMakeFiles/fig4.dir/build.make" <<'EOF' || fail "a command is not its rule's"
 import os, shlex, sys
 commands, makefile = sys.argv[1], sys.argv[2]
-# The rule's shockgas-sim command for each staged output, as words with the program's path made absolute.
+# The rule's shockgas-sim command for each staged output, as words with the program's path made absolute:
+# the rule runs it through cmake/RunSimulation.cmake (cmake -DOUTPUT=... -DSTAGED=... -DINPUTS=... -P
+# RunSimulation.cmake -- <program> <arguments>), which renames STAGED to OUTPUT as the command's mv does.
 rules = {}
 for line in open(makefile):
     if not line.startswith("\tcd ") or "shockgas-sim " not in line:
         continue
     words = shlex.split(line.strip())
     assert words[0] == "cd" and words[2] == "&&", line
-    directory, program = words[1], words[3]
-    words = [os.path.normpath(os.path.join(directory, program))] + words[4:]
-    rules[words[words.index("--output") + 1]] = (directory, words)
+    p = words.index("-P")
+    assert words[p + 1].endswith("/cmake/RunSimulation.cmake") and words[p + 2] == "--", line
+    defined = dict(w[2:].split("=", 1) for w in words[4:p] if w.startswith("-D"))
+    directory, program = words[1], words[p + 3]
+    words = [os.path.normpath(os.path.join(directory, program))] + words[p + 4:]
+    staged = words[words.index("--output") + 1]
+    assert defined["STAGED"] == staged and defined["OUTPUT"] == staged.replace(".running.h5", ".h5"), defined
+    rules[staged] = (directory, words)
 seen = 0
 for line in open(commands):
     words = shlex.split(line)
