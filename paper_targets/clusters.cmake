@@ -28,12 +28,7 @@ function(shockgas_clusters_figure figure source)
     DEPENDS ${inputs} shockgas-analyze
     COMMENT "[${figure}] clusters of the density field"
     VERBATIM)
-  shockgas_step(
-    OUTPUT "${base}.fit.gp"
-    COMMAND shockgas-dump gnuplot-vars "${base}.h5" / --recursive --prefix cl --output "${base}.fit.gp"
-    DEPENDS "${base}.h5" shockgas-dump
-    COMMENT "[${figure}] the cluster numbers for gnuplot"
-    VERBATIM)
+  shockgas_gnuplot_vars(${figure} "${base}.h5" cl "${base}.fit.gp")
   shockgas_plot(${figure} SCRIPT clusters.gp DATA "${base}.dat" "${base}.masses.dat" ${maps} "${base}.fit.gp")
   # The source's runs are its custom commands' outputs: the source figure builds them first, or a
   # parallel Makefile build would start each run twice (once for each target), and the second would

@@ -21,12 +21,7 @@ function(shockgas_late_decay_figure figure)
     DEPENDS ${inputs} shockgas-analyze
     COMMENT "[${figure}] late decay: theta, crossover against eps, Delta v / v, velocity tails"
     VERBATIM)
-  shockgas_step(
-    OUTPUT "${base}.fit.gp"
-    COMMAND shockgas-dump gnuplot-vars "${base}.h5" / --recursive --prefix ld --output "${base}.fit.gp"
-    DEPENDS "${base}.h5" shockgas-dump
-    COMMENT "[${figure}] the fitted numbers for gnuplot"
-    VERBATIM)
+  shockgas_gnuplot_vars(${figure} "${base}.h5" ld "${base}.fit.gp")
   shockgas_plot(${figure} SCRIPT ${figure}.gp
                 DATA "${base}.T.dat" "${base}.slopes.dat" "${base}.crossovers.dat" "${base}.dv.dat"
                      "${base}.tails.dat" "${base}.tail_fits.dat" "${base}.fit.gp"

@@ -256,3 +256,16 @@ function(shockgas_step)
   file(CONFIGURE OUTPUT "${first_output}.command" CONTENT "${command_text}\n" @ONLY)
   add_custom_command(${ARGN} DEPENDS "${first_output}.command")
 endfunction()
+
+# shockgas_gnuplot_vars(<figure> <results.h5> <prefix> <output.gp>): every attribute of an analysis's
+# results file, its groups' included, as gnuplot variables <prefix>_<group>_<name> (shockgas-dump
+# gnuplot-vars --recursive), for a figure's script to load.
+function(shockgas_gnuplot_vars figure results prefix output)
+  get_filename_component(name "${results}" NAME)
+  shockgas_step(
+    OUTPUT "${output}"
+    COMMAND shockgas-dump gnuplot-vars "${results}" / --recursive --prefix ${prefix} --output "${output}"
+    DEPENDS "${results}" shockgas-dump
+    COMMENT "[${figure}] the numbers of ${name} for gnuplot"
+    VERBATIM)
+endfunction()
